@@ -1,0 +1,33 @@
+// Per-frame metrics of shared/metrics.md, computed by one function from (model, state) so every
+// solver is measured the same way, never from a solver's private data.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/cloth_state.hpp"
+
+namespace drapelab {
+
+struct ClothMetrics {
+  double kinetic_energy = 0.0;  // J, sum 1/2 m |v|^2
+  double gravity_energy = 0.0;  // J, -sum m g.x
+  double spring_energy = 0.0;   // J, sum 1/2 k (|d| - L)^2 over every spring kind
+  double max_stretch = 0.0;     // max over stretch springs of |d|/L - 1
+  double mean_stretch = 0.0;    // mean over stretch springs of |d|/L - 1
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // m, mass-weighted
+  double lowest_y = 0.0;        // m
+  double projected_area = 0.0;  // m^2, union of triangles projected along gravity
+  // Need colliders or a drape support; empty until a scene provides them.
+  std::optional<double> min_clearance;     // m
+  std::optional<double> max_penetration;   // m
+  std::optional<int> contact_count;
+  std::optional<double> drape_coefficient;
+  std::optional<int> drape_nodes;
+};
+
+ClothMetrics compute_cloth_metrics(const ClothModel& model, const ClothState& state,
+                                   const Eigen::Vector3d& gravity);
+
+}  // namespace drapelab

@@ -1,0 +1,65 @@
+// Building a ClothModel from a regular grid of particles, and choosing which particles are pinned.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/cloth_state.hpp"
+
+namespace drapelab {
+
+enum class GridPlane { xz, xy };  // xz: horizontal sheet (normal +y); xy: vertical sheet (normal +z)
+
+struct SpringParams {
+  double ks = 0.0;  // N/m
+  double kd = 0.0;  // N*s/m
+};
+
+// Pin selectors of the scene format. Each resolves to a non-empty set of particles.
+struct PinNamed { std::string name; };          // corners, top_corners, edge_min_x, ..., center
+struct PinGridCoord { int i = 0; int j = 0; };   // grid coordinates
+struct PinIndex { int index = 0; };             // particle index k = j * nx + i
+struct PinWithin { Eigen::Vector3d center = Eigen::Vector3d::Zero(); double radius = 0.0; };  // m
+using PinSelector = std::variant<PinNamed, PinGridCoord, PinIndex, PinWithin>;
+
+struct GridClothSpec {
+  Eigen::Vector2d size{1.0, 1.0};                  // m: width along x, depth along the second axis
+  int nx = 33;                                     // particles along x
+  int ny = 33;                                     // particles along the second axis
+  GridPlane plane = GridPlane::xz;
+  Eigen::Vector3d center{0.0, 1.0, 0.0};          // m
+  std::optional<double> mass;                      // kg, total, split equally
+  std::optional<double> areal_density;             // kg/m^2, times each vertex area
+  double thickness = 0.005;                        // m
+  SpringParams stretch{2000.0, 1.0};
+  SpringParams shear{200.0, 0.5};
+  SpringParams bend{20.0, 0.1};
+  std::vector<PinSelector> pins;
+};
+
+// Names accepted by PinNamed on this plane (edge names follow the sheet's axes).
+std::vector<std::string> pin_set_names(GridPlane plane);
+
+// The particles a selector picks, in increasing order. Empty with `error` set when the selector is
+// invalid for this grid (out of range, unknown name, or nothing inside a ball).
+std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selector, std::string* error);
+
+// Rest position of grid particle (i, j), exactly as the scene format defines it.
+Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j);
+
+// Builds the immutable model: particles, triangles (alternating diagonals, so odd grids are mirror
+// symmetric), UVs, stretch/shear/bend springs with rest lengths, masses, vertex areas and pins.
+// Preconditions (checked by the scene loader): nx, ny >= 1, nx * ny >= 2, exactly one of mass and
+// areal_density, every pin selector valid. Throws std::invalid_argument otherwise.
+ClothModel build_grid_cloth(const GridClothSpec& spec);
+
+// The initial state: rest positions, each free particle offset along the sheet normal by a uniform
+// random amount in [-amplitude, amplitude] (m) drawn from `seed`; zero velocity.
+ClothState initial_grid_state(const ClothModel& model, GridPlane plane, double amplitude,
+                              std::uint64_t seed);
+
+}  // namespace drapelab

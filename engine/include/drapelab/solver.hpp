@@ -1,0 +1,27 @@
+// The interface the runner drives: every solver (ours, and later Bullet's) steps by h and exposes its
+// cloth as a ClothState whose node i is model particle i. The runner knows nothing of their insides.
+#pragma once
+
+#include <string>
+
+#include "drapelab/cloth_state.hpp"
+
+namespace drapelab {
+
+enum class SolverStatus { ok, unstable, error };
+const char* solver_status_name(SolverStatus status);
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  // Advances the cloth by h seconds. After the status leaves `ok`, step does nothing.
+  virtual void step(double h) = 0;
+  virtual const ClothState& state() const = 0;
+  virtual const std::string& name() const = 0;  // label used in every output
+  virtual const std::string& type() const = 0;  // spring_damper, bullet_softbody, ...
+  virtual SolverStatus status() const = 0;
+  // Why the status is not ok: which particle, which step, what to try. Empty when ok.
+  virtual const std::string& message() const = 0;
+};
+
+}  // namespace drapelab

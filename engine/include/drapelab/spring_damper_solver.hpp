@@ -1,0 +1,69 @@
+// Our spring-damper cloth: forces from gravity, damped springs and air damping, advanced by an
+// explicit integrator. A step is a visible list of phases, each timed into StepStats:
+//   clear forces -> gravity -> springs -> air -> integrate (pins held) -> health check.
+// The step allocates nothing: every buffer is sized when the solver is built.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/cloth_state.hpp"
+#include "drapelab/integrators.hpp"
+#include "drapelab/solver.hpp"
+
+namespace drapelab {
+
+struct SpringDamperSettings {
+  Integrator integrator = Integrator::symplectic_euler;
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
+  double air_damping = 0.0;                  // 1/s: force -air_damping * m * v
+  double max_speed = 1000.0;                 // m/s: a faster particle means the run has blown up
+};
+
+// Wall time spent in each phase, accumulated over all steps (seconds).
+enum class StepPhase { clear_forces, gravity, springs, air, integrate, health_check, count };
+const char* step_phase_name(StepPhase phase);
+struct StepStats {
+  std::array<double, static_cast<int>(StepPhase::count)> seconds{};
+  std::int64_t steps = 0;
+};
+
+class SpringDamperSolver final : public Solver {
+ public:
+  SpringDamperSolver(std::string name, std::shared_ptr<const ClothModel> model, ClothState initial,
+                     SpringDamperSettings settings);
+
+  void step(double h) override;
+  const ClothState& state() const override { return state_; }
+  const std::string& name() const override { return name_; }
+  const std::string& type() const override { return type_; }
+  SolverStatus status() const override { return status_; }
+  const std::string& message() const override { return message_; }
+
+  const ClothModel& model() const { return *model_; }
+  const SpringDamperSettings& settings() const { return settings_; }
+  const StepStats& stats() const { return stats_; }
+
+  // Total force on every particle (N, 3 x N) at (x, v): gravity + springs + air. Public so tests and
+  // the integrators' callers can check it; writes only the solver's own force buffer.
+  const Eigen::Matrix3Xd& evaluate_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
+
+ private:
+  void check_health(double h);
+
+  std::string name_;
+  std::string type_ = "spring_damper";
+  std::shared_ptr<const ClothModel> model_;
+  SpringDamperSettings settings_;
+  ClothState state_;
+  Eigen::Matrix3Xd force_;  // N, the step's only scratch buffer
+  StepStats stats_;
+  SolverStatus status_ = SolverStatus::ok;
+  std::string message_;
+};
+
+}  // namespace drapelab

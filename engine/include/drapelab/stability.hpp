@@ -1,0 +1,26 @@
+// Step-size bounds for explicit integration of the damped spring network, from Gershgorin's theorem
+// (validation.md V4): the stiffness and damping matrices' largest eigenvalues over mass satisfy
+//   omega_max^2 <= K = max_i (2 / m_i) sum_j ks_ij     (1/s^2)
+//   c_max       <= C = max_i (2 / m_i) sum_j kd_ij + air_damping   (1/s)
+// Symplectic Euler on x'' + c x' + omega^2 x = 0 is stable iff h^2 omega^2 + 2 h c < 4, so
+//   h < (sqrt(C^2 + 4 K) - C) / K   (= 2 / omega_max without damping, 2 / C without springs).
+// Light particles on damped springs are often limited by the damping term, not the stiffness.
+#pragma once
+
+#include "drapelab/cloth_model.hpp"
+
+namespace drapelab {
+
+struct NetworkRates {
+  double stiffness = 0.0;  // K above, 1/s^2
+  double damping = 0.0;    // C above, 1/s
+};
+
+// Gershgorin bounds over the free particles; pinned particles do not move and are skipped.
+NetworkRates network_rate_bounds(const ClothModel& model, double air_damping);
+
+// A step (s) for which symplectic Euler is stable on the whole network (sufficient, from the bounds
+// above; typically within a factor 2 of the true limit). Infinity when nothing constrains it.
+double symplectic_euler_stable_step(const ClothModel& model, double air_damping);
+
+}  // namespace drapelab

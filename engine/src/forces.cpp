@@ -1,0 +1,32 @@
+// Force phases of a step. Each adds into `force` (N, 3 x N) and allocates nothing.
+#include "drapelab/forces.hpp"
+
+#include "drapelab/spring_force.hpp"
+
+namespace drapelab {
+
+void add_gravity_forces(const ClothModel& model, const Eigen::Vector3d& gravity,
+                        Eigen::Matrix3Xd& force) {
+  force.noalias() += gravity * model.mass.transpose();
+}
+
+void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                       Eigen::Matrix3Xd& force) {
+  const SpringSet& s = model.springs;
+  const std::size_t count = s.size();
+  for (std::size_t e = 0; e < count; ++e) {
+    const int a = s.v0[e], b = s.v1[e];
+    const Eigen::Vector3d f =
+        damped_spring_force(x.col(a), x.col(b), v.col(a), v.col(b), s.ks[e], s.kd[e], s.rest_length[e]);
+    force.col(a) += f;
+    force.col(b) -= f;
+  }
+}
+
+void add_air_damping_forces(const ClothModel& model, double air_damping, const Eigen::Matrix3Xd& v,
+                            Eigen::Matrix3Xd& force) {
+  if (air_damping == 0.0) return;
+  force.noalias() -= air_damping * (v * model.mass.asDiagonal());
+}
+
+}  // namespace drapelab

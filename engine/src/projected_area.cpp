@@ -1,0 +1,66 @@
+// Union area of projected triangles by rasterisation on a square-cell grid over their bounding box.
+#include "drapelab/projected_area.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace drapelab {
+namespace {
+
+// Twice the signed area of (a, b, p): positive when p is left of a->b.
+double edge_function(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+  return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
+}
+
+}  // namespace
+
+double projected_union_area(const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xi& triangles,
+                            const Eigen::Vector3d& up, const ProjectedAreaSettings& settings) {
+  if (triangles.cols() == 0 || positions.cols() == 0) return 0.0;
+  // Orthonormal basis (e1, e2) of the plane normal to `up`.
+  const Eigen::Vector3d n = up.normalized();
+  const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = n.cross(helper).normalized();
+  const Eigen::Vector3d e2 = n.cross(e1);
+  Eigen::Matrix2Xd projected(2, positions.cols());
+  projected.row(0) = e1.transpose() * positions;
+  projected.row(1) = e2.transpose() * positions;
+
+  const Eigen::Vector2d low = projected.rowwise().minCoeff();
+  const Eigen::Vector2d high = projected.rowwise().maxCoeff();
+  const double extent = (high - low).maxCoeff();
+  if (!(extent > 0.0)) return 0.0;
+  const int cells = std::max(1, settings.cells_per_side);
+  const double cell = extent / cells;  // m, square cells covering the longer side
+  const int cells_x = std::max(1, static_cast<int>(std::ceil((high.x() - low.x()) / cell)));
+  const int cells_y = std::max(1, static_cast<int>(std::ceil((high.y() - low.y()) / cell)));
+  std::vector<unsigned char> covered(static_cast<std::size_t>(cells_x) * cells_y, 0);
+
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    Eigen::Vector2d a = projected.col(triangles(0, t));
+    Eigen::Vector2d b = projected.col(triangles(1, t));
+    const Eigen::Vector2d c = projected.col(triangles(2, t));
+    if (edge_function(a, b, c) < 0.0) std::swap(a, b);  // counter-clockwise in the plane
+    if (edge_function(a, b, c) == 0.0) continue;        // degenerate: no area
+    const Eigen::Vector2d t_low = a.cwiseMin(b).cwiseMin(c), t_high = a.cwiseMax(b).cwiseMax(c);
+    // Cells whose centre low + (index + 1/2) cell may fall inside the triangle's box.
+    const int x0 = std::max(0, static_cast<int>(std::floor((t_low.x() - low.x()) / cell - 0.5)));
+    const int x1 = std::min(cells_x - 1, static_cast<int>(std::ceil((t_high.x() - low.x()) / cell - 0.5)));
+    const int y0 = std::max(0, static_cast<int>(std::floor((t_low.y() - low.y()) / cell - 0.5)));
+    const int y1 = std::min(cells_y - 1, static_cast<int>(std::ceil((t_high.y() - low.y()) / cell - 0.5)));
+    for (int iy = y0; iy <= y1; ++iy) {
+      for (int ix = x0; ix <= x1; ++ix) {
+        const Eigen::Vector2d p = low + Eigen::Vector2d(ix + 0.5, iy + 0.5) * cell;
+        if (edge_function(a, b, p) >= 0.0 && edge_function(b, c, p) >= 0.0 && edge_function(c, a, p) >= 0.0)
+          covered[static_cast<std::size_t>(iy) * cells_x + ix] = 1;
+      }
+    }
+  }
+  const auto covered_cells = std::count(covered.begin(), covered.end(), 1);
+  return static_cast<double>(covered_cells) * cell * cell;
+}
+
+}  // namespace drapelab

@@ -1,0 +1,38 @@
+// Gershgorin bounds of the damped spring network (see stability.hpp).
+#include "drapelab/stability.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace drapelab {
+
+NetworkRates network_rate_bounds(const ClothModel& model, double air_damping) {
+  // Row i of the stiffness matrix holds sum_j k_ij on the diagonal and -k_ij (times a direction
+  // projector) off it, so its Gershgorin disc reaches 2 sum_j k_ij; the damping matrix likewise.
+  const int count = model.particle_count();
+  Eigen::VectorXd row_stiffness = Eigen::VectorXd::Zero(count);  // N/m
+  Eigen::VectorXd row_damping = Eigen::VectorXd::Zero(count);    // N*s/m
+  const SpringSet& s = model.springs;
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    row_stiffness[s.v0[e]] += s.ks[e];
+    row_stiffness[s.v1[e]] += s.ks[e];
+    row_damping[s.v0[e]] += s.kd[e];
+    row_damping[s.v1[e]] += s.kd[e];
+  }
+  NetworkRates rates;
+  for (int i = 0; i < count; ++i) {
+    rates.stiffness = std::max(rates.stiffness, 2.0 * row_stiffness[i] * model.inverse_mass[i]);
+    rates.damping = std::max(rates.damping, 2.0 * row_damping[i] * model.inverse_mass[i]);
+  }
+  rates.damping += air_damping;
+  return rates;
+}
+
+double symplectic_euler_stable_step(const ClothModel& model, double air_damping) {
+  const NetworkRates r = network_rate_bounds(model, air_damping);
+  if (r.stiffness > 0.0) return (std::sqrt(r.damping * r.damping + 4.0 * r.stiffness) - r.damping) / r.stiffness;
+  if (r.damping > 0.0) return 2.0 / r.damping;
+  return std::numeric_limits<double>::infinity();
+}
+
+}  // namespace drapelab

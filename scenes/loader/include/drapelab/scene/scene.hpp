@@ -1,0 +1,65 @@
+// The resolved scene: every key of shared/scene-format.md with its default filled in. Loaded and
+// validated by scene_loader.hpp; written back as resolved.yaml by scene_writer.hpp.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "drapelab/grid_cloth.hpp"
+#include "drapelab/integrators.hpp"
+
+namespace drapelab::scene {
+
+struct ClothSpec {
+  std::string shape = "grid";   // grid (disc and mesh are not available yet)
+  GridClothSpec grid;           // size, resolution, plane, center, mass, springs, pins, thickness
+  double perturbation = 0.0;    // m, random initial offset along the sheet normal
+  double air_damping = 0.0;     // 1/s
+};
+
+struct ContactSpec {
+  double stiffness = 5000.0;  // N/m per particle
+  double damping = 5.0;       // N*s/m
+  double friction = 0.3;      // Coulomb coefficient
+};
+
+struct SolverSpec {
+  std::string name;                   // label in every output; defaults to the type
+  std::string type = "spring_damper";
+  Integrator integrator = Integrator::symplectic_euler;
+  double dt = 0.0;                    // s, internal step; a frame is steps_per_frame steps
+  bool round_dt = false;              // round dt down to a whole number of steps per frame
+  int steps_per_frame = 0;            // derived: frame period / dt
+  double max_speed = 0.0;             // m/s, a faster particle stops the solver as unstable
+  double runaway_stretch = 10.0;      // a stretch spring longer than (1 + this) x rest is unstable
+  std::string note;                   // what the loader changed (dt rounding), empty otherwise
+};
+
+enum class MeshOutput { none, obj, pc2, both };
+const char* mesh_output_name(MeshOutput output);
+
+struct OutputSpec {
+  MeshOutput meshes = MeshOutput::none;  // per-frame OBJ files and/or a .pc2 point cache per solver
+};
+
+struct Scene {
+  std::filesystem::path source;          // the scene file as given
+  std::string name;                      // [a-z0-9_-]+
+  std::string description;
+  double duration = 0.0;                 // s
+  double frame_rate = 60.0;              // frames recorded per simulated second
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
+  std::uint64_t seed = 0;
+  ClothSpec cloth;
+  ContactSpec contact;
+  std::vector<SolverSpec> solvers;
+  OutputSpec output;
+
+  int frame_count() const;         // recorded frames after frame 0: duration x frame_rate
+  double frame_period() const { return 1.0 / frame_rate; }  // s
+};
+
+}  // namespace drapelab::scene

@@ -1,0 +1,15 @@
+#include "drapelab/scene/number_format.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace drapelab {
+
+std::string format_number(double value) {
+  if (value == 0.0) return "0";  // also turns -0 into 0, so files do not differ by a sign of zero
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);  // shortest round trip
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace drapelab

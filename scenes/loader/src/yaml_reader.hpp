@@ -1,0 +1,102 @@
+// Typed, located reads from a yaml-cpp tree. Every read checks shape and range and, on failure, adds
+// an error naming the file:line (or the --set override), the key path and what was expected.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Core>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drapelab::scene {
+
+// Allowed interval of a number, with the words used in messages.
+struct Range {
+  std::optional<double> min;
+  bool min_inclusive = true;
+  std::optional<double> max;
+  bool max_inclusive = true;
+
+  static Range any() { return {}; }
+  static Range positive() { return {0.0, false, std::nullopt, true}; }
+  static Range non_negative() { return {0.0, true, std::nullopt, true}; }
+  bool contains(double value) const;
+  std::string describe() const;  // "> 0", ">= 0 and <= 1", ...
+};
+
+class SceneReader {
+ public:
+  SceneReader(std::string file_name, std::vector<std::string>* errors);
+
+  // Records that `path` (and everything below it) came from "--set path=value".
+  void set_override_origin(const std::string& path, const std::string& origin);
+
+  // "scene.yaml:14" or "scene.yaml: --set a.b=3" for an overridden key.
+  std::string where(const YAML::Node& node, const std::string& path, const YAML::Node& parent) const;
+  void error(const YAML::Node& node, const std::string& path, const std::string& message,
+             const YAML::Node& parent = YAML::Node());
+  std::size_t error_count() const { return errors_->size(); }
+  const std::string& file_name() const { return file_name_; }
+
+  // Scalars. `node` must be defined; these report and return nullopt when it is not the right shape.
+  std::optional<double> number(const YAML::Node& node, const std::string& path, const Range& range);
+  std::optional<long long> integer(const YAML::Node& node, const std::string& path, const Range& range);
+  std::optional<bool> boolean(const YAML::Node& node, const std::string& path);
+  std::optional<std::string> text(const YAML::Node& node, const std::string& path);
+  // A string that must be one of `choices`; suggests the nearest on a miss.
+  std::optional<std::string> choice(const YAML::Node& node, const std::string& path,
+                                    const std::vector<std::string>& choices);
+  // A list of exactly `size` numbers, each in `range`.
+  std::optional<Eigen::VectorXd> numbers(const YAML::Node& node, const std::string& path, int size,
+                                         const Range& range);
+  std::optional<std::vector<long long>> integers(const YAML::Node& node, const std::string& path,
+                                                 int size, const Range& range);
+
+ private:
+  std::string file_name_;
+  std::vector<std::string>* errors_;
+  std::map<std::string, std::string> override_origins_;  // key path -> "--set ..."
+};
+
+// A YAML map read key by key. On construction it reports duplicate keys and keys outside `allowed`
+// (with the nearest allowed key); `future` keys get a message saying they are not available yet.
+class MapReader {
+ public:
+  MapReader(SceneReader& reader, const YAML::Node& node, std::string path,
+            const std::vector<std::string>& allowed,
+            const std::map<std::string, std::string>& future = {});
+
+  bool valid() const { return valid_; }  // false when the node is not a map (already reported)
+  bool has(const std::string& key) const;
+  YAML::Node get(const std::string& key) const;  // undefined node when absent
+  std::string path_of(const std::string& key) const;
+  const YAML::Node& node() const { return node_; }
+  void missing(const std::string& key, const std::string& expected);  // reports a required key
+
+  std::optional<double> number(const std::string& key, const Range& range, std::optional<double> fallback);
+  std::optional<long long> integer(const std::string& key, const Range& range, std::optional<long long> fallback);
+  std::optional<bool> boolean(const std::string& key, bool fallback);
+  std::optional<std::string> text(const std::string& key, std::optional<std::string> fallback);
+  std::optional<std::string> choice(const std::string& key, const std::vector<std::string>& choices,
+                                    std::optional<std::string> fallback);
+  std::optional<Eigen::VectorXd> numbers(const std::string& key, int size, const Range& range,
+                                         std::optional<Eigen::VectorXd> fallback);
+
+ private:
+  SceneReader& reader_;
+  YAML::Node node_;
+  std::string path_;
+  bool valid_ = false;
+};
+
+// Levenshtein distance, for "did you mean" suggestions.
+std::size_t edit_distance(const std::string& a, const std::string& b);
+// The candidate nearest to `word`, or empty when none is close enough to be a plausible typo.
+std::string nearest_word(const std::string& word, const std::vector<std::string>& candidates);
+
+std::string join_path(const std::string& parent, const std::string& key);
+std::string describe_scalar(const YAML::Node& node);  // "-3", "a list", "a map", ...
+
+}  // namespace drapelab::scene

@@ -1,0 +1,58 @@
+// drapelab: the command line. Verbs: run, validate. Exit codes: 0 ok, 1 a solver became unstable or
+// failed, 2 bad input (nothing was run), 130 interrupted (files hold the frames recorded so far).
+#include <CLI/CLI.hpp>
+
+#include <atomic>
+#include <csignal>
+#include <iostream>
+
+#include "verbs.hpp"
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_interrupt(int) { g_interrupted.store(true); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"drapelab: a cloth laboratory. Runs cloth solvers side by side on the same scene and "
+               "records drape metrics frame by frame."};
+  app.set_version_flag("--version", std::string("drapelab ") + DRAPELAB_VERSION);
+  app.require_subcommand(1);
+  app.footer(
+      "Examples:\n"
+      "  drapelab run scenes/curtain.yaml --out out/curtain\n"
+      "  drapelab validate scenes/curtain.yaml --set cloth.resolution=[65,65]\n"
+      "Run 'drapelab VERB --help' for a verb's options.");
+
+  drapelab::cli::RunArguments run_arguments;
+  CLI::App* run = app.add_subcommand("run", "Simulate a scene and write its run folder");
+  drapelab::cli::add_run_options(*run, run_arguments);
+
+  drapelab::cli::ValidateArguments validate_arguments;
+  CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
+  drapelab::cli::add_validate_options(*validate, validate_arguments);
+
+  std::string command_line;
+  for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return drapelab::cli::kExitBadInput;  // usage errors are bad input too
+  }
+
+  if (*run) {
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+    return drapelab::cli::run_verb(run_arguments, command_line, g_interrupted);
+  }
+  return drapelab::cli::validate_verb(validate_arguments);
+}

@@ -1,0 +1,77 @@
+// drapelab run SCENE --out DIR: simulate and write the run folder (shared/outputs.md).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "drapelab/runner/output_files.hpp"
+#include "drapelab/runner/run_scene.hpp"
+#include "drapelab/scene/scene_loader.hpp"
+#include "verbs.hpp"
+
+namespace drapelab::cli {
+
+void add_run_options(CLI::App& verb, RunArguments& arguments) {
+  verb.add_option("scene", arguments.scene, "Scene file (YAML)")->required();
+  verb.add_option("--out,-o", arguments.out, "Output folder (created if missing)")->required();
+  verb.add_option("--set", arguments.overrides,
+                  "Override a key: key.path=value, validated like the file (list items by index: "
+                  "solvers.0.dt=1e-4); may be repeated");
+  verb.add_option("--meshes", arguments.meshes, "Also write meshes: obj (per frame), pc2 (point cache) or both")
+      ->check(CLI::IsMember({"none", "obj", "pc2", "both"}));
+  verb.add_flag("--force", arguments.force, "Replace a different run already in the output folder");
+  verb.add_flag("--quiet,-q", arguments.quiet, "Print only problems");
+  verb.footer("Example:\n  drapelab run scenes/curtain.yaml --out out/curtain --set cloth.resolution=[65,65]\n"
+              "Exit codes: 0 every solver ok, 1 a solver became unstable, 2 bad input (nothing run), "
+              "130 interrupted.");
+}
+
+namespace {
+
+void print_outcome(const std::filesystem::path& out) {
+  const auto summary = nlohmann::json::parse(runner::read_file(out / "summary.json"), nullptr, false);
+  if (summary.is_discarded()) return;
+  for (const auto& [name, solver] : summary["solvers"].items()) {
+    std::ostringstream line;
+    line.precision(4);
+    line << "  " << name << " (" << solver["type"].get<std::string>() << "): "
+         << solver["status"].get<std::string>() << ", " << solver["steps"].get<long long>() << " steps, "
+         << solver["ms_per_step"].get<double>() << " ms per step, "
+         << solver["wall_seconds_per_simulated_second"].get<double>() << " s per simulated second";
+    std::cout << line.str() << "\n";
+  }
+  std::cout << "outputs in " << out.string() << "/:\n";
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(out)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  for (const auto& name : names) std::cout << "  " << name << (std::filesystem::is_directory(out / name) ? "/" : "") << "\n";
+}
+
+}  // namespace
+
+int run_verb(const RunArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt) {
+  std::vector<std::string> overrides = arguments.overrides;
+  if (!arguments.meshes.empty()) overrides.push_back("output.meshes=" + arguments.meshes);
+  const auto loaded = scene::load_scene_file(arguments.scene, overrides);
+  if (!loaded.ok()) {
+    for (const auto& error : loaded.errors) std::cerr << "error: " << error << "\n";
+    std::cerr << "nothing was run\n";
+    return kExitBadInput;
+  }
+  for (const auto& note : loaded.notes) std::cerr << "note: " << note << "\n";
+  runner::RunOptions options;
+  options.out_dir = arguments.out;
+  options.force = arguments.force;
+  options.scene_text = runner::read_file(arguments.scene);
+  options.command_line = command_line;
+  options.interrupt = &interrupt;
+  if (!arguments.quiet)
+    std::cout << "running " << loaded.scene->name << " (" << loaded.scene->frame_count() << " frames) into "
+              << arguments.out << "\n";
+  const int code = runner::run_scene(*loaded.scene, options, std::cerr);
+  if (code != kExitBadInput && !arguments.quiet) print_outcome(arguments.out);
+  return code;
+}
+
+}  // namespace drapelab::cli

@@ -1,0 +1,35 @@
+// The per-frame tables of a run: metrics.csv, compare.csv and contacts.csv (shared/outputs.md).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "drapelab/cloth_metrics.hpp"
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/cloth_state.hpp"
+#include "drapelab/runner/output_files.hpp"
+
+namespace drapelab::runner {
+
+// Per-vertex differences between two solvers' states of the same model.
+struct StateDifference {
+  double rms_distance = 0.0;  // m, weighted by vertex area (uniform for a chain, which has no area)
+  double max_distance = 0.0;  // m
+};
+StateDifference compare_states(const ClothModel& model, const ClothState& a, const ClothState& b);
+
+class FrameTables {
+ public:
+  explicit FrameTables(const std::filesystem::path& folder);
+  void add_metrics(const std::string& solver, int frame, double time, const ClothMetrics& m);
+  void add_comparison(const std::string& solver_a, const std::string& solver_b, int frame, double time,
+                      const StateDifference& difference);
+  void flush();  // at the end of each frame
+
+ private:
+  CsvTable metrics_;
+  CsvTable compare_;
+  CsvTable contacts_;  // rows arrive with colliders
+};
+
+}  // namespace drapelab::runner

@@ -1,0 +1,91 @@
+#include "run_summary.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+#include "drapelab/spring_damper_solver.hpp"
+#include "drapelab/stability.hpp"
+
+namespace drapelab::runner {
+namespace {
+
+using nlohmann::ordered_json;
+
+// JSON has no infinity or NaN; such values become null.
+ordered_json number_or_null(double value) { return std::isfinite(value) ? ordered_json(value) : ordered_json(); }
+
+ordered_json metrics_json(const ClothMetrics& m) {
+  ordered_json j;
+  j["kinetic_energy"] = number_or_null(m.kinetic_energy);
+  j["gravity_energy"] = number_or_null(m.gravity_energy);
+  j["spring_energy"] = number_or_null(m.spring_energy);
+  j["max_stretch"] = number_or_null(m.max_stretch);
+  j["mean_stretch"] = number_or_null(m.mean_stretch);
+  j["min_clearance"] = m.min_clearance ? ordered_json(*m.min_clearance) : ordered_json();
+  j["max_penetration"] = m.max_penetration ? ordered_json(*m.max_penetration) : ordered_json();
+  j["contact_count"] = m.contact_count ? ordered_json(*m.contact_count) : ordered_json();
+  j["centroid"] = {number_or_null(m.centroid.x()), number_or_null(m.centroid.y()), number_or_null(m.centroid.z())};
+  j["lowest_y"] = number_or_null(m.lowest_y);
+  j["projected_area"] = number_or_null(m.projected_area);
+  j["drape_coefficient"] = m.drape_coefficient ? ordered_json(*m.drape_coefficient) : ordered_json();
+  j["drape_nodes"] = m.drape_nodes ? ordered_json(*m.drape_nodes) : ordered_json();
+  return j;
+}
+
+ordered_json solver_json(const SolverRun& run) {
+  ordered_json j;
+  j["type"] = run.spec->type;
+  j["status"] = solver_status_name(run.status);
+  j["message"] = run.message;
+  j["integrator"] = integrator_name(run.spec->integrator);
+  j["dt"] = run.spec->dt;
+  j["steps_per_frame"] = run.spec->steps_per_frame;
+  if (!run.spec->note.empty()) j["note"] = run.spec->note;
+  j["steps"] = run.steps;
+  j["frames_recorded"] = run.frames_recorded;
+  j["wall_seconds"] = run.wall_seconds;
+  j["ms_per_step"] = run.steps > 0 ? 1e3 * run.wall_seconds / static_cast<double>(run.steps) : 0.0;
+  const double simulated = static_cast<double>(run.steps) * run.spec->dt;
+  j["wall_seconds_per_simulated_second"] = simulated > 0.0 ? run.wall_seconds / simulated : 0.0;
+  if (const auto* ours = dynamic_cast<const SpringDamperSolver*>(run.solver.get())) {
+    ordered_json phases;
+    for (int p = 0; p < static_cast<int>(StepPhase::count); ++p)
+      phases[step_phase_name(static_cast<StepPhase>(p))] = ours->stats().seconds[p];
+    j["phase_seconds"] = phases;
+  }
+  j["final"] = run.last_metrics ? metrics_json(*run.last_metrics) : ordered_json::object();
+  return j;
+}
+
+}  // namespace
+
+std::string summary_json(const scene::Scene& scene, const ClothModel& model,
+                         const std::vector<SolverRun>& runs, const RunInfo& info) {
+  ordered_json j;
+  j["scene"] = scene.name;
+  j["drapelab_version"] = DRAPELAB_VERSION;
+  j["scene_file"] = scene.source.string();
+  j["command"] = info.command_line;
+  j["run"] = {{"state", info.state},
+              {"duration", scene.duration},
+              {"frame_rate", scene.frame_rate},
+              {"frames_planned", info.frames_planned},
+              {"frames_done", info.frames_done}};
+  j["model"] = {{"particles", model.particle_count()},
+                {"pinned", (model.inverse_mass.array() == 0.0).count()},
+                {"triangles", model.triangles.cols()},
+                {"springs",
+                 {{"stretch", model.springs.count(SpringKind::stretch)},
+                  {"shear", model.springs.count(SpringKind::shear)},
+                  {"bend", model.springs.count(SpringKind::bend)}}},
+                {"total_mass", model.total_mass()},
+                {"rest_area", model.rest_area()},
+                {"stable_symplectic_step", number_or_null(symplectic_euler_stable_step(model, scene.cloth.air_damping))}};
+  ordered_json solvers = ordered_json::object();
+  for (const auto& run : runs) solvers[run.spec->name] = solver_json(run);
+  j["solvers"] = solvers;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace drapelab::runner

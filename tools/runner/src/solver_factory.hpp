@@ -1,0 +1,16 @@
+// Builds the solver a scene's solver entry names.
+#pragma once
+
+#include <memory>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/cloth_state.hpp"
+#include "drapelab/scene/scene.hpp"
+#include "drapelab/solver.hpp"
+
+namespace drapelab::runner {
+
+std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
+                                    std::shared_ptr<const ClothModel> model, const ClothState& initial);
+
+}  // namespace drapelab::runner
