@@ -57,8 +57,10 @@ SpringSet build_grid_springs(const GridClothSpec& spec, const Eigen::Matrix3Xd& 
   return springs;
 }
 
-// Two triangles per cell; the diagonal alternates like a checkerboard so that a grid with an odd
-// number of particles per side is mirror symmetric. Wound counter-clockwise about the sheet normal.
+// Two triangles per cell, split along the same diagonal (i, j)-(i+1, j+1) everywhere, so every
+// interior particle touches six triangles and gets exactly one cell of vertex area (an alternating
+// diagonal would give 4/3 and 2/3 of a cell in a checkerboard, and so uneven masses with
+// areal_density). Wound counter-clockwise about the sheet normal.
 Eigen::Matrix3Xi build_grid_triangles(const GridClothSpec& spec, const Eigen::Matrix3Xd& rest) {
   const int nx = spec.nx, ny = spec.ny;
   const int cells = std::max(0, nx - 1) * std::max(0, ny - 1);
@@ -74,13 +76,8 @@ Eigen::Matrix3Xi build_grid_triangles(const GridClothSpec& spec, const Eigen::Ma
     for (int i = 0; i + 1 < nx; ++i) {
       const int k00 = grid_index(nx, i, j), k10 = grid_index(nx, i + 1, j);
       const int k01 = grid_index(nx, i, j + 1), k11 = grid_index(nx, i + 1, j + 1);
-      if ((i + j) % 2 == 0) {
-        emit(k00, k10, k11);
-        emit(k00, k11, k01);
-      } else {
-        emit(k00, k10, k01);
-        emit(k10, k11, k01);
-      }
+      emit(k00, k10, k11);
+      emit(k00, k11, k01);
     }
   return triangles;
 }

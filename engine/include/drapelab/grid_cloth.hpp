@@ -51,8 +51,7 @@ std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selec
 // Rest position of grid particle (i, j), exactly as the scene format defines it.
 Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j);
 
-// Builds the immutable model: particles, triangles (alternating diagonals, so odd grids are mirror
-// symmetric), UVs, stretch/shear/bend springs with rest lengths, masses, vertex areas and pins.
+// Builds the immutable model: particles, triangles (two per cell, split along one diagonal), UVs, stretch/shear/bend springs with rest lengths, masses, vertex areas and pins.
 // Preconditions (checked by the scene loader): nx, ny >= 1, nx * ny >= 2, exactly one of mass and
 // areal_density, every pin selector valid. Throws std::invalid_argument otherwise.
 ClothModel build_grid_cloth(const GridClothSpec& spec);
