@@ -118,13 +118,19 @@ void SpringDamperSolver::check_health(double h) {
     text << " after step " << state_.step_count << " (t = " << state_.time << " s, dt = " << h
          << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
     const double stable_step = symplectic_euler_stable_step(*model_, settings_.air_damping);
+    const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping);
     if (settings_.integrator == Integrator::explicit_euler)
       text << "integrator symplectic_euler (explicit Euler gains energy on every undamped spring), ";
     if (std::isfinite(stable_step))
       text << "a smaller dt (the Gershgorin bound of these springs and dampers guarantees a stable "
               "symplectic step below "
            << stable_step << " s), ";
-    text << "softer springs (lower ks), or more spring damping (kd) or air_damping.";
+    // In h^2 K + 2 h C < 4, the larger term says whether springs or dampers limit the step.
+    if (2.0 * rates.damping > h * rates.stiffness)
+      text << "or less damping (lower kd or air_damping: here the dampers, not the springs, limit the step; "
+              "kd is per spring, so light particles need small kd).";
+    else
+      text << "or softer springs (lower ks).";
     status_ = SolverStatus::unstable;
     message_ = text.str();
     return;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "drapelab/scene/number_format.hpp"
+#include "drapelab/stability.hpp"
 #include "overrides.hpp"
 #include "yaml_reader.hpp"
 
@@ -302,8 +303,8 @@ class SceneBuilder {
       }
     }
     const double frame_period = scene_.frame_period();
-    // Default: 32 steps per frame (1/1920 s at 60 frames/s), stable for moderately stiff cloth.
-    spec.dt = solver.number("dt", Range::positive(), frame_period / 32.0).value_or(frame_period / 32.0);
+    if (solver.has("dt")) spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);
+    else spec.dt = automatic_step(spec);
     spec.round_dt = solver.boolean("round_dt", false).value_or(false);
     const double free_fall_speed = scene_.gravity.norm() * std::max(scene_.duration, 0.0);  // m/s
     const double default_max_speed = 100.0 + 2.0 * free_fall_speed;
@@ -337,6 +338,25 @@ class SceneBuilder {
       return std::nullopt;
     }
     return spec;
+  }
+
+  // Without a dt, the step is chosen from the Gershgorin bound of the cloth's springs and dampers
+  // (stability.hpp): 0.9 of it for symplectic Euler, 0.1 of it for explicit Euler (which has no
+  // stable step on an undamped spring), rounded down to a whole number of steps per frame.
+  double automatic_step(SolverSpec& spec) {
+    const double frame_period = scene_.frame_period();
+    if (r_.error_count() > 0 || !grid_ok_) return frame_period;  // the scene is refused anyway
+    double bound = frame_period;
+    try {
+      bound = symplectic_euler_stable_step(build_grid_cloth(scene_.cloth.grid), scene_.cloth.air_damping);
+    } catch (const std::invalid_argument&) {
+      return frame_period;  // reported elsewhere (mass missing, bad pins)
+    }
+    const double factor = spec.integrator == Integrator::explicit_euler ? 0.1 : 0.9;
+    const double steps = std::max(1.0, std::ceil(frame_period / (factor * bound)));
+    spec.note = "dt chosen automatically: " + format_number(steps) + " steps per frame (" +
+                format_number(factor) + " x the stable step bound " + format_number(bound) + " s)";
+    return frame_period / steps;
   }
 
   SceneReader& r_;

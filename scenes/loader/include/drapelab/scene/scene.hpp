@@ -35,7 +35,7 @@ struct SolverSpec {
   int steps_per_frame = 0;            // derived: frame period / dt
   double max_speed = 0.0;             // m/s, a faster particle stops the solver as unstable
   double runaway_stretch = 10.0;      // a stretch spring longer than (1 + this) x rest is unstable
-  std::string note;                   // what the loader changed (dt rounding), empty otherwise
+  std::string note;                   // what the loader chose or changed (automatic or rounded dt)
 };
 
 enum class MeshOutput { none, obj, pc2, both };
