@@ -26,7 +26,10 @@ std::optional<std::size_t> list_index(const std::string& part) {
 }
 
 // Applies one override; returns an error message, empty on success.
-std::string apply_one(YAML::Node& root, const std::vector<std::string>& parts, const YAML::Node& value) {
+// Keys the override creates on its way down are recorded in `created`, so that errors about them
+// (a misspelled parent key, say) name the override too.
+std::string apply_one(YAML::Node& root, const std::vector<std::string>& parts, const YAML::Node& value,
+                      std::vector<std::string>& created) {
   YAML::Node node;
   node.reset(root);
   std::string walked;
@@ -50,7 +53,10 @@ std::string apply_one(YAML::Node& root, const std::vector<std::string>& parts, c
         node[part] = value;
         return "";
       }
-      if (!node[part].IsDefined() || node[part].IsNull()) node[part] = YAML::Node(YAML::NodeType::Map);
+      if (!node[part].IsDefined() || node[part].IsNull()) {
+        node[part] = YAML::Node(YAML::NodeType::Map);
+        created.push_back(join_path(walked, part));
+      }
       YAML::Node child = node[part];
       node.reset(child);
     } else {
@@ -95,12 +101,14 @@ bool apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides
       fail("the scene file is not a map of keys, so nothing can be overridden");
       continue;
     }
-    const std::string message = apply_one(root, parts, value);
+    std::vector<std::string> created;
+    const std::string message = apply_one(root, parts, value, created);
     if (!message.empty()) {
       fail(message);
       continue;
     }
     reader.set_override_origin(path, origin);
+    for (const auto& key : created) reader.set_override_origin(key, origin);
   }
   return ok;
 }

@@ -162,6 +162,7 @@ class SceneBuilder {
       return;
     }
     GridClothSpec& grid = scene_.cloth.grid;
+    record_item_lines(r_, node, "cloth.pins");
     for (std::size_t k = 0; k < node.size(); ++k) {
       const YAML::Node item = node[k];
       const std::string path = "cloth.pins." + std::to_string(k);
@@ -405,6 +406,11 @@ int Scene::frame_count() const { return static_cast<int>(std::lround(duration * 
 
 LoadResult load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   std::ifstream in(file, std::ios::binary);
+  if (std::filesystem::is_directory(file)) {
+    LoadResult result;
+    result.errors.push_back(file.string() + ": is a folder, not a file; give the path of a scene file (.yaml)");
+    return result;
+  }
   if (!in) {
     LoadResult result;
     result.errors.push_back(file.string() + ": cannot be read (" +

@@ -69,6 +69,19 @@ void SceneReader::set_override_origin(const std::string& path, const std::string
   override_origins_[path] = origin;
 }
 
+void SceneReader::set_key_line(const std::string& path, int line) { key_lines_[path] = line; }
+
+void record_item_lines(SceneReader& reader, const YAML::Node& list, const std::string& path) {
+  if (!list.IsSequence() || list.Mark().is_null()) return;
+  int line = list.Mark().line;  // a block list's mark is its first item
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const YAML::Node item = list[k];
+    if (!item.IsNull() && !item.Mark().is_null()) line = item.Mark().line;
+    else if (k > 0) ++line;
+    reader.set_key_line(path + "." + std::to_string(k), line);
+  }
+}
+
 std::string SceneReader::where(const YAML::Node& node, const std::string& path,
                                const YAML::Node& parent) const {
   // The longest overridden prefix of the path wins: "--set cloth.springs={...}" covers its keys.
@@ -85,7 +98,10 @@ std::string SceneReader::where(const YAML::Node& node, const std::string& path,
   }
   if (!origin.empty()) return file_name_ + ": " + origin;
   int line = -1;
-  if (node.IsDefined() && !node.Mark().is_null()) line = node.Mark().line;
+  const auto key_line = key_lines_.find(path);
+  if (node.IsDefined() && !node.IsNull() && !node.Mark().is_null()) line = node.Mark().line;
+  else if (key_line != key_lines_.end()) line = key_line->second;
+  else if (node.IsDefined() && !node.Mark().is_null()) line = node.Mark().line;
   else if (parent.IsDefined() && !parent.Mark().is_null()) line = parent.Mark().line;
   return line >= 0 ? file_name_ + ":" + std::to_string(line + 1) : file_name_;
 }
@@ -224,6 +240,7 @@ MapReader::MapReader(SceneReader& reader, const YAML::Node& node, std::string pa
   for (const auto& entry : node) {
     const std::string key = entry.first.Scalar();
     const std::string key_path = join_path(path_, key);
+    if (!entry.first.Mark().is_null()) reader.set_key_line(key_path, entry.first.Mark().line);
     if (!seen.insert(key).second) {
       reader.error(entry.first, key_path, "appears twice in the same map; keep one");
       continue;

@@ -32,6 +32,9 @@ class SceneReader {
 
   // Records that `path` (and everything below it) came from "--set path=value".
   void set_override_origin(const std::string& path, const std::string& origin);
+  // Records the line (0-based) of the key or list item at `path`. yaml-cpp places an empty value at
+  // the next token, so errors about empty values use this line instead.
+  void set_key_line(const std::string& path, int line);
 
   // "scene.yaml:14" or "scene.yaml: --set a.b=3" for an overridden key.
   std::string where(const YAML::Node& node, const std::string& path, const YAML::Node& parent) const;
@@ -58,6 +61,7 @@ class SceneReader {
   std::string file_name_;
   std::vector<std::string>* errors_;
   std::map<std::string, std::string> override_origins_;  // key path -> "--set ..."
+  std::map<std::string, int> key_lines_;                  // key path -> 0-based line of its key
 };
 
 // A YAML map read key by key. On construction it reports duplicate keys and keys outside `allowed`
@@ -98,5 +102,8 @@ std::string nearest_word(const std::string& word, const std::vector<std::string>
 
 std::string join_path(const std::string& parent, const std::string& key);
 std::string describe_scalar(const YAML::Node& node);  // "-3", "a list", "a map", ...
+// Records the line of every item of a list for empty items (see SceneReader::set_key_line): an item
+// with a value starts on its own mark; an empty one on the line after the item before it.
+void record_item_lines(SceneReader& reader, const YAML::Node& list, const std::string& path);
 
 }  // namespace drapelab::scene
