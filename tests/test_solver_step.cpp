@@ -48,7 +48,7 @@ TEST(SolverStep, ForcesAreGravityPlusEverySpringPlusAirDamping) {
   settings.gravity = {0.5, -9.0, 0.25};
   settings.air_damping = 0.7;
   SpringDamperSolver solver("s", model, state, settings);
-  const Eigen::Matrix3Xd force = solver.evaluate_forces(state.x, state.v);
+  const Eigen::Matrix3Xd force = solver.evaluate_forces(state.x, state.v, 0.0, 1e-4);
 
   Eigen::Matrix3Xd expected(3, model->particle_count());
   for (int i = 0; i < model->particle_count(); ++i)
@@ -78,7 +78,7 @@ TEST(SolverStep, EachIntegratorTakesItsDocumentedUpdate) {
     ClothState zeroed_pins = start;
     for (int i = 0; i < model->particle_count(); ++i)
       if (model->is_pinned(i)) zeroed_pins.v.col(i).setZero();
-    const Eigen::Matrix3Xd force = solver.evaluate_forces(zeroed_pins.x, zeroed_pins.v);
+    const Eigen::Matrix3Xd force = solver.evaluate_forces(zeroed_pins.x, zeroed_pins.v, 0.0, h);
     const Eigen::Matrix3Xd a = force * model->inverse_mass.asDiagonal();
     solver.step(h);
     const Eigen::Matrix3Xd v1 = zeroed_pins.v + h * a;

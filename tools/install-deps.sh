@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config   # compiler and build tools
   libeigen3-dev                                  # vectors and matrices (engine)
+  libfcl-dev                                     # exact particle-collider contact (engine)
   libyaml-cpp-dev                                # scene files
   libcli11-dev                                   # command line
   nlohmann-json3-dev                             # summary.json

@@ -38,6 +38,7 @@ const char* step_phase_name(StepPhase phase) {
     case StepPhase::gravity: return "gravity";
     case StepPhase::springs: return "springs";
     case StepPhase::air: return "air";
+    case StepPhase::contacts: return "contacts";
     case StepPhase::integrate: return "integrate";
     case StepPhase::health_check: return "health_check";
     case StepPhase::count: break;
@@ -52,12 +53,13 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       settings_(std::move(settings)),
       state_(std::move(initial)),
       force_(3, model_->particle_count()) {
+  if (settings_.contacts) contact_totals_.resize(settings_.contacts->size());
   for (int i = 0; i < model_->particle_count(); ++i)
     if (model_->is_pinned(i)) state_.v.col(i).setZero();  // a pin holds its particle still
 }
 
 const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3Xd& x,
-                                                            const Eigen::Matrix3Xd& v) {
+                                                            const Eigen::Matrix3Xd& v, double t, double h) {
   {
     PhaseTimer timer(stats_, StepPhase::clear_forces);
     force_.setZero();
@@ -74,12 +76,22 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
     PhaseTimer timer(stats_, StepPhase::air);
     add_air_damping_forces(*model_, settings_.air_damping, v, force_);
   }
+  if (settings_.contacts) {
+    PhaseTimer timer(stats_, StepPhase::contacts);
+    settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_);
+  }
   return force_;
+}
+
+std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
+  std::vector<ColliderForce> forces;
+  for (const auto& total : contact_totals_) forces.push_back({total.normal_force, total.friction_force});
+  return forces;
 }
 
 void SpringDamperSolver::step(double h) {
   if (status_ != SolverStatus::ok) return;
-  evaluate_forces(state_.x, state_.v);
+  evaluate_forces(state_.x, state_.v, state_.time, h);
   {
     PhaseTimer timer(stats_, StepPhase::integrate);
     switch (settings_.integrator) {

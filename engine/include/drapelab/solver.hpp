@@ -3,12 +3,20 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "drapelab/cloth_state.hpp"
 
 namespace drapelab {
 
 enum class SolverStatus { ok, unstable, error };
+
+// The contact force a solver's cloth received from one collider during its last step (N): the sums
+// over the touching particles of the magnitudes of the normal and tangential parts.
+struct ColliderForce {
+  double normal = 0.0;
+  double friction = 0.0;
+};
 const char* solver_status_name(SolverStatus status);
 
 class Solver {
@@ -22,6 +30,8 @@ class Solver {
   virtual SolverStatus status() const = 0;
   // Why the status is not ok: which particle, which step, what to try. Empty when ok.
   virtual const std::string& message() const = 0;
+  // One entry per scene collider, in scene order (empty without colliders).
+  virtual std::vector<ColliderForce> collider_forces() const = 0;
 };
 
 }  // namespace drapelab

@@ -1,6 +1,7 @@
-// Our spring-damper cloth: forces from gravity, damped springs and air damping, advanced by an
-// explicit integrator. A step is a visible list of phases, each timed into StepStats:
-//   clear forces -> gravity -> springs -> air -> integrate (pins held) -> health check.
+// Our spring-damper cloth: forces from gravity, damped springs, air damping and penalty contact with
+// friction, advanced by an explicit integrator. A step is a visible list of phases, each timed into
+// StepStats:
+//   clear forces -> gravity -> springs -> air -> contacts -> integrate (pins held) -> health check.
 // The step allocates nothing: every buffer is sized when the solver is built.
 #pragma once
 
@@ -12,6 +13,7 @@
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
+#include "drapelab/contact_model.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/solver.hpp"
 
@@ -22,10 +24,11 @@ struct SpringDamperSettings {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   double air_damping = 0.0;                  // 1/s: force -air_damping * m * v
   double max_speed = 1000.0;                 // m/s: a faster particle means the run has blown up
+  std::shared_ptr<const ContactModel> contacts;  // colliders and penalty parameters; none when null
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
-enum class StepPhase { clear_forces, gravity, springs, air, integrate, health_check, count };
+enum class StepPhase { clear_forces, gravity, springs, air, contacts, integrate, health_check, count };
 const char* step_phase_name(StepPhase phase);
 struct StepStats {
   std::array<double, static_cast<int>(StepPhase::count)> seconds{};
@@ -43,14 +46,19 @@ class SpringDamperSolver final : public Solver {
   const std::string& type() const override { return type_; }
   SolverStatus status() const override { return status_; }
   const std::string& message() const override { return message_; }
+  std::vector<ColliderForce> collider_forces() const override;
 
   const ClothModel& model() const { return *model_; }
   const SpringDamperSettings& settings() const { return settings_; }
   const StepStats& stats() const { return stats_; }
 
-  // Total force on every particle (N, 3 x N) at (x, v): gravity + springs + air. Public so tests and
-  // the integrators' callers can check it; writes only the solver's own force buffer.
-  const Eigen::Matrix3Xd& evaluate_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
+  // Total force on every particle (N, 3 x N) at (x, v) and time t (s): gravity + springs + air +
+  // contacts, with friction sized for a step of h (s). Public so tests can check it; writes only the
+  // solver's own buffers.
+  const Eigen::Matrix3Xd& evaluate_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
+                                          double h);
+  // What each collider did in the last force evaluation (empty without colliders).
+  const std::vector<ColliderContactTotals>& contact_totals() const { return contact_totals_; }
 
  private:
   void check_health(double h);
@@ -60,7 +68,8 @@ class SpringDamperSolver final : public Solver {
   std::shared_ptr<const ClothModel> model_;
   SpringDamperSettings settings_;
   ClothState state_;
-  Eigen::Matrix3Xd force_;  // N, the step's only scratch buffer
+  Eigen::Matrix3Xd force_;  // N, the step's scratch buffer
+  std::vector<ColliderContactTotals> contact_totals_;
   StepStats stats_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;

@@ -1,0 +1,59 @@
+// Particle-versus-collider queries with FCL's exact closed-form shape routines. A particle is a sphere
+// of radius r (the cloth's thickness); FCL's sphere-{sphere, capsule, cylinder, box, halfspace}
+// collision gives the exact penetration depth and normal (shared/bullet-notes.md section 3).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+
+#include "drapelab/collider.hpp"
+
+namespace fcl {
+template <typename S>
+class CollisionGeometry;
+}
+
+namespace drapelab {
+
+// A collider as FCL geometry. FCL's cylinder and capsule lie along their local z axis, so
+// `shape_in_collider` turns z onto the collider's axis; FCL's box takes full side lengths.
+struct FclCollider {
+  std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
+  Eigen::Isometry3d shape_in_collider = Eigen::Isometry3d::Identity();  // FCL shape frame -> collider frame
+};
+
+// The one conversion from our Collider to FCL geometry.
+FclCollider make_fcl_collider(const Collider& collider);
+
+// Overlap of a particle sphere (centre x, radius r, m) with a collider posed by `shape_pose`
+// (FCL shape frame -> world, i.e. collider_pose * shape_in_collider).
+struct ParticleContact {
+  double depth = 0.0;                                  // m, > 0: how far the sphere reaches inside
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit, out of the collider (push direction)
+};
+
+class ParticleContactQuery {
+ public:
+  explicit ParticleContactQuery(double radius);  // m, the particle sphere's radius
+
+  // The contact when the sphere overlaps the collider; nothing when they are apart.
+  std::optional<ParticleContact> contact(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
+                                         const Eigen::Vector3d& x) const;
+  // Signed distance from the particle's surface to the collider (m): d(x) - r, negative inside the
+  // thickness shell. Exact: FCL's contact depth when overlapping, FCL's distance otherwise.
+  double clearance(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
+                   const Eigen::Vector3d& x) const;
+  double radius() const { return radius_; }
+
+ private:
+  double radius_;
+  std::shared_ptr<fcl::CollisionGeometry<double>> sphere_;
+};
+
+// World-space bounding box of a posed collider, grown by `margin` (m). Unbounded for a plane.
+Eigen::AlignedBox3d collider_bounds(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
+                                    double margin);
+
+}  // namespace drapelab

@@ -1,0 +1,57 @@
+// The colliders of a scene as seen by our solver: their FCL geometry, poses over time, and the
+// penalty contact phase of a step (penalty_contact.hpp), with a bounding-box broad phase so that
+// particles far from every collider cost a few comparisons.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/collider.hpp"
+#include "drapelab/contact_fcl.hpp"
+
+namespace drapelab {
+
+struct ContactParameters {
+  double stiffness = 5000.0;  // N/m per particle
+  double damping = 5.0;       // N*s/m
+};
+
+// What one collider did to the cloth during a force evaluation.
+struct ColliderContactTotals {
+  int contact_count = 0;        // particles overlapping the collider
+  double normal_force = 0.0;    // N, sum of |normal force| over them
+  double friction_force = 0.0;  // N, sum of |friction force| over them
+  double max_depth = 0.0;       // m, deepest overlap
+};
+
+class ContactModel {
+ public:
+  // `radius`: the particles' contact radius, the cloth's thickness (m).
+  ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius);
+
+  std::size_t size() const { return colliders_.size(); }
+  bool empty() const { return colliders_.empty(); }
+  const Collider& collider(std::size_t c) const { return colliders_[c]; }
+  const FclCollider& fcl_collider(std::size_t c) const { return fcl_colliders_[c]; }
+  const std::vector<Collider>& colliders() const { return colliders_; }
+  const ContactParameters& parameters() const { return parameters_; }
+  const ParticleContactQuery& query() const { return query_; }
+  // FCL shape frame -> world at time t (s).
+  Eigen::Isometry3d shape_pose(std::size_t c, double t) const;
+
+  // Adds penalty and friction forces (N) to `force` for the state (x, v) at time t, for a step of h.
+  // Friction uses the force already accumulated, so call it after every other force phase.
+  // `totals` (one per collider) is overwritten. Pinned particles are skipped. Allocates nothing.
+  void add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
+                          const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
+                          std::vector<ColliderContactTotals>& totals) const;
+
+ private:
+  std::vector<Collider> colliders_;
+  std::vector<FclCollider> fcl_colliders_;
+  ContactParameters parameters_;
+  ParticleContactQuery query_;
+};
+
+}  // namespace drapelab

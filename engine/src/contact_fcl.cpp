@@ -1,0 +1,102 @@
+// FCL conversion and particle queries (see contact_fcl.hpp).
+#include "drapelab/contact_fcl.hpp"
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/utility.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <limits>
+
+namespace drapelab {
+
+FclCollider make_fcl_collider(const Collider& c) {
+  FclCollider out;
+  switch (c.shape) {
+    case ColliderShape::sphere:
+      out.geometry = std::make_shared<fcl::Sphere<double>>(c.radius);
+      break;
+    case ColliderShape::cylinder:
+    case ColliderShape::capsule: {
+      if (c.shape == ColliderShape::cylinder)
+        out.geometry = std::make_shared<fcl::Cylinder<double>>(c.radius, c.height);
+      else
+        out.geometry = std::make_shared<fcl::Capsule<double>>(c.radius, c.height);
+      // FCL's axis is local z: rotate z onto the collider's axis.
+      out.shape_in_collider.linear() =
+          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), c.axis.normalized()).toRotationMatrix();
+      break;
+    }
+    case ColliderShape::box:
+      out.geometry = std::make_shared<fcl::Box<double>>(2.0 * c.half_extents);
+      break;
+    case ColliderShape::plane:
+      // A half-space through the collider's origin: solid where n.p <= 0 (FCL's Plane is two-sided).
+      out.geometry = std::make_shared<fcl::Halfspace<double>>(c.normal.normalized(), 0.0);
+      break;
+  }
+  out.geometry->computeLocalAABB();
+  return out;
+}
+
+ParticleContactQuery::ParticleContactQuery(double radius)
+    : radius_(radius), sphere_(std::make_shared<fcl::Sphere<double>>(radius)) {
+  sphere_->computeLocalAABB();
+}
+
+std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& collider,
+                                                             const Eigen::Isometry3d& shape_pose,
+                                                             const Eigen::Vector3d& x) const {
+  fcl::Transform3d particle_pose = fcl::Transform3d::Identity();
+  particle_pose.translation() = x;
+  const fcl::CollisionRequestd request(1, /*enable_contact=*/true);
+  fcl::CollisionResultd result;
+  fcl::collide(sphere_.get(), particle_pose, collider.geometry.get(), shape_pose, request, result);
+  if (!result.isCollision()) return std::nullopt;
+  const fcl::Contactd& found = result.getContact(0);
+  // FCL's normal points from the first object (the particle) into the second (the collider).
+  return ParticleContact{found.penetration_depth, -found.normal.normalized()};
+}
+
+double ParticleContactQuery::clearance(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
+                                       const Eigen::Vector3d& x) const {
+  if (const auto touching = contact(collider, shape_pose, x)) return -touching->depth;
+  if (collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE) {
+    // FCL has no sphere-halfspace distance routine (its libccd fallback crashes: a half-space has no
+    // support point), but the half-space's own signed distance is exact.
+    const auto& halfspace = static_cast<const fcl::Halfspace<double>&>(*collider.geometry);
+    return halfspace.signedDistance(shape_pose.inverse() * x) - radius_;
+  }
+  // Sphere-{sphere, capsule, cylinder, box} distances are FCL closed forms.
+  fcl::Transform3d particle_pose = fcl::Transform3d::Identity();
+  particle_pose.translation() = x;
+  fcl::DistanceRequestd request;
+  fcl::DistanceResultd result;
+  fcl::distance(sphere_.get(), particle_pose, collider.geometry.get(), shape_pose, request, result);
+  return result.min_distance;
+}
+
+Eigen::AlignedBox3d collider_bounds(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
+                                    double margin) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  if (collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE)
+    return Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-infinity), Eigen::Vector3d::Constant(infinity));
+  // The eight corners of the local box, posed: a box that holds the posed shape.
+  const fcl::AABBd& local = collider.geometry->aabb_local;
+  Eigen::AlignedBox3d world;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d p((corner & 1) ? local.max_.x() : local.min_.x(),
+                            (corner & 2) ? local.max_.y() : local.min_.y(),
+                            (corner & 4) ? local.max_.z() : local.min_.z());
+    world.extend(shape_pose * p);
+  }
+  world.min().array() -= margin;
+  world.max().array() += margin;
+  return world;
+}
+
+}  // namespace drapelab

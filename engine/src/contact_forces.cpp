@@ -1,0 +1,55 @@
+// The contact phase of our step: broad phase by bounding box, exact FCL narrow phase, penalty normal
+// force and velocity-level Coulomb friction relative to the collider's moving surface.
+#include "drapelab/contact_model.hpp"
+#include "drapelab/penalty_contact.hpp"
+
+namespace drapelab {
+
+ContactModel::ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius)
+    : colliders_(std::move(colliders)), parameters_(parameters), query_(radius) {
+  fcl_colliders_.reserve(colliders_.size());
+  for (const auto& collider : colliders_) fcl_colliders_.push_back(make_fcl_collider(collider));
+}
+
+Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
+  return collider_pose(colliders_[c], t) * fcl_colliders_[c].shape_in_collider;
+}
+
+void ContactModel::add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
+                                      const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
+                                      std::vector<ColliderContactTotals>& totals) const {
+  totals.assign(colliders_.size(), ColliderContactTotals{});  // capacity kept after the first step
+  for (std::size_t c = 0; c < colliders_.size(); ++c) {
+    const Collider& collider = colliders_[c];
+    const Eigen::Isometry3d pose = shape_pose(c, t);
+    const Eigen::AlignedBox3d near = collider_bounds(fcl_colliders_[c], pose, query_.radius());
+    const bool moving = !collider.motion.is_static();
+    ColliderContactTotals& total = totals[c];
+    for (int i = 0; i < model.particle_count(); ++i) {
+      if (model.is_pinned(i) || !near.contains(x.col(i))) continue;  // broad phase
+      const auto touching = query_.contact(fcl_colliders_[c], pose, x.col(i));
+      if (!touching) continue;
+      const Eigen::Vector3d& n = touching->normal;
+      const Eigen::Vector3d surface_velocity =
+          moving ? collider_point_velocity(collider, t, x.col(i)) : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d relative_velocity = v.col(i) - surface_velocity;
+      const double fn = penalty_normal_force(touching->depth, relative_velocity.dot(n), parameters_.stiffness,
+                                             parameters_.damping);
+      force.col(i) += fn * n;
+      Eigen::Vector3d friction = Eigen::Vector3d::Zero();
+      if (fn > 0.0 && collider.static_friction > 0.0) {
+        const double mass = model.mass[i];
+        const Eigen::Vector3d trial = relative_velocity + (h / mass) * force.col(i);
+        friction = coulomb_friction_force(trial - trial.dot(n) * n, mass, h, fn, collider.static_friction,
+                                          collider.friction);
+        force.col(i) += friction;
+      }
+      ++total.contact_count;
+      total.normal_force += fn;
+      total.friction_force += friction.norm();
+      total.max_depth = std::max(total.max_depth, touching->depth);
+    }
+  }
+}
+
+}  // namespace drapelab
