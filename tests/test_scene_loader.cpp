@@ -685,10 +685,14 @@ TEST(SceneLoader, LaterClothKeysAreNotAvailableYet) {
   }
 }
 
-TEST(SceneLoader, CollidersAreNotAvailableYet) {
+TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
   const auto result =
       load(kBase + "colliders:\n  - {name: ball, type: sphere, center: [0, 0.5, 0], radius: 0.3}\n");
-  EXPECT_TRUE(HasError(result, at(36), {"colliders are not available yet", "colliders: []"}));
+  ASSERT_TRUE(result.ok()) << (result.errors.empty() ? "" : result.errors[0]);
+  ASSERT_EQ(result.scene->colliders.size(), 1u);
+  EXPECT_EQ(result.scene->colliders[0].name, "ball");
+  EXPECT_DOUBLE_EQ(result.scene->colliders[0].radius, 0.3);
+  EXPECT_DOUBLE_EQ(result.scene->colliders[0].friction, result.scene->contact.friction);
 }
 
 TEST(SceneLoader, DrapeSupportIsNotAvailableYet) {

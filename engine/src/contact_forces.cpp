@@ -3,7 +3,46 @@
 #include "drapelab/contact_model.hpp"
 #include "drapelab/penalty_contact.hpp"
 
+#include <fcl/geometry/shape/halfspace.h>
+
 namespace drapelab {
+namespace {
+
+// Broad phase for one posed collider: a few multiplications tell that a particle cannot touch it.
+// A plane compares the particle's height above it; other shapes test the bounding box and the
+// bounding sphere (the box alone is loose for a rotated or round shape).
+class NearTest {
+ public:
+  NearTest(const FclCollider& collider, const Eigen::Isometry3d& pose, double radius) : radius_(radius) {
+    plane_ = collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE;
+    if (plane_) {
+      const auto& halfspace = static_cast<const fcl::Halfspace<double>&>(*collider.geometry);
+      normal_ = pose.linear() * halfspace.n;
+      offset_ = halfspace.d + normal_.dot(pose.translation());
+      return;
+    }
+    box_ = collider_bounds(collider, pose, radius);
+    const fcl::AABBd& local = collider.geometry->aabb_local;
+    center_ = pose * local.center();
+    reach_ = 0.5 * (local.max_ - local.min_).norm() + radius;
+  }
+
+  bool may_touch(const Eigen::Vector3d& x) const {
+    if (plane_) return normal_.dot(x) - offset_ < radius_;
+    return box_.contains(x) && (x - center_).squaredNorm() < reach_ * reach_;
+  }
+
+ private:
+  double radius_;
+  bool plane_ = false;
+  Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();  // plane: world normal
+  double offset_ = 0.0;                               // plane: n . p on the plane (m)
+  Eigen::AlignedBox3d box_;
+  Eigen::Vector3d center_ = Eigen::Vector3d::Zero();  // bounding sphere centre (m)
+  double reach_ = 0.0;                                // bounding sphere radius + particle radius (m)
+};
+
+}  // namespace
 
 ContactModel::ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius)
     : colliders_(std::move(colliders)), parameters_(parameters), query_(radius) {
@@ -22,11 +61,11 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
   for (std::size_t c = 0; c < colliders_.size(); ++c) {
     const Collider& collider = colliders_[c];
     const Eigen::Isometry3d pose = shape_pose(c, t);
-    const Eigen::AlignedBox3d near = collider_bounds(fcl_colliders_[c], pose, query_.radius());
+    const NearTest near(fcl_colliders_[c], pose, query_.radius());
     const bool moving = !collider.motion.is_static();
     ColliderContactTotals& total = totals[c];
     for (int i = 0; i < model.particle_count(); ++i) {
-      if (model.is_pinned(i) || !near.contains(x.col(i))) continue;  // broad phase
+      if (model.is_pinned(i) || !near.may_touch(x.col(i))) continue;  // broad phase
       const auto touching = query_.contact(fcl_colliders_[c], pose, x.col(i));
       if (!touching) continue;
       const Eigen::Vector3d& n = touching->normal;

@@ -129,8 +129,10 @@ void SpringDamperSolver::check_health(double h) {
            << settings_.max_speed << " m/s";
     text << " after step " << state_.step_count << " (t = " << state_.time << " s, dt = " << h
          << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
-    const double stable_step = symplectic_euler_stable_step(*model_, settings_.air_damping);
-    const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping);
+    ContactRates contact;
+    if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
+    const double stable_step = symplectic_euler_stable_step(*model_, settings_.air_damping, contact);
+    const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping, contact);
     if (settings_.integrator == Integrator::explicit_euler)
       text << "integrator symplectic_euler (explicit Euler gains energy on every undamped spring), ";
     if (std::isfinite(stable_step))
@@ -139,10 +141,10 @@ void SpringDamperSolver::check_health(double h) {
            << stable_step << " s), ";
     // In h^2 K + 2 h C < 4, the larger term says whether springs or dampers limit the step.
     if (2.0 * rates.damping > h * rates.stiffness)
-      text << "or less damping (lower kd or air_damping: here the dampers, not the springs, limit the step; "
-              "kd is per spring, so light particles need small kd).";
+      text << "or less damping (lower kd, air_damping or contact.damping: here the dampers, not the springs, "
+              "limit the step; they act per spring or particle, so light particles need small values).";
     else
-      text << "or softer springs (lower ks).";
+      text << "or softer springs (lower ks or contact.stiffness).";
     status_ = SolverStatus::unstable;
     message_ = text.str();
     return;

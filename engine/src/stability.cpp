@@ -6,7 +6,7 @@
 
 namespace drapelab {
 
-NetworkRates network_rate_bounds(const ClothModel& model, double air_damping) {
+NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, ContactRates contact) {
   // Row i of the stiffness matrix holds sum_j k_ij on the diagonal and -k_ij (times a direction
   // projector) off it, so its Gershgorin disc reaches 2 sum_j k_ij; the damping matrix likewise.
   const int count = model.particle_count();
@@ -21,15 +21,16 @@ NetworkRates network_rate_bounds(const ClothModel& model, double air_damping) {
   }
   NetworkRates rates;
   for (int i = 0; i < count; ++i) {
-    rates.stiffness = std::max(rates.stiffness, 2.0 * row_stiffness[i] * model.inverse_mass[i]);
-    rates.damping = std::max(rates.damping, 2.0 * row_damping[i] * model.inverse_mass[i]);
+    const double w = model.inverse_mass[i];  // 1/kg, 0 when pinned
+    rates.stiffness = std::max(rates.stiffness, (2.0 * row_stiffness[i] + contact.stiffness) * w);
+    rates.damping = std::max(rates.damping, (2.0 * row_damping[i] + contact.damping) * w);
   }
   rates.damping += air_damping;
   return rates;
 }
 
-double symplectic_euler_stable_step(const ClothModel& model, double air_damping) {
-  const NetworkRates r = network_rate_bounds(model, air_damping);
+double symplectic_euler_stable_step(const ClothModel& model, double air_damping, ContactRates contact) {
+  const NetworkRates r = network_rate_bounds(model, air_damping, contact);
   if (r.stiffness > 0.0) return (std::sqrt(r.damping * r.damping + 4.0 * r.stiffness) - r.damping) / r.stiffness;
   if (r.damping > 0.0) return 2.0 / r.damping;
   return std::numeric_limits<double>::infinity();

@@ -33,7 +33,7 @@ int validate_verb(const ValidateArguments& arguments) {
     return 0;
   }
   const ClothModel model = build_grid_cloth(s.cloth.grid);
-  const double stable_step = symplectic_euler_stable_step(model, s.cloth.air_damping);  // s
+  const double stable_step = symplectic_euler_stable_step(model, s.cloth.air_damping, s.contact_rates());  // s
   std::cout.precision(6);
   std::cout << arguments.scene << ": ok\n"
             << "  scene " << s.name << ": " << format_number(s.duration) << " s, " << s.frame_count()
@@ -42,7 +42,8 @@ int validate_verb(const ValidateArguments& arguments) {
             << (model.inverse_mass.array() == 0.0).count() << " pinned), " << model.springs.size()
             << " springs, " << model.triangles.cols() << " triangles, "
             << model.total_mass() << " kg\n"
-            << "  stable symplectic step (Gershgorin bound of springs and dampers): " << stable_step << " s\n";
+            << "  colliders: " << s.colliders.size() << "\n"
+            << "  stable symplectic step (Gershgorin bound of springs, dampers and contact): " << stable_step << " s\n";
   for (const auto& solver : s.solvers) {
     std::cout << "  solver " << solver.name << ": " << solver.type << ", " << integrator_name(solver.integrator)
               << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";

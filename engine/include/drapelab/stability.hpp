@@ -2,6 +2,8 @@
 // (validation.md V4): the stiffness and damping matrices' largest eigenvalues over mass satisfy
 //   omega_max^2 <= K = max_i (2 / m_i) sum_j ks_ij     (1/s^2)
 //   c_max       <= C = max_i (2 / m_i) sum_j kd_ij + air_damping   (1/s)
+// A penalty contact adds its stiffness k_c and damping c_c to the diagonal: K += k_c / m_i and
+// C += c_c / m_i for a particle touching one collider.
 // Symplectic Euler on x'' + c x' + omega^2 x = 0 is stable iff h^2 omega^2 + 2 h c < 4, so
 //   h < (sqrt(C^2 + 4 K) - C) / K   (= 2 / omega_max without damping, 2 / C without springs).
 // Light particles on damped springs are often limited by the damping term, not the stiffness.
@@ -16,11 +18,17 @@ struct NetworkRates {
   double damping = 0.0;    // C above, 1/s
 };
 
+// Penalty contact parameters that enter the bound (zero without colliders).
+struct ContactRates {
+  double stiffness = 0.0;  // N/m
+  double damping = 0.0;    // N*s/m
+};
+
 // Gershgorin bounds over the free particles; pinned particles do not move and are skipped.
-NetworkRates network_rate_bounds(const ClothModel& model, double air_damping);
+NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, ContactRates contact = {});
 
 // A step (s) for which symplectic Euler is stable on the whole network (sufficient, from the bounds
 // above; typically within a factor 2 of the true limit). Infinity when nothing constrains it.
-double symplectic_euler_stable_step(const ClothModel& model, double air_damping);
+double symplectic_euler_stable_step(const ClothModel& model, double air_damping, ContactRates contact = {});
 
 }  // namespace drapelab

@@ -11,6 +11,7 @@
 
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
+#include "collider_reader.hpp"
 #include "overrides.hpp"
 #include "yaml_reader.hpp"
 
@@ -53,8 +54,8 @@ class SceneBuilder {
     check_frame_count(top);
     if (top.has("cloth")) read_cloth(top.get("cloth"));
     else top.missing("cloth", "a map describing the cloth (shape, size, resolution, mass, springs, pins)");
-    if (top.has("colliders")) read_colliders(top.get("colliders"));
-    if (top.has("contact")) read_contact(top.get("contact"));
+    if (top.has("contact")) read_contact(top.get("contact"));  // first: colliders take its friction
+    if (top.has("colliders")) scene_.colliders = read_colliders(r_, top.get("colliders"), scene_.contact);
     if (top.has("metrics")) read_metrics(top.get("metrics"));
     if (top.has("output")) read_output(top.get("output"));
     read_solvers(top);
@@ -212,21 +213,17 @@ class SceneBuilder {
     return PinWithin{*center, *radius};
   }
 
-  void read_colliders(const YAML::Node& node) {
-    if (node.IsSequence() && node.size() == 0) return;
-    if (node.IsNull()) return;
-    r_.error(node, "colliders",
-             "are not available yet in this version of drapelab (colliders with FCL contact come in a "
-             "later version); remove the colliders list, or use colliders: []");
-  }
-
   void read_contact(const YAML::Node& node) {
-    MapReader contact(r_, node, "contact", {"stiffness", "damping", "friction"});
+    MapReader contact(r_, node, "contact", {"stiffness", "damping", "friction", "static_friction"});
     if (!contact.valid()) return;
     ContactSpec& c = scene_.contact;
     c.stiffness = contact.number("stiffness", Range::positive(), c.stiffness).value_or(c.stiffness);
     c.damping = contact.number("damping", Range::non_negative(), c.damping).value_or(c.damping);
     c.friction = contact.number("friction", Range::non_negative(), c.friction).value_or(c.friction);
+    c.static_friction = contact.number("static_friction", Range::non_negative(), c.friction).value_or(c.friction);
+    if (c.static_friction < c.friction)
+      r_.error(contact.get("static_friction"), "contact.static_friction",
+               "must be >= contact.friction (" + format_number(c.friction) + "), got " + format_number(c.static_friction));
   }
 
   void read_metrics(const YAML::Node& node) {
@@ -349,7 +346,8 @@ class SceneBuilder {
     if (r_.error_count() > 0 || !grid_ok_) return frame_period;  // the scene is refused anyway
     double bound = frame_period;
     try {
-      bound = symplectic_euler_stable_step(build_grid_cloth(scene_.cloth.grid), scene_.cloth.air_damping);
+      bound = symplectic_euler_stable_step(build_grid_cloth(scene_.cloth.grid), scene_.cloth.air_damping,
+                                           scene_.contact_rates());
     } catch (const std::invalid_argument&) {
       return frame_period;  // reported elsewhere (mass missing, bad pins)
     }

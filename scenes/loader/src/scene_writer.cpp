@@ -31,6 +31,45 @@ std::string spring_text(const SpringParams& p) {
   return "{ks: " + format_number(p.ks) + ", kd: " + format_number(p.kd) + "}";
 }
 
+void write_collider(std::ostream& out, const Collider& c) {
+  out << "  - name: " << c.name << "\n"
+      << "    type: " << collider_shape_name(c.shape) << "\n";
+  switch (c.shape) {
+    case ColliderShape::plane:
+      out << "    point: " << list(c.center) << "  # m\n"
+          << "    normal: " << list(c.normal) << "  # solid below\n";
+      break;
+    case ColliderShape::box:
+      out << "    center: " << list(c.center) << "  # m\n"
+          << "    half_extents: " << list(c.half_extents) << "  # m\n";
+      break;
+    case ColliderShape::sphere:
+      out << "    center: " << list(c.center) << "  # m\n"
+          << "    radius: " << format_number(c.radius) << "  # m\n";
+      break;
+    case ColliderShape::cylinder:
+    case ColliderShape::capsule:
+      out << "    center: " << list(c.center) << "  # m\n"
+          << "    radius: " << format_number(c.radius) << "  # m\n"
+          << "    height: " << format_number(c.height) << "  # m\n"
+          << "    axis: " << list(c.axis) << "\n";
+      break;
+  }
+  out << "    rotation: " << list(c.rotation) << "  # deg, Euler x, y, z\n"
+      << "    friction: " << format_number(c.friction) << "\n"
+      << "    static_friction: " << format_number(c.static_friction) << "\n";
+  const ColliderMotion& m = c.motion;
+  if (!m.keyframes.empty()) {
+    out << "    motion:\n      keyframes:\n";
+    for (const auto& k : m.keyframes)
+      out << "        - {t: " << format_number(k.t) << ", center: " << list(k.center)
+          << ", rotation: " << list(k.rotation) << "}\n";
+  } else if (!m.is_static()) {
+    out << "    motion: {velocity: " << list(m.velocity) << ", angular_velocity: " << list(m.angular_velocity)
+        << "}  # m/s, deg/s\n";
+  }
+}
+
 }  // namespace
 
 std::string resolved_scene_yaml(const Scene& s) {
@@ -66,11 +105,14 @@ std::string resolved_scene_yaml(const Scene& s) {
     out << "  pins:\n";
     for (const auto& pin : g.pins) out << "    - " << pin_text(pin) << "\n";
   }
-  out << "colliders: []\n"
-      << "contact:\n"
+  if (s.colliders.empty()) out << "colliders: []\n";
+  else out << "colliders:\n";
+  for (const auto& collider : s.colliders) write_collider(out, collider);
+  out << "contact:\n"
       << "  stiffness: " << format_number(s.contact.stiffness) << "  # N/m per particle\n"
       << "  damping: " << format_number(s.contact.damping) << "  # N*s/m\n"
-      << "  friction: " << format_number(s.contact.friction) << "  # Coulomb coefficient\n"
+      << "  friction: " << format_number(s.contact.friction) << "  # kinetic Coulomb coefficient\n"
+      << "  static_friction: " << format_number(s.contact.static_friction) << "  # static Coulomb coefficient\n"
       << "solvers:\n";
   for (const auto& solver : s.solvers) {
     out << "  - name: " << solver.name << "\n"

@@ -61,6 +61,13 @@ void FrameTables::add_comparison(const std::string& solver_a, const std::string&
                 format_number(difference.rms_distance), format_number(difference.max_distance), ""});
 }
 
+void FrameTables::add_contact(const std::string& solver, int frame, double time, const std::string& collider,
+                              int contact_count, double normal_force, double friction_force,
+                              double max_penetration) {
+  contacts_.row({solver, std::to_string(frame), format_number(time), collider, std::to_string(contact_count),
+                 format_number(normal_force), format_number(friction_force), format_number(max_penetration)});
+}
+
 void FrameTables::flush() {
   metrics_.flush();
   compare_.flush();

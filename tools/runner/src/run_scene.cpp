@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ostream>
 
+#include "drapelab/collision_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/runner/output_files.hpp"
 #include "drapelab/scene/number_format.hpp"
@@ -69,6 +70,23 @@ void check_runaway(SolverRun& run, const ClothModel& model, const ClothMetrics& 
                 ". Try: a smaller dt, stiffer stretch springs, or more damping.";
 }
 
+// Clearance metrics from FCL on the solver's state (the same for every solver), and one contacts.csv
+// row per collider with the forces the solver reports for its last step.
+void record_collisions(FrameTables& tables, const SolverRun& run, const ClothModel& model,
+                       const ContactModel& contacts, int frame, double time, ClothMetrics& metrics) {
+  const CollisionMetrics collisions = compute_collision_metrics(model, run.solver->state(), contacts, time);
+  metrics.min_clearance = collisions.min_clearance;
+  metrics.max_penetration = collisions.max_penetration;
+  metrics.contact_count = collisions.contact_count;
+  const std::vector<ColliderForce> forces = run.solver->collider_forces();
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const ColliderForce force = c < forces.size() ? forces[c] : ColliderForce{};
+    tables.add_contact(run.spec->name, frame, time, contacts.collider(c).name,
+                       collisions.per_collider[c].contact_count, force.normal, force.friction,
+                       collisions.per_collider[c].max_penetration);
+  }
+}
+
 }  // namespace
 
 int run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream& log) {
@@ -84,12 +102,16 @@ int run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(scene.cloth.grid));
   const ClothState initial =
       initial_grid_state(*model, scene.cloth.grid.plane, scene.cloth.perturbation, scene.seed);
+  std::shared_ptr<const ContactModel> contacts;
+  if (!scene.colliders.empty())
+    contacts = std::make_shared<const ContactModel>(
+        scene.colliders, ContactParameters{scene.contact.stiffness, scene.contact.damping}, model->thickness);
   std::vector<SolverRun> runs;
   runs.reserve(scene.solvers.size());
   for (const auto& spec : scene.solvers) {
     SolverRun run;
     run.spec = &spec;
-    run.solver = make_solver(scene, spec, model, initial);
+    run.solver = make_solver(scene, spec, model, initial, contacts);
     runs.push_back(std::move(run));
   }
 
@@ -115,7 +137,8 @@ int run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream
     const double time = frame / scene.frame_rate;  // s
     for (auto& run : runs) {
       if (!run.running()) continue;
-      const ClothMetrics metrics = compute_cloth_metrics(*model, run.solver->state(), scene.gravity);
+      ClothMetrics metrics = compute_cloth_metrics(*model, run.solver->state(), scene.gravity);
+      if (contacts) record_collisions(tables, run, *model, *contacts, frame, time, metrics);
       tables.add_metrics(run.spec->name, frame, time, metrics);
       run.last_metrics = metrics;
       ++run.frames_recorded;

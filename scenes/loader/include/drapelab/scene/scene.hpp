@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/collider.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/integrators.hpp"
+#include "drapelab/stability.hpp"
 
 namespace drapelab::scene {
 
@@ -23,7 +25,8 @@ struct ClothSpec {
 struct ContactSpec {
   double stiffness = 5000.0;  // N/m per particle
   double damping = 5.0;       // N*s/m
-  double friction = 0.3;      // Coulomb coefficient
+  double friction = 0.3;         // kinetic Coulomb coefficient, the colliders' default
+  double static_friction = 0.3;  // static Coulomb coefficient (default: friction), >= friction
 };
 
 struct SolverSpec {
@@ -54,12 +57,17 @@ struct Scene {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   std::uint64_t seed = 0;
   ClothSpec cloth;
+  std::vector<Collider> colliders;
   ContactSpec contact;
   std::vector<SolverSpec> solvers;
   OutputSpec output;
 
   int frame_count() const;         // recorded frames after frame 0: duration x frame_rate
   double frame_period() const { return 1.0 / frame_rate; }  // s
+  // The penalty contact's stiffness and damping when there are colliders (they bound the step).
+  ContactRates contact_rates() const {
+    return colliders.empty() ? ContactRates{} : ContactRates{contact.stiffness, contact.damping};
+  }
 };
 
 }  // namespace drapelab::scene

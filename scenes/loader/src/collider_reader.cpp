@@ -1,0 +1,182 @@
+// Colliders: shape keys per type, pose, friction, kinematic motion (see docs/scene-reference.md).
+#include "collider_reader.hpp"
+
+#include <map>
+#include <regex>
+#include <set>
+
+#include "drapelab/scene/number_format.hpp"
+
+namespace drapelab::scene {
+namespace {
+
+const std::vector<std::string> kTypes = {"sphere", "cylinder", "capsule", "box", "plane"};
+
+// Keys every collider may have, and those of each shape.
+const std::vector<std::string> kCommonKeys = {"name", "type", "rotation", "friction", "static_friction", "motion"};
+const std::map<std::string, std::vector<std::string>> kShapeKeys = {
+    {"sphere", {"center", "radius"}},
+    {"cylinder", {"center", "radius", "height", "axis"}},
+    {"capsule", {"center", "radius", "height", "axis"}},
+    {"box", {"center", "half_extents"}},
+    {"plane", {"point", "normal"}}};
+
+ColliderShape shape_of(const std::string& type) {
+  if (type == "cylinder") return ColliderShape::cylinder;
+  if (type == "capsule") return ColliderShape::capsule;
+  if (type == "box") return ColliderShape::box;
+  if (type == "plane") return ColliderShape::plane;
+  return ColliderShape::sphere;
+}
+
+// A direction: three numbers, not all zero; returned normalised.
+std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map, const std::string& key,
+                                              const Eigen::Vector3d& fallback) {
+  const auto value = map.numbers(key, 3, Range::any(), fallback);
+  if (!value) return std::nullopt;
+  if (value->norm() < 1e-12) {
+    r.error(map.get(key), map.path_of(key), "must be a non-zero direction, got [0, 0, 0]");
+    return std::nullopt;
+  }
+  return Eigen::Vector3d(*value).normalized();
+}
+
+void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path, ColliderMotion& motion) {
+  MapReader map(r, node, path, {"velocity", "angular_velocity", "keyframes"});
+  if (!map.valid()) return;
+  if (const auto v = map.numbers("velocity", 3, Range::any(), Eigen::Vector3d::Zero())) motion.velocity = *v;
+  if (const auto w = map.numbers("angular_velocity", 3, Range::any(), Eigen::Vector3d::Zero()))
+    motion.angular_velocity = *w;
+  if (!map.has("keyframes")) return;
+  if (map.has("velocity") || map.has("angular_velocity")) {
+    r.error(map.get("keyframes"), map.path_of("keyframes"),
+            "cannot be combined with velocity or angular_velocity; give one kind of motion");
+    return;
+  }
+  const YAML::Node list = map.get("keyframes");
+  const std::string list_path = map.path_of("keyframes");
+  if (!list.IsSequence() || list.size() == 0) {
+    r.error(list, list_path, "must be a non-empty list of {t, center, rotation}, got " + describe_scalar(list));
+    return;
+  }
+  record_item_lines(r, list, list_path);
+  double previous_t = -1.0;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string key_path = list_path + "." + std::to_string(k);
+    MapReader key(r, list[k], key_path, {"t", "center", "rotation"});
+    if (!key.valid()) continue;
+    ColliderKeyframe frame;
+    const auto t = key.number("t", Range::non_negative(), std::nullopt);
+    if (!key.has("t")) key.missing("t", "the keyframe's time in s, >= 0");
+    const auto center = key.numbers("center", 3, Range::any(), std::nullopt);
+    if (!key.has("center")) key.missing("center", "the collider's centre [x, y, z] in m at time t");
+    const auto rotation = key.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero());
+    if (!t || !center || !rotation) continue;
+    if (*t <= previous_t) {
+      r.error(key.get("t"), key.path_of("t"),
+              "must be later than the previous keyframe's t = " + format_number(previous_t) + ", got " +
+                  format_number(*t));
+      continue;
+    }
+    previous_t = *t;
+    frame.t = *t;
+    frame.center = *center;
+    frame.rotation = *rotation;
+    motion.keyframes.push_back(frame);
+  }
+}
+
+std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, const std::string& path,
+                                      const ContactSpec& contact) {
+  // The type decides which keys are valid, so read it before checking the keys.
+  std::string type = "sphere";
+  if (node.IsMap() && node["type"].IsDefined()) {
+    const auto chosen = r.choice(node["type"], path + ".type", kTypes);
+    if (!chosen) return std::nullopt;
+    type = *chosen;
+  } else if (node.IsMap()) {
+    r.error(YAML::Node(), path + ".type", "is required: one of sphere | cylinder | capsule | box | plane", node);
+    return std::nullopt;
+  }
+  std::vector<std::string> allowed = kCommonKeys;
+  const auto& shape_keys = kShapeKeys.at(type);
+  allowed.insert(allowed.end(), shape_keys.begin(), shape_keys.end());
+  MapReader map(r, node, path, allowed);
+  if (!map.valid()) return std::nullopt;
+  const std::size_t errors_before = r.error_count();
+
+  Collider c;
+  c.shape = shape_of(type);
+  if (const auto name = map.text("name", std::nullopt)) {
+    static const std::regex pattern("[a-z0-9_-]+");
+    if (std::regex_match(*name, pattern)) c.name = *name;
+    else r.error(map.get("name"), map.path_of("name"), "must use only a-z, 0-9, _ and -, got '" + *name + "'");
+  } else if (!map.has("name")) {
+    map.missing("name", "a unique label such as ball or table ([a-z0-9_-]+)");
+  }
+  auto required_vector = [&](const std::string& key, const std::string& expected) -> Eigen::Vector3d {
+    if (!map.has(key)) map.missing(key, expected);
+    return map.numbers(key, 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
+  };
+  auto required_length = [&](const std::string& key, const std::string& expected) -> double {
+    if (!map.has(key)) map.missing(key, expected);
+    return map.number(key, Range::positive(), 1.0).value_or(1.0);
+  };
+  if (c.shape == ColliderShape::plane) {
+    c.center = map.numbers("point", 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
+    c.normal = read_direction(r, map, "normal", Eigen::Vector3d::UnitY()).value_or(Eigen::Vector3d::UnitY());
+  } else {
+    c.center = required_vector("center", "the collider's centre [x, y, z] in m");
+  }
+  if (c.shape == ColliderShape::sphere || c.shape == ColliderShape::cylinder || c.shape == ColliderShape::capsule)
+    c.radius = required_length("radius", "the radius in m, > 0");
+  if (c.shape == ColliderShape::cylinder || c.shape == ColliderShape::capsule) {
+    c.height = required_length("height", c.shape == ColliderShape::capsule
+                                             ? "the length of the capsule's axis segment in m (without its caps), > 0"
+                                             : "the full length along the axis in m, > 0");
+    c.axis = read_direction(r, map, "axis", Eigen::Vector3d::UnitY()).value_or(Eigen::Vector3d::UnitY());
+  }
+  if (c.shape == ColliderShape::box) {
+    if (!map.has("half_extents")) map.missing("half_extents", "half the box's size along x, y, z in m, each > 0");
+    c.half_extents = map.numbers("half_extents", 3, Range::positive(), Eigen::Vector3d::Constant(0.5))
+                         .value_or(Eigen::Vector3d::Constant(0.5));
+  }
+  c.rotation = map.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
+  c.friction = map.number("friction", Range::non_negative(), contact.friction).value_or(contact.friction);
+  // A collider that sets only its kinetic coefficient gets the same static one.
+  const double static_default = map.has("friction") ? c.friction : contact.static_friction;
+  c.static_friction = map.number("static_friction", Range::non_negative(), static_default).value_or(static_default);
+  if (c.static_friction < c.friction && r.error_count() == errors_before)
+    r.error(map.has("static_friction") ? map.get("static_friction") : map.get("friction"),
+            map.path_of("static_friction"),
+            "must be >= friction (" + format_number(c.friction) + "), got " + format_number(c.static_friction));
+  if (map.has("motion")) read_motion(r, map.get("motion"), map.path_of("motion"), c.motion);
+  if (r.error_count() != errors_before) return std::nullopt;
+  return c;
+}
+
+}  // namespace
+
+std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list, const ContactSpec& contact) {
+  std::vector<Collider> colliders;
+  if (list.IsNull()) return colliders;
+  if (!list.IsSequence()) {
+    reader.error(list, "colliders", "must be a list of colliders, got " + describe_scalar(list));
+    return colliders;
+  }
+  record_item_lines(reader, list, "colliders");
+  std::set<std::string> names;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string path = "colliders." + std::to_string(k);
+    auto collider = read_collider(reader, list[k], path, contact);
+    if (!collider) continue;
+    if (!names.insert(collider->name).second) {
+      reader.error(list[k], path + ".name", "'" + collider->name + "' is already used by another collider; names must be unique");
+      continue;
+    }
+    colliders.push_back(*collider);
+  }
+  return colliders;
+}
+
+}  // namespace drapelab::scene
