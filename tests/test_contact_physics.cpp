@@ -61,7 +61,7 @@ Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> coll
   settings.air_damping = air_damping;
   settings.contacts = s.contacts;
   s.h = 0.8 * symplectic_euler_stable_step(*s.model, air_damping, {contact.stiffness, contact.damping});
-  const ClothState start = initial ? *initial : initial_grid_state(*s.model, spec.plane, 0.0, 0);
+  const ClothState start = initial ? *initial : initial_grid_state(*s.model, spec, 0.0, 0);
   s.solver = std::make_unique<SpringDamperSolver>("test", s.model, start, settings);
   return s;
 }
@@ -176,7 +176,7 @@ InclineRun slide_on_incline(double degrees) {
   const auto model = build_grid_cloth(spec);
   // Lay the patch on the slope, resting at the thickness.
   const Eigen::Matrix3d turn = euler_rotation({0, 0, degrees});
-  ClothState start = initial_grid_state(model, spec.plane, 0.0, 0);
+  ClothState start = initial_grid_state(model, spec, 0.0, 0);
   for (int i = 0; i < model.particle_count(); ++i)
     start.x.col(i) = turn * (model.rest_positions.col(i) + Eigen::Vector3d(0, spec.thickness, 0));
   Simulation s = make_simulation(spec, {incline}, {2000.0, 0.02}, 0.0, &start);

@@ -85,6 +85,25 @@ TEST(GridCloth, RestPositionsFollowTheSceneFormat) {
   }
 }
 
+TEST(GridCloth, RotationTurnsTheSheetAboutItsCentreAndItsNormal) {
+  GridClothSpec spec = grid(5, 3);
+  const ClothModel flat = build_grid_cloth(spec);
+  spec.rotation = {0, 0, 30};  // deg about z
+  const ClothModel turned = build_grid_cloth(spec);
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (int k = 0; k < 15; ++k)
+    EXPECT_LT((turned.rest_positions.col(k) - (spec.center + r * (flat.rest_positions.col(k) - spec.center))).norm(), 1e-14);
+  for (std::size_t e = 0; e < flat.springs.size(); ++e)
+    EXPECT_NEAR(turned.springs.rest_length[e], flat.springs.rest_length[e], 1e-14);
+  // The perturbation follows the turned normal.
+  const ClothState state = initial_grid_state(turned, spec, 0.01, 7);
+  const Eigen::Vector3d normal = r * Eigen::Vector3d::UnitY();
+  for (int k = 0; k < 15; ++k) {
+    const Eigen::Vector3d offset = state.x.col(k) - turned.rest_positions.col(k);
+    EXPECT_LT((offset - offset.dot(normal) * normal).norm(), 1e-15);
+  }
+}
+
 TEST(GridCloth, ASingleParticleSideSitsAtTheCentre) {
   const GridClothSpec spec = grid(1, 6, GridPlane::xy);
   const ClothModel model = build_grid_cloth(spec);
@@ -193,9 +212,9 @@ TEST(GridCloth, PerturbationIsReproducibleBoundedAlongTheNormalAndSkipsPins) {
   GridClothSpec spec = grid(9, 9);
   spec.pins = {PinNamed{"corners"}};
   const ClothModel model = build_grid_cloth(spec);
-  const ClothState a = initial_grid_state(model, GridPlane::xz, 0.01, 42);
-  const ClothState b = initial_grid_state(model, GridPlane::xz, 0.01, 42);
-  const ClothState c = initial_grid_state(model, GridPlane::xz, 0.01, 43);
+  const ClothState a = initial_grid_state(model, spec, 0.01, 42);
+  const ClothState b = initial_grid_state(model, spec, 0.01, 42);
+  const ClothState c = initial_grid_state(model, spec, 0.01, 43);
   EXPECT_EQ(a.x, b.x);
   EXPECT_NE(a.x, c.x);
   const Eigen::Matrix3Xd offset = a.x - model.rest_positions;

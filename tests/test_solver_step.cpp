@@ -113,7 +113,7 @@ TEST(SolverStep, AirDampingDecaysVelocityGeometrically) {
   GridClothSpec spec = sheet(3);
   spec.pins.clear();
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-  ClothState start = initial_grid_state(*model, spec.plane, 0.0, 0);
+  ClothState start = initial_grid_state(*model, spec, 0.0, 0);
   start.v.colwise() = Eigen::Vector3d(1.0, -2.0, 0.5);
   SpringDamperSettings settings;
   settings.gravity.setZero();
@@ -146,7 +146,7 @@ TEST(SolverStep, StableStepBoundHoldsAndTwiceTheTrueLimitBlowsUp) {
 
 TEST(SolverStep, UnstableRunStopsWithParticleStepAndAdvice) {
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(sheet(9)));
-  const ClothState start = initial_grid_state(*model, GridPlane::xy, 0.001, 1);
+  const ClothState start = initial_grid_state(*model, sheet(9), 0.001, 1);
   SpringDamperSettings settings;
   settings.integrator = Integrator::explicit_euler;
   SpringDamperSolver solver("blows_up", model, start, settings);
@@ -169,7 +169,7 @@ TEST(SolverStep, UnstableRunStopsWithParticleStepAndAdvice) {
 
 TEST(SolverStep, StepStatsCountEveryPhase) {
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(sheet(5)));
-  SpringDamperSolver solver("s", model, initial_grid_state(*model, GridPlane::xy, 0.0, 0), {});
+  SpringDamperSolver solver("s", model, initial_grid_state(*model, sheet(5), 0.0, 0), {});
   for (int k = 0; k < 10; ++k) solver.step(1e-4);
   EXPECT_EQ(solver.stats().steps, 10);
   double total = 0.0;

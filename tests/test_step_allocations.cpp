@@ -65,7 +65,7 @@ TEST(StepAllocations, StepAllocatesNothingForEveryIntegrator) {
     SpringDamperSettings settings;
     settings.integrator = integrator;
     settings.air_damping = 0.1;
-    SpringDamperSolver solver("s", model, initial_grid_state(*model, spec.plane, 0.001, 3), settings);
+    SpringDamperSolver solver("s", model, initial_grid_state(*model, spec, 0.001, 3), settings);
     solver.step(1e-5);  // first step outside the count, in case a library initialises lazily
     const long before = g_allocations.load();
     for (int k = 0; k < 200; ++k) solver.step(1e-5);

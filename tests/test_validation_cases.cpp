@@ -17,7 +17,7 @@ const Integrator kIntegrators[] = {Integrator::explicit_euler, Integrator::sympl
 std::unique_ptr<SpringDamperSolver> make_solver(const GridClothSpec& spec, SpringDamperSettings settings,
                                                 const ClothState* initial = nullptr) {
   auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-  ClothState state = initial ? *initial : initial_grid_state(*model, spec.plane, 0.0, 0);
+  ClothState state = initial ? *initial : initial_grid_state(*model, spec, 0.0, 0);
   return std::make_unique<SpringDamperSolver>("test", model, state, settings);
 }
 
@@ -103,7 +103,7 @@ OscillatorTrace trace_oscillator(Integrator integrator, double h) {
   settings.integrator = integrator;
   settings.gravity = Eigen::Vector3d::Zero();
   auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-  ClothState start = initial_grid_state(*model, spec.plane, 0.0, 0);
+  ClothState start = initial_grid_state(*model, spec, 0.0, 0);
   const double rest_y = start.x(1, 0);
   start.x(1, 0) -= 0.01;  // m, pulled 1 cm down along the spring
   SpringDamperSolver solver("oscillator", model, start, settings);

@@ -8,6 +8,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "drapelab/collider.hpp"
+
 namespace drapelab {
 namespace {
 
@@ -65,7 +67,7 @@ Eigen::Matrix3Xi build_grid_triangles(const GridClothSpec& spec, const Eigen::Ma
   const int nx = spec.nx, ny = spec.ny;
   const int cells = std::max(0, nx - 1) * std::max(0, ny - 1);
   Eigen::Matrix3Xi triangles(3, 2 * cells);
-  const Eigen::Vector3d normal = sheet_normal(spec.plane);
+  const Eigen::Vector3d normal = euler_rotation(spec.rotation) * sheet_normal(spec.plane);
   int t = 0;
   auto emit = [&](int a, int b, int c) {
     const Eigen::Vector3d n = (rest.col(b) - rest.col(a)).cross(rest.col(c) - rest.col(a));
@@ -146,8 +148,8 @@ Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j) {
   // A side with a single particle sits at the centre on that axis.
   const double u = spec.nx > 1 ? static_cast<double>(i) / (spec.nx - 1) - 0.5 : 0.0;
   const double w = spec.ny > 1 ? static_cast<double>(j) / (spec.ny - 1) - 0.5 : 0.0;
-  return spec.center + u * spec.size.x() * Eigen::Vector3d::UnitX() +
-         w * spec.size.y() * second_axis(spec.plane);
+  const Eigen::Vector3d offset = u * spec.size.x() * Eigen::Vector3d::UnitX() + w * spec.size.y() * second_axis(spec.plane);
+  return spec.center + euler_rotation(spec.rotation) * offset;
 }
 
 std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selector, std::string* error) {
@@ -221,7 +223,7 @@ ClothModel build_grid_cloth(const GridClothSpec& spec) {
   return model;
 }
 
-ClothState initial_grid_state(const ClothModel& model, GridPlane plane, double amplitude,
+ClothState initial_grid_state(const ClothModel& model, const GridClothSpec& spec, double amplitude,
                               std::uint64_t seed) {
   ClothState state;
   state.x = model.rest_positions;
@@ -230,7 +232,7 @@ ClothState initial_grid_state(const ClothModel& model, GridPlane plane, double a
     // mt19937_64 is specified bit for bit; the mapping to [-1, 1) is ours, so runs are reproducible
     // across standard libraries (std::uniform_real_distribution is not).
     std::mt19937_64 random(seed);
-    const Eigen::Vector3d normal = sheet_normal(plane);
+    const Eigen::Vector3d normal = euler_rotation(spec.rotation) * sheet_normal(spec.plane);
     for (int k = 0; k < model.particle_count(); ++k) {
       const double unit = static_cast<double>(random() >> 11) * 0x1.0p-53;  // [0, 1)
       if (!model.is_pinned(k)) state.x.col(k) += amplitude * (2.0 * unit - 1.0) * normal;

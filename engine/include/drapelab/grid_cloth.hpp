@@ -32,6 +32,7 @@ struct GridClothSpec {
   int ny = 33;                                     // particles along the second axis
   GridPlane plane = GridPlane::xz;
   Eigen::Vector3d center{0.0, 1.0, 0.0};          // m
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // deg, Euler (x, y, z) about the centre
   std::optional<double> mass;                      // kg, total, split equally
   std::optional<double> areal_density;             // kg/m^2, times each vertex area
   double thickness = 0.005;                        // m
@@ -48,7 +49,8 @@ std::vector<std::string> pin_set_names(GridPlane plane);
 // invalid for this grid (out of range, unknown name, or nothing inside a ball).
 std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selector, std::string* error);
 
-// Rest position of grid particle (i, j), exactly as the scene format defines it.
+// Rest position of grid particle (i, j), exactly as the scene format defines it, then turned by the
+// sheet's rotation about its centre.
 Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j);
 
 // Builds the immutable model: particles, triangles (two per cell, split along one diagonal), UVs, stretch/shear/bend springs with rest lengths, masses, vertex areas and pins.
@@ -56,9 +58,9 @@ Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j);
 // areal_density, every pin selector valid. Throws std::invalid_argument otherwise.
 ClothModel build_grid_cloth(const GridClothSpec& spec);
 
-// The initial state: rest positions, each free particle offset along the sheet normal by a uniform
+// The initial state: rest positions, each free particle offset along the (rotated) sheet normal by a uniform
 // random amount in [-amplitude, amplitude] (m) drawn from `seed`; zero velocity.
-ClothState initial_grid_state(const ClothModel& model, GridPlane plane, double amplitude,
+ClothState initial_grid_state(const ClothModel& model, const GridClothSpec& spec, double amplitude,
                               std::uint64_t seed);
 
 }  // namespace drapelab

@@ -82,7 +82,7 @@ class SceneBuilder {
         {"path", "(mesh cloth) " + kLaterCloth + "; use shape: grid"},
         {"material", "(material presets) " + kLaterCloth + "; give springs and mass explicitly"}};
     MapReader cloth(r_, node, "cloth",
-                    {"shape", "size", "resolution", "plane", "center", "mass", "areal_density",
+                    {"shape", "size", "resolution", "plane", "center", "rotation", "mass", "areal_density",
                      "thickness", "perturbation", "springs", "air_damping", "pins"},
                     later);
     if (!cloth.valid()) return;
@@ -114,6 +114,8 @@ class SceneBuilder {
     if (const auto plane = cloth.choice("plane", {"xz", "xy"}, "xz"))
       grid.plane = *plane == "xz" ? GridPlane::xz : GridPlane::xy;
     if (const auto center = cloth.numbers("center", 3, Range::any(), Eigen::Vector3d(0, 1, 0))) grid.center = *center;
+    if (const auto rotation = cloth.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero()))
+      grid.rotation = *rotation;
 
     const bool has_mass = cloth.has("mass"), has_density = cloth.has("areal_density");
     if (has_mass && has_density) {

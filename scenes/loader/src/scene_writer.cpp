@@ -89,7 +89,8 @@ std::string resolved_scene_yaml(const Scene& s) {
       << "  size: " << list(g.size) << "  # m\n"
       << "  resolution: [" << g.nx << ", " << g.ny << "]  # particles along each side\n"
       << "  plane: " << (g.plane == GridPlane::xz ? "xz" : "xy") << "\n"
-      << "  center: " << list(g.center) << "  # m\n";
+      << "  center: " << list(g.center) << "  # m\n"
+      << "  rotation: " << list(g.rotation) << "  # deg, Euler x, y, z about the centre\n";
   if (g.mass) out << "  mass: " << format_number(*g.mass) << "  # kg, total\n";
   if (g.areal_density) out << "  areal_density: " << format_number(*g.areal_density) << "  # kg/m^2\n";
   out << "  thickness: " << format_number(g.thickness) << "  # m\n"

@@ -101,7 +101,7 @@ int run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream
 
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(scene.cloth.grid));
   const ClothState initial =
-      initial_grid_state(*model, scene.cloth.grid.plane, scene.cloth.perturbation, scene.seed);
+      initial_grid_state(*model, scene.cloth.grid, scene.cloth.perturbation, scene.seed);
   std::shared_ptr<const ContactModel> contacts;
   if (!scene.colliders.empty())
     contacts = std::make_shared<const ContactModel>(
