@@ -558,11 +558,10 @@ TEST(ColliderErrors, HalfExtentsOnASphereIsUnknown) {
 
 TEST(ColliderErrors, PointOnASphereIsUnknown) {
   const auto result = load(insert_after(kScene, 14, "    point: [0, 0, 0]"));
-  ASSERT_FALSE(result.ok());
-  // Either a suggestion or the list of valid keys; never silently accepted.
-  EXPECT_TRUE(HasError(result, at(15), {"colliders.0.point is not a known key", "valid keys here:"}) ||
-              HasError(result, at(15), {"colliders.0.point is not a known key", "did you mean colliders.0."}))
-      << all_errors(result);
+  // No key of a sphere is close to `point`, so the message lists the sphere's valid keys.
+  EXPECT_TRUE(HasError(result, at(15),
+                       {"colliders.0.point is not a known key",
+                        "valid keys here: name, type, rotation, friction, static_friction, motion, center, radius"}));
 }
 
 TEST(ColliderErrors, OtherShapesKeysAreUnknown) {
@@ -1031,6 +1030,13 @@ TEST(ColliderResolved, RoundTripKeepsEveryValue) {
 
 // Directions are normalised on load; the normalised value written to resolved.yaml must load back
 // to exactly the same vector (normalising it again must not move its last bits).
+// BUG (collider_reader.cpp, read_direction: `return Eigen::Vector3d(*value).normalized();`): an
+// already-unit vector read back from resolved.yaml is divided by a norm that is 1 +- 1 ulp, so its last
+// bits change: axis [1, 1, 0] is written as [0.7071067811865475, 0.7071067811865475, 0] and loads
+// back as 0.7071067811865476 each; normal [0.3, -0.7, 0.1] moves likewise. Running resolved.yaml thus
+// does not reproduce the run exactly, and writing it again gives different text. A fix: keep the
+// given vector when its norm is already 1 to within a few ulps (or write and compare with a
+// normalisation that is idempotent).
 TEST(ColliderResolved, ObliqueDirectionsRoundTripExactly) {
   ExpectCollidersRoundTrip(with_colliders(
       "  - {name: a, type: cylinder, center: [0, 0, 0], radius: 1, height: 1, axis: [1, 1, 0]}\n"

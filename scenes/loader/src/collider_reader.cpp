@@ -29,6 +29,18 @@ ColliderShape shape_of(const std::string& type) {
   return ColliderShape::sphere;
 }
 
+// The unit vector along v, chosen so that normalising it again gives it back bit for bit: then
+// resolved.yaml, which writes the unit vector, loads as the same collider.
+Eigen::Vector3d stable_normalized(const Eigen::Vector3d& v) {
+  Eigen::Vector3d unit = v.normalized();
+  for (int round = 0; round < 4; ++round) {
+    const Eigen::Vector3d again = unit.normalized();
+    if (again == unit) break;
+    unit = again;
+  }
+  return unit;
+}
+
 // A direction: three numbers, not all zero; returned normalised.
 std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map, const std::string& key,
                                               const Eigen::Vector3d& fallback) {
@@ -38,7 +50,7 @@ std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map, co
     r.error(map.get(key), map.path_of(key), "must be a non-zero direction, got [0, 0, 0]");
     return std::nullopt;
   }
-  return Eigen::Vector3d(*value).normalized();
+  return stable_normalized(*value);
 }
 
 void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path, ColliderMotion& motion) {
@@ -90,6 +102,7 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, co
                                       const ContactSpec& contact) {
   // The type decides which keys are valid, so read it before checking the keys.
   std::string type = "sphere";
+  record_key_lines(r, node, path);  // so that an empty type: is reported on its own line
   if (node.IsMap() && node["type"].IsDefined()) {
     const auto chosen = r.choice(node["type"], path + ".type", kTypes);
     if (!chosen) return std::nullopt;
@@ -171,7 +184,8 @@ std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list
     auto collider = read_collider(reader, list[k], path, contact);
     if (!collider) continue;
     if (!names.insert(collider->name).second) {
-      reader.error(list[k], path + ".name", "'" + collider->name + "' is already used by another collider; names must be unique");
+      const YAML::Node& item = list[k];
+      reader.error(item["name"], path + ".name", "'" + collider->name + "' is already used by another collider; names must be unique");
       continue;
     }
     colliders.push_back(*collider);

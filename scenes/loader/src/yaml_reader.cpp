@@ -71,6 +71,12 @@ void SceneReader::set_override_origin(const std::string& path, const std::string
 
 void SceneReader::set_key_line(const std::string& path, int line) { key_lines_[path] = line; }
 
+void record_key_lines(SceneReader& reader, const YAML::Node& map, const std::string& path) {
+  if (!map.IsMap()) return;
+  for (const auto& entry : map)
+    if (!entry.first.Mark().is_null()) reader.set_key_line(join_path(path, entry.first.Scalar()), entry.first.Mark().line);
+}
+
 void record_item_lines(SceneReader& reader, const YAML::Node& list, const std::string& path) {
   if (!list.IsSequence() || list.Mark().is_null()) return;
   int line = list.Mark().line;  // a block list's mark is its first item
@@ -236,11 +242,11 @@ MapReader::MapReader(SceneReader& reader, const YAML::Node& node, std::string pa
     return;
   }
   valid_ = true;
+  record_key_lines(reader, node, path_);
   std::set<std::string> seen;
   for (const auto& entry : node) {
     const std::string key = entry.first.Scalar();
     const std::string key_path = join_path(path_, key);
-    if (!entry.first.Mark().is_null()) reader.set_key_line(key_path, entry.first.Mark().line);
     if (!seen.insert(key).second) {
       reader.error(entry.first, key_path, "appears twice in the same map; keep one");
       continue;

@@ -105,5 +105,7 @@ std::string describe_scalar(const YAML::Node& node);  // "-3", "a list", "a map"
 // Records the line of every item of a list for empty items (see SceneReader::set_key_line): an item
 // with a value starts on its own mark; an empty one on the line after the item before it.
 void record_item_lines(SceneReader& reader, const YAML::Node& list, const std::string& path);
+// Records the line of every key of a map (MapReader does this itself when it is built).
+void record_key_lines(SceneReader& reader, const YAML::Node& map, const std::string& path);
 
 }  // namespace drapelab::scene
