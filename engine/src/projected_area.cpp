@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace drapelab {
@@ -39,24 +40,39 @@ double projected_union_area(const Eigen::Matrix3Xd& positions, const Eigen::Matr
   const int cells_y = std::max(1, static_cast<int>(std::ceil((high.y() - low.y()) / cell)));
   std::vector<unsigned char> covered(static_cast<std::size_t>(cells_x) * cells_y, 0);
 
+  // Scanline fill: for each cell row, the triangle's span along the row's centre line.
   for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    Eigen::Vector2d a = projected.col(triangles(0, t));
-    Eigen::Vector2d b = projected.col(triangles(1, t));
+    const Eigen::Vector2d a = projected.col(triangles(0, t));
+    const Eigen::Vector2d b = projected.col(triangles(1, t));
     const Eigen::Vector2d c = projected.col(triangles(2, t));
-    if (edge_function(a, b, c) < 0.0) std::swap(a, b);  // counter-clockwise in the plane
-    if (edge_function(a, b, c) == 0.0) continue;        // degenerate: no area
-    const Eigen::Vector2d t_low = a.cwiseMin(b).cwiseMin(c), t_high = a.cwiseMax(b).cwiseMax(c);
-    // Cells whose centre low + (index + 1/2) cell may fall inside the triangle's box.
-    const int x0 = std::max(0, static_cast<int>(std::floor((t_low.x() - low.x()) / cell - 0.5)));
-    const int x1 = std::min(cells_x - 1, static_cast<int>(std::ceil((t_high.x() - low.x()) / cell - 0.5)));
-    const int y0 = std::max(0, static_cast<int>(std::floor((t_low.y() - low.y()) / cell - 0.5)));
-    const int y1 = std::min(cells_y - 1, static_cast<int>(std::ceil((t_high.y() - low.y()) / cell - 0.5)));
+    if (edge_function(a, b, c) == 0.0) continue;  // degenerate: no area
+    const double t_low = std::min({a.y(), b.y(), c.y()}), t_high = std::max({a.y(), b.y(), c.y()});
+    const int y0 = std::max(0, static_cast<int>(std::ceil((t_low - low.y()) / cell - 0.5)));
+    const int y1 = std::min(cells_y - 1, static_cast<int>(std::floor((t_high - low.y()) / cell - 0.5)));
+    const Eigen::Vector2d corners[3] = {a, b, c};
     for (int iy = y0; iy <= y1; ++iy) {
-      for (int ix = x0; ix <= x1; ++ix) {
-        const Eigen::Vector2d p = low + Eigen::Vector2d(ix + 0.5, iy + 0.5) * cell;
-        if (edge_function(a, b, p) >= 0.0 && edge_function(b, c, p) >= 0.0 && edge_function(c, a, p) >= 0.0)
-          covered[static_cast<std::size_t>(iy) * cells_x + ix] = 1;
+      const double y = low.y() + (iy + 0.5) * cell;  // m, the row's centre line
+      double span_low = std::numeric_limits<double>::infinity(), span_high = -span_low;
+      for (int e = 0; e < 3; ++e) {
+        const Eigen::Vector2d& p = corners[e];
+        const Eigen::Vector2d& q = corners[(e + 1) % 3];
+        if ((p.y() > y) == (q.y() > y) && p.y() != y && q.y() != y) continue;  // edge misses the line
+        if (p.y() == q.y()) {  // edge along the line
+          span_low = std::min({span_low, p.x(), q.x()});
+          span_high = std::max({span_high, p.x(), q.x()});
+          continue;
+        }
+        const double x = p.x() + (y - p.y()) / (q.y() - p.y()) * (q.x() - p.x());
+        span_low = std::min(span_low, x);
+        span_high = std::max(span_high, x);
       }
+      if (span_low > span_high) continue;
+      // Cells whose centre low.x + (ix + 1/2) cell lies in [span_low, span_high].
+      const int x0 = std::max(0, static_cast<int>(std::ceil((span_low - low.x()) / cell - 0.5)));
+      const int x1 = std::min(cells_x - 1, static_cast<int>(std::floor((span_high - low.x()) / cell - 0.5)));
+      if (x0 <= x1)
+        std::fill(covered.begin() + static_cast<std::ptrdiff_t>(iy) * cells_x + x0,
+                  covered.begin() + static_cast<std::ptrdiff_t>(iy) * cells_x + x1 + 1, 1);
     }
   }
   const auto covered_cells = std::count(covered.begin(), covered.end(), 1);

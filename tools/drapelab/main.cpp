@@ -1,4 +1,4 @@
-// drapelab: the command line. Verbs: run, validate. Exit codes: 0 ok, 1 a solver became unstable or
+// drapelab: the command line. Verbs: run, validate, check. Exit codes: 0 ok, 1 a solver became unstable or
 // failed, 2 bad input (nothing was run), 130 interrupted (files hold the frames recorded so far).
 #include <CLI/CLI.hpp>
 
@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  drapelab run scenes/curtain.yaml --out out/curtain\n"
       "  drapelab validate scenes/curtain.yaml --set cloth.resolution=[65,65]\n"
+      "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
       "Run 'drapelab VERB --help' for a verb's options.");
 
   drapelab::cli::RunArguments run_arguments;
@@ -33,6 +34,10 @@ int main(int argc, char** argv) {
   drapelab::cli::ValidateArguments validate_arguments;
   CLI::App* validate = app.add_subcommand("validate", "Check a scene file without running it");
   drapelab::cli::add_validate_options(*validate, validate_arguments);
+
+  drapelab::cli::CheckArguments check_arguments;
+  CLI::App* check = app.add_subcommand("check", "Compare a run of a scene with its golden file (regression test)");
+  drapelab::cli::add_check_options(*check, check_arguments);
 
   std::string command_line;
   for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
@@ -49,10 +54,9 @@ int main(int argc, char** argv) {
     return drapelab::cli::kExitBadInput;  // usage errors are bad input too
   }
 
-  if (*run) {
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
-    return drapelab::cli::run_verb(run_arguments, command_line, g_interrupted);
-  }
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
+  if (*run) return drapelab::cli::run_verb(run_arguments, command_line, g_interrupted);
+  if (*check) return drapelab::cli::check_verb(check_arguments, g_interrupted);
   return drapelab::cli::validate_verb(validate_arguments);
 }

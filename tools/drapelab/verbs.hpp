@@ -30,4 +30,14 @@ struct ValidateArguments {
 void add_validate_options(CLI::App& verb, ValidateArguments& arguments);
 int validate_verb(const ValidateArguments& arguments);
 
+struct CheckArguments {
+  std::string scene;
+  std::string golden;
+  std::vector<std::string> overrides;  // with --update only
+  std::string out;
+  bool update = false;
+};
+void add_check_options(CLI::App& verb, CheckArguments& arguments);
+int check_verb(const CheckArguments& arguments, const std::atomic<bool>& interrupt);
+
 }  // namespace drapelab::cli
