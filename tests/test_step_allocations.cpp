@@ -74,5 +74,36 @@ TEST(StepAllocations, StepAllocatesNothingForEveryIntegrator) {
   }
 }
 
+TEST(StepAllocations, StepWithContactsAndFrictionAllocatesNothing) {
+  if (!DRAPELAB_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+  GridClothSpec spec;
+  spec.nx = spec.ny = 17;
+  spec.size = {0.6, 0.6};
+  spec.center = {0, 0.8 + 0.005 - 3e-6, 0};  // resting on the floor (and the sphere's top), sagging m g / k
+  spec.mass = 0.05;
+  Collider ball;
+  ball.name = "ball";
+  ball.shape = ColliderShape::sphere;
+  ball.center = {0, 0.5, 0};
+  ball.radius = 0.3;
+  ball.motion.angular_velocity = {30, 0, 0};  // its top moves along z: friction drags the cloth
+  Collider floor;
+  floor.name = "floor";
+  floor.shape = ColliderShape::plane;
+  floor.center = {0, 0.8, 0};
+  auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  SpringDamperSettings settings;
+  settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball, floor},
+                                                           ContactParameters{500.0, 0.05}, spec.thickness);
+  SpringDamperSolver solver("s", model, initial_grid_state(*model, spec, 0.0, 0), settings);
+  solver.step(1e-5);
+  const long before = g_allocations.load();
+  for (int k = 0; k < 200; ++k) solver.step(1e-5);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  ASSERT_EQ(solver.contact_totals().size(), 2u);
+  EXPECT_GT(solver.contact_totals()[0].contact_count, 0);  // the step really met the colliders
+  EXPECT_GT(solver.contact_totals()[0].friction_force, 0.0);
+}
+
 }  // namespace
 }  // namespace drapelab

@@ -8,6 +8,11 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/utility.h>
 #include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/halfspace.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_box.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_capsule.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_cylinder.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_sphere.h>
 #include <fcl/narrowphase/distance.h>
 
 #include <limits>
@@ -44,22 +49,52 @@ FclCollider make_fcl_collider(const Collider& c) {
 }
 
 ParticleContactQuery::ParticleContactQuery(double radius)
-    : radius_(radius), sphere_(std::make_shared<fcl::Sphere<double>>(radius)) {
+    : radius_(radius),
+      sphere_(std::make_shared<fcl::Sphere<double>>(radius)),
+      contacts_(std::make_unique<std::vector<fcl::ContactPoint<double>>>()) {
   sphere_->computeLocalAABB();
 }
+
+ParticleContactQuery::~ParticleContactQuery() = default;
 
 std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& collider,
                                                              const Eigen::Isometry3d& shape_pose,
                                                              const Eigen::Vector3d& x) const {
   fcl::Transform3d particle_pose = fcl::Transform3d::Identity();
   particle_pose.translation() = x;
-  const fcl::CollisionRequestd request(1, /*enable_contact=*/true);
-  fcl::CollisionResultd result;
-  fcl::collide(sphere_.get(), particle_pose, collider.geometry.get(), shape_pose, request, result);
-  if (!result.isCollision()) return std::nullopt;
-  const fcl::Contactd& found = result.getContact(0);
+  // The same closed forms fcl::collide dispatches to for these pairs (bullet-notes section 3).
+  const auto& particle = static_cast<const fcl::Sphere<double>&>(*sphere_);
+  const fcl::CollisionGeometry<double>& shape = *collider.geometry;
+  std::vector<fcl::ContactPoint<double>>& contacts = *contacts_;
+  contacts.clear();
+  bool touching = false;
+  switch (shape.getNodeType()) {
+    case fcl::GEOM_SPHERE:
+      touching = fcl::detail::sphereSphereIntersect(particle, particle_pose, static_cast<const fcl::Sphere<double>&>(shape),
+                                                    shape_pose, &contacts);
+      break;
+    case fcl::GEOM_CAPSULE:
+      touching = fcl::detail::sphereCapsuleIntersect(particle, particle_pose,
+                                                     static_cast<const fcl::Capsule<double>&>(shape), shape_pose, &contacts);
+      break;
+    case fcl::GEOM_CYLINDER:
+      touching = fcl::detail::sphereCylinderIntersect(particle, particle_pose,
+                                                      static_cast<const fcl::Cylinder<double>&>(shape), shape_pose, &contacts);
+      break;
+    case fcl::GEOM_BOX:
+      touching = fcl::detail::sphereBoxIntersect(particle, particle_pose, static_cast<const fcl::Box<double>&>(shape),
+                                                 shape_pose, &contacts);
+      break;
+    case fcl::GEOM_HALFSPACE:
+      touching = fcl::detail::sphereHalfspaceIntersect(particle, particle_pose,
+                                                       static_cast<const fcl::Halfspace<double>&>(shape), shape_pose, &contacts);
+      break;
+    default:
+      return std::nullopt;  // make_fcl_collider makes only the shapes above
+  }
+  if (!touching || contacts.empty()) return std::nullopt;
   // FCL's normal points from the first object (the particle) into the second (the collider).
-  return ParticleContact{found.penetration_depth, -found.normal.normalized()};
+  return ParticleContact{contacts.front().penetration_depth, -contacts.front().normal.normalized()};
 }
 
 double ParticleContactQuery::clearance(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,

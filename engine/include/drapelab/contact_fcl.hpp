@@ -7,12 +7,15 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "drapelab/collider.hpp"
 
 namespace fcl {
 template <typename S>
 class CollisionGeometry;
+template <typename S>
+struct ContactPoint;
 }
 
 namespace drapelab {
@@ -34,9 +37,15 @@ struct ParticleContact {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit, out of the collider (push direction)
 };
 
+// Calls FCL's closed-form sphere-shape routines directly with a reused contact buffer, so a query
+// allocates nothing after the first contact (fcl::collide builds a new buffer on every call); one
+// query object therefore serves one thread at a time.
 class ParticleContactQuery {
  public:
   explicit ParticleContactQuery(double radius);  // m, the particle sphere's radius
+  ~ParticleContactQuery();
+  ParticleContactQuery(const ParticleContactQuery&) = delete;
+  ParticleContactQuery& operator=(const ParticleContactQuery&) = delete;
 
   // The contact when the sphere overlaps the collider; nothing when they are apart.
   std::optional<ParticleContact> contact(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
@@ -50,6 +59,7 @@ class ParticleContactQuery {
  private:
   double radius_;
   std::shared_ptr<fcl::CollisionGeometry<double>> sphere_;
+  std::unique_ptr<std::vector<fcl::ContactPoint<double>>> contacts_;  // reused: cleared, capacity kept
 };
 
 // World-space bounding box of a posed collider, grown by `margin` (m). Unbounded for a plane.
