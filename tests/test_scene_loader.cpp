@@ -228,10 +228,14 @@ TEST(SceneLoader, MissingMassAndArealDensity) {
   EXPECT_TRUE(HasError(result, at(8), {"cloth.mass is required", "areal_density"}));
 }
 
-TEST(SceneLoader, MissingSolversIsRefusedBecauseTheDefaultNeedsBullet) {
+TEST(SceneLoader, MissingSolversGiveTheContractsDefaultPair) {
   const auto result = load(without_lines(kBase, 30, 34));
-  EXPECT_TRUE(HasError(result, at(2), {"solvers is missing", "bullet_softbody", "not available yet",
-                                       "solvers: [{type: spring_damper}]"}));
+  ASSERT_LOADS(result);
+  ASSERT_EQ(result.scene->solvers.size(), 2u);
+  EXPECT_EQ(result.scene->solvers[0].type, "spring_damper");
+  EXPECT_EQ(result.scene->solvers[0].name, "spring_damper");
+  EXPECT_EQ(result.scene->solvers[1].type, "bullet_softbody");
+  EXPECT_EQ(result.scene->solvers[1].name, "bullet_softbody");
 }
 
 TEST(SceneLoader, EmptySolversList) {
@@ -641,11 +645,31 @@ TEST(SceneLoader, DrapeSupportIsNotAvailableYet) {
   EXPECT_TRUE(HasError(result, at(36), {"metrics.drape_support is not available yet"}));
 }
 
-TEST(SceneLoader, BulletSolverTypesAreNotAvailableYet) {
-  for (const char* type : {"bullet_softbody", "bullet_deformable"})
-    EXPECT_TRUE(HasError(load(with_line(kBase, 32, std::string("    type: ") + type)), at(32),
-                         {"solvers.0.type", std::string("'") + type + "'", "not available yet", "spring_damper"}))
-        << type;
+TEST(SceneLoader, BulletDeformableIsNotAvailableYet) {
+  EXPECT_TRUE(HasError(load(with_line(kBase, 32, "    type: bullet_deformable")), at(32),
+                       {"solvers.0.type", "'bullet_deformable'", "not available yet", "bullet_softbody"}));
+}
+
+TEST(SceneLoader, BulletSoftBodyTakesItsOptionsAndRefusesAnIntegrator) {
+  const std::string bullet = with_line(with_line(kBase, 32, "    type: bullet_softbody"), 33,
+                                       "    iterations: 4\n    margin: 0.01\n    voxel_size: 0.002\n"
+                                       "    kLST: {shear: 0.5}");
+  const auto result = load(bullet);
+  ASSERT_LOADS(result);
+  const auto& solver = result.scene->solvers[0];
+  EXPECT_EQ(solver.iterations, 4);
+  EXPECT_DOUBLE_EQ(solver.margin, 0.01);
+  EXPECT_DOUBLE_EQ(solver.voxel_size, 0.002);
+  EXPECT_FALSE(solver.link_stiffness[0].has_value());
+  EXPECT_DOUBLE_EQ(*solver.link_stiffness[1], 0.5);
+  // Defaults: margin = the cloth's thickness; an integrator is ours, not Bullet's.
+  const auto plain = load(with_line(with_line(kBase, 32, "    type: bullet_softbody"), 33, "    round_dt: false"));
+  ASSERT_LOADS(plain);
+  EXPECT_DOUBLE_EQ(plain.scene->solvers[0].margin, 0.004);
+  EXPECT_TRUE(HasError(load(with_line(kBase, 32, "    type: bullet_softbody")), at(33),
+                       {"solvers.0.integrator is not a known key"}));
+  EXPECT_TRUE(HasError(load(with_line(with_line(kBase, 32, "    type: bullet_softbody"), 33, "    kLST: {bend: 1.5}")),
+                       at(33), {"solvers.0.kLST.bend must be >= 0 and <= 1"}));
 }
 
 TEST(SceneLoader, LaterIntegratorsAreNotAvailableYet) {
@@ -662,11 +686,11 @@ TEST(SceneLoader, ExplicitEulerIsAvailable) {
   EXPECT_EQ(result.scene->solvers[0].integrator, drapelab::Integrator::explicit_euler);
 }
 
-TEST(SceneLoader, BulletSolverKeysAreNotAvailableYet) {
+TEST(SceneLoader, BulletKeysOnOurSolverAreUnknown) {
   for (const char* key : {"iterations: 4", "margin: 0.01", "voxel_size: 0.1"}) {
     const std::string name = std::string(key).substr(0, std::string(key).find(':'));
     EXPECT_TRUE(HasError(load(insert_after(kBase, 34, std::string("    ") + key)), at(35),
-                         {"solvers.0." + name, "not available yet"}))
+                         {"solvers.0." + name, "is not a known key"}))
         << key;
   }
 }

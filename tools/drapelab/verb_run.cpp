@@ -30,7 +30,7 @@ void add_run_options(CLI::App& verb, RunArguments& arguments) {
 namespace {
 
 void print_outcome(const std::filesystem::path& out) {
-  const auto summary = nlohmann::json::parse(runner::read_file(out / "summary.json"), nullptr, false);
+  const auto summary = nlohmann::ordered_json::parse(runner::read_file(out / "summary.json"), nullptr, false);
   if (summary.is_discarded()) return;
   for (const auto& [name, solver] : summary["solvers"].items()) {
     std::ostringstream line;

@@ -45,9 +45,13 @@ int validate_verb(const ValidateArguments& arguments) {
             << "  colliders: " << s.colliders.size() << "\n"
             << "  stable symplectic step (Gershgorin bound of springs, dampers and contact): " << stable_step << " s\n";
   for (const auto& solver : s.solvers) {
-    std::cout << "  solver " << solver.name << ": " << solver.type << ", " << integrator_name(solver.integrator)
-              << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";
-    if (solver.dt > stable_step)
+    std::cout << "  solver " << solver.name << ": " << solver.type;
+    if (solver.type == "spring_damper") std::cout << ", " << integrator_name(solver.integrator);
+    if (solver.type == "bullet_softbody")
+      std::cout << ", " << solver.iterations << " iteration(s), margin " << solver.margin << " m, voxel "
+                << solver.voxel_size << " m";
+    std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";
+    if (solver.type == "spring_damper" && solver.dt > stable_step)
       std::cerr << "warning: solver " << solver.name << ": dt " << solver.dt
                 << " s is above the guaranteed stable step " << stable_step
                 << " s; the run may become unstable (the bound is sufficient, not necessary)\n";

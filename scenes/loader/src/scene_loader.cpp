@@ -12,6 +12,7 @@
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
 #include "collider_reader.hpp"
+#include "solver_reader.hpp"
 #include "overrides.hpp"
 #include "yaml_reader.hpp"
 
@@ -20,9 +21,6 @@ namespace {
 
 // Keys of the contract that later versions bring: named so the message says so, never ignored.
 const std::string kLaterCloth = "is not available yet in this version of drapelab";
-
-const std::vector<std::string> kSolverTypes = {"spring_damper", "bullet_softbody", "bullet_deformable"};
-const std::vector<std::string> kLaterIntegrators = {"midpoint", "rk4", "verlet", "leapfrog", "implicit_euler"};
 
 bool valid_name(const std::string& name) {
   static const std::regex pattern("[a-z0-9_-]+");
@@ -247,117 +245,15 @@ class SceneBuilder {
   }
 
   void read_solvers(MapReader& top) {
-    if (!top.has("solvers")) {
-      // The contract's default pair includes Bullet's cloth, which this version cannot run yet.
-      r_.error(YAML::Node(), "solvers",
-               "is missing, and the default list [spring_damper, bullet_softbody] needs Bullet's cloth, "
-               "which is not available yet in this version; add  solvers: [{type: spring_damper}]",
-               top.node());
-      return;
-    }
-    const YAML::Node list = top.get("solvers");
-    if (!list.IsSequence() || list.size() == 0) {
-      r_.error(list, "solvers", "must be a non-empty list of solvers, got " + describe_scalar(list));
-      return;
-    }
-    std::set<std::string> names;
-    for (std::size_t k = 0; k < list.size(); ++k) {
-      const std::string path = "solvers." + std::to_string(k);
-      auto solver = read_solver(list[k], path);
-      if (!solver) continue;
-      if (!names.insert(solver->name).second) {
-        r_.error(list[k], path + ".name", "'" + solver->name + "' is already used by another solver; names must be unique");
-        continue;
-      }
-      scene_.solvers.push_back(*solver);
-    }
-  }
-
-  std::optional<SolverSpec> read_solver(const YAML::Node& node, const std::string& path) {
-    static const std::string later_bullet = "is a Bullet solver option, not available yet in this version";
-    MapReader solver(r_, node, path,
-                     {"name", "type", "integrator", "dt", "round_dt", "max_speed", "runaway_stretch"},
-                     {{"iterations", later_bullet}, {"margin", later_bullet}, {"voxel_size", later_bullet},
-                      {"kLST", later_bullet}});
-    if (!solver.valid()) return std::nullopt;
-    SolverSpec spec;
-    const std::size_t errors_before = r_.error_count();
-    if (const auto type = solver.choice("type", kSolverTypes, "spring_damper")) {
-      spec.type = *type;
-      if (spec.type != "spring_damper")
-        r_.error(solver.get("type"), path + ".type",
-                 "'" + spec.type + "' is not available yet in this version of drapelab (Bullet's cloths "
-                 "come in a later version); use spring_damper");
-    }
-    spec.name = solver.text("name", spec.type).value_or(spec.type);
-    if (!valid_name(spec.name))
-      r_.error(solver.get("name"), path + ".name", "must use only a-z, 0-9, _ and -, got '" + spec.name + "'");
-    if (solver.has("integrator")) {
-      std::vector<std::string> known = integrator_names();
-      known.insert(known.end(), kLaterIntegrators.begin(), kLaterIntegrators.end());
-      if (const auto name = r_.choice(solver.get("integrator"), path + ".integrator", known)) {
-        if (const auto integrator = parse_integrator(*name)) spec.integrator = *integrator;
-        else
-          r_.error(solver.get("integrator"), path + ".integrator",
-                   "'" + *name + "' is not available yet in this version; use symplectic_euler or explicit_euler");
-      }
-    }
-    const double frame_period = scene_.frame_period();
-    if (solver.has("dt")) spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);
-    else spec.dt = automatic_step(spec);
-    spec.round_dt = solver.boolean("round_dt", false).value_or(false);
-    const double free_fall_speed = scene_.gravity.norm() * std::max(scene_.duration, 0.0);  // m/s
-    const double default_max_speed = 100.0 + 2.0 * free_fall_speed;
-    spec.max_speed = solver.number("max_speed", Range::positive(), default_max_speed).value_or(default_max_speed);
-    spec.runaway_stretch = solver.number("runaway_stretch", Range::positive(), 10.0).value_or(10.0);
-    if (r_.error_count() != errors_before) return std::nullopt;
-
-    if (spec.dt > frame_period * (1.0 + 1e-12)) {
-      r_.error(solver.get("dt"), path + ".dt",
-               "must not exceed the frame period 1/frame_rate = " + format_number(frame_period) + " s, got " +
-                   format_number(spec.dt));
-      return std::nullopt;
-    }
-    const double steps = frame_period / spec.dt;
-    const double whole = std::round(steps);
-    if (std::abs(steps - whole) <= 1e-9 * steps) {
-      spec.steps_per_frame = static_cast<int>(whole);
-    } else if (spec.round_dt) {
-      spec.steps_per_frame = static_cast<int>(std::ceil(steps));
-      const double rounded = frame_period / spec.steps_per_frame;
-      spec.note = "dt rounded from " + format_number(spec.dt) + " s to " + format_number(rounded) + " s (" +
-                  std::to_string(spec.steps_per_frame) + " steps per frame)";
-      notes.push_back("solver '" + spec.name + "': " + spec.note);
-      spec.dt = rounded;
+    // Colliders and contact are read by now: the automatic steps depend on them.
+    const bool cloth_ok = grid_ok_ && r_.error_count() == 0;
+    if (top.has("solvers")) {
+      scene_.solvers = scene::read_solvers(r_, top.get("solvers"), scene_, cloth_ok, notes);
     } else {
-      r_.error(solver.get("dt"), path + ".dt",
-               "must divide the frame period 1/frame_rate = " + format_number(frame_period) +
-                   " s into whole steps, got " + format_number(spec.dt) + " (" + format_number(steps) +
-                   " steps per frame); try dt = " + format_number(frame_period / std::ceil(steps)) +
-                   ", or set round_dt: true on this solver");
-      return std::nullopt;
+      // The contract's default: our solver and Bullet's classic cloth, side by side.
+      const YAML::Node defaults = YAML::Load("[{type: spring_damper}, {type: bullet_softbody}]");
+      scene_.solvers = scene::read_solvers(r_, defaults, scene_, cloth_ok, notes);
     }
-    return spec;
-  }
-
-  // Without a dt, the step is chosen from the Gershgorin bound of the cloth's springs and dampers
-  // (stability.hpp): 0.9 of it for symplectic Euler, 0.1 of it for explicit Euler (which has no
-  // stable step on an undamped spring), rounded down to a whole number of steps per frame.
-  double automatic_step(SolverSpec& spec) {
-    const double frame_period = scene_.frame_period();
-    if (r_.error_count() > 0 || !grid_ok_) return frame_period;  // the scene is refused anyway
-    double bound = frame_period;
-    try {
-      bound = symplectic_euler_stable_step(build_grid_cloth(scene_.cloth.grid), scene_.cloth.air_damping,
-                                           scene_.contact_rates());
-    } catch (const std::invalid_argument&) {
-      return frame_period;  // reported elsewhere (mass missing, bad pins)
-    }
-    const double factor = spec.integrator == Integrator::explicit_euler ? 0.1 : 0.9;
-    const double steps = std::max(1.0, std::ceil(frame_period / (factor * bound)));
-    spec.note = "dt chosen automatically: " + format_number(steps) + " steps per frame (" +
-                format_number(factor) + " x the stable step bound " + format_number(bound) + " s)";
-    return frame_period / steps;
   }
 
   SceneReader& r_;

@@ -117,9 +117,21 @@ std::string resolved_scene_yaml(const Scene& s) {
       << "solvers:\n";
   for (const auto& solver : s.solvers) {
     out << "  - name: " << solver.name << "\n"
-        << "    type: " << solver.type << "\n"
-        << "    integrator: " << integrator_name(solver.integrator) << "\n"
-        << "    dt: " << format_number(solver.dt) << "  # s, " << solver.steps_per_frame << " steps per frame\n"
+        << "    type: " << solver.type << "\n";
+    if (solver.type == "spring_damper") out << "    integrator: " << integrator_name(solver.integrator) << "\n";
+    if (solver.type == "bullet_softbody") {
+      out << "    iterations: " << solver.iterations << "\n"
+          << "    margin: " << format_number(solver.margin) << "  # m, soft collision margin\n"
+          << "    voxel_size: " << format_number(solver.voxel_size) << "  # m, sparse SDF cell\n"
+          << "    collider_margin: " << format_number(solver.collider_margin) << "  # m\n";
+      std::string raw;
+      const char* kinds[] = {"stretch", "shear", "bend"};
+      for (int k = 0; k < 3; ++k)
+        if (solver.link_stiffness[k])
+          raw += std::string(raw.empty() ? "" : ", ") + kinds[k] + ": " + format_number(*solver.link_stiffness[k]);
+      if (!raw.empty()) out << "    kLST: {" << raw << "}\n";
+    }
+    out << "    dt: " << format_number(solver.dt) << "  # s, " << solver.steps_per_frame << " steps per frame\n"
         << "    round_dt: " << (solver.round_dt ? "true" : "false") << "\n"
         << "    max_speed: " << format_number(solver.max_speed) << "  # m/s, runaway limit\n"
         << "    runaway_stretch: " << format_number(solver.runaway_stretch) << "  # stretch spring strain limit\n";

@@ -38,7 +38,7 @@ ordered_json solver_json(const SolverRun& run) {
   j["type"] = run.spec->type;
   j["status"] = solver_status_name(run.status);
   j["message"] = run.message;
-  j["integrator"] = integrator_name(run.spec->integrator);
+  if (run.spec->type == "spring_damper") j["integrator"] = integrator_name(run.spec->integrator);
   j["dt"] = run.spec->dt;
   j["steps_per_frame"] = run.spec->steps_per_frame;
   if (!run.spec->note.empty()) j["note"] = run.spec->note;

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "drapelab/bullet/bullet_softbody_solver.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 
 namespace drapelab::runner {
@@ -17,6 +18,19 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
     settings.max_speed = spec.max_speed;
     settings.contacts = std::move(contacts);
     return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
+  }
+  if (spec.type == "bullet_softbody") {
+    bullet::BulletSoftBodyOptions options;
+    options.dt = spec.dt;
+    options.iterations = spec.iterations;
+    options.margin = spec.margin;
+    options.voxel_size = spec.voxel_size;
+    options.collider_margin = spec.collider_margin;
+    options.raw_link_stiffness = spec.link_stiffness;
+    options.gravity = scene.gravity;
+    options.air_damping = scene.cloth.air_damping;
+    options.max_speed = spec.max_speed;
+    return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders, options);
   }
   // The loader refuses every other type in this version, so reaching here is a programming error.
   throw std::logic_error("solver type '" + spec.type + "' has no implementation");

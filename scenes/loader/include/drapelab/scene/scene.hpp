@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <optional>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -39,6 +41,12 @@ struct SolverSpec {
   double max_speed = 0.0;             // m/s, a faster particle stops the solver as unstable
   double runaway_stretch = 10.0;      // a stretch spring longer than (1 + this) x rest is unstable
   std::string note;                   // what the loader chose or changed (automatic or rounded dt)
+  // bullet_softbody only (bullet-notes 1.7; README, "Bullet's classic cloth"):
+  int iterations = 1;                 // position-solver sweeps per substep
+  double margin = 0.0;                // m, soft collision margin (default: the cloth's thickness)
+  double voxel_size = 0.0;            // m, sparse SDF cell (default: min(margin, smallest feature / 10))
+  double collider_margin = 1e-3;      // m, Bullet's rounding of box and cylinder edges
+  std::array<std::optional<double>, 3> link_stiffness;  // raw kLST per spring kind, replacing the mapping
 };
 
 enum class MeshOutput { none, obj, pc2, both };

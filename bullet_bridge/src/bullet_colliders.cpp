@@ -1,0 +1,100 @@
+// Colliders as kinematic Bullet bodies (see bullet_colliders.hpp).
+#include "bullet_colliders.hpp"
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+
+#include "bullet_math.hpp"
+
+namespace drapelab::bullet {
+namespace {
+
+// A plane becomes a box this thick and wide (m): btStaticPlaneShape goes through Bullet's concave
+// path, whose signed distance is 0 (bullet-notes 1.6), so soft bodies cannot rest on it.
+constexpr double kPlaneHalfThickness = 5.0;
+constexpr double kPlaneHalfWidth = 500.0;
+
+Eigen::Matrix3d y_onto(const Eigen::Vector3d& direction) {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), direction.normalized()).toRotationMatrix();
+}
+
+}  // namespace
+
+BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
+  BulletShape out;
+  switch (c.shape) {
+    case ColliderShape::sphere:
+      out.shape = std::make_unique<btSphereShape>(c.radius);
+      break;
+    case ColliderShape::capsule:
+      out.shape = std::make_unique<btCapsuleShape>(c.radius, c.height);  // height: between cap centres
+      out.shape_in_collider.linear() = y_onto(c.axis);
+      break;
+    case ColliderShape::cylinder:
+      out.shape = std::make_unique<btCylinderShape>(btVector3(c.radius, 0.5 * c.height, c.radius));
+      out.shape->setMargin(edge_margin);
+      out.shape_in_collider.linear() = y_onto(c.axis);
+      break;
+    case ColliderShape::box:
+      out.shape = std::make_unique<btBoxShape>(to_bullet(c.half_extents));
+      out.shape->setMargin(edge_margin);
+      break;
+    case ColliderShape::plane:
+      out.shape = std::make_unique<btBoxShape>(btVector3(kPlaneHalfWidth, kPlaneHalfThickness, kPlaneHalfWidth));
+      out.shape->setMargin(edge_margin);
+      out.shape_in_collider.linear() = y_onto(c.normal);
+      out.shape_in_collider.translation() = -kPlaneHalfThickness * c.normal.normalized();
+      break;
+  }
+  return out;
+}
+
+KinematicColliders::KinematicColliders(const std::vector<Collider>& colliders, double edge_margin,
+                                       btDynamicsWorld& world)
+    : world_(world), colliders_(colliders) {
+  for (const auto& collider : colliders_) {
+    shapes_.push_back(make_bullet_shape(collider, edge_margin));
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, shapes_.back().shape.get());
+    info.m_friction = collider.friction;
+    info.m_startWorldTransform = to_bullet(collider_pose(collider, 0.0) * shapes_.back().shape_in_collider);
+    auto body = std::make_unique<btRigidBody>(info);
+    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body->setActivationState(DISABLE_DEACTIVATION);
+    world_.addRigidBody(body.get());
+    bodies_.push_back(std::move(body));
+  }
+}
+
+KinematicColliders::~KinematicColliders() {
+  for (auto& body : bodies_) world_.removeRigidBody(body.get());
+}
+
+void KinematicColliders::move_to(double t0, double t1) {
+  const double h = t1 - t0;
+  for (std::size_t c = 0; c < bodies_.size(); ++c) {
+    const Eigen::Isometry3d before = collider_pose(colliders_[c], t0) * shapes_[c].shape_in_collider;
+    const Eigen::Isometry3d after = collider_pose(colliders_[c], t1) * shapes_[c].shape_in_collider;
+    btRigidBody& body = *bodies_[c];
+    body.setInterpolationWorldTransform(to_bullet(before));
+    body.setWorldTransform(to_bullet(after));
+    // Velocities of the motion over the substep, for contact response and friction.
+    const Eigen::AngleAxisd turn(after.linear() * before.linear().transpose());
+    const Eigen::Vector3d angular = h > 0.0 ? Eigen::Vector3d(turn.axis() * turn.angle() / h) : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d linear =
+        h > 0.0 ? Eigen::Vector3d((after.translation() - before.translation()) / h) : Eigen::Vector3d::Zero();
+    body.setLinearVelocity(to_bullet(linear));
+    body.setAngularVelocity(to_bullet(angular));
+    body.setInterpolationLinearVelocity(to_bullet(linear));
+    body.setInterpolationAngularVelocity(to_bullet(angular));
+  }
+}
+
+int KinematicColliders::index_of(const btCollisionObject* body) const {
+  for (std::size_t c = 0; c < bodies_.size(); ++c)
+    if (bodies_[c].get() == body) return static_cast<int>(c);
+  return -1;
+}
+
+}  // namespace drapelab::bullet

@@ -1,0 +1,46 @@
+// The scene's colliders as kinematic Bullet rigid bodies, driven from the same collider_pose(t) as
+// every other solver.
+#pragma once
+
+#include <BulletDynamics/Dynamics/btDynamicsWorld.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <memory>
+#include <vector>
+
+#include "drapelab/collider.hpp"
+
+namespace drapelab::bullet {
+
+// A Bullet shape for a collider, and where the shape sits in the collider's frame (Bullet's cylinder
+// and capsule lie along local y; a plane becomes a thick box whose top face is the plane).
+struct BulletShape {
+  std::unique_ptr<btCollisionShape> shape;
+  Eigen::Isometry3d shape_in_collider = Eigen::Isometry3d::Identity();
+};
+
+// The one conversion from our Collider to Bullet. `edge_margin` (m) is given to boxes and cylinders,
+// whose edges Bullet rounds by their margin (spheres and capsules are exact).
+BulletShape make_bullet_shape(const Collider& collider, double edge_margin);
+
+// Kinematic bodies for every collider in one world; move_to(t0, t1) poses them at t1 with the
+// velocities of the motion over [t0, t1], as a substep needs.
+class KinematicColliders {
+ public:
+  KinematicColliders(const std::vector<Collider>& colliders, double edge_margin, btDynamicsWorld& world);
+  ~KinematicColliders();
+  KinematicColliders(const KinematicColliders&) = delete;
+  KinematicColliders& operator=(const KinematicColliders&) = delete;
+
+  void move_to(double t0, double t1);
+  // The collider index of a Bullet body, or -1.
+  int index_of(const btCollisionObject* body) const;
+
+ private:
+  btDynamicsWorld& world_;
+  std::vector<Collider> colliders_;
+  std::vector<BulletShape> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+};
+
+}  // namespace drapelab::bullet

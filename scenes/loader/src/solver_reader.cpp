@@ -1,0 +1,206 @@
+// Solvers: type, integrator, step (given, rounded or automatic) and Bullet options.
+#include "solver_reader.hpp"
+
+#include <cmath>
+#include <regex>
+#include <set>
+
+#include "drapelab/scene/number_format.hpp"
+#include "drapelab/stability.hpp"
+
+namespace drapelab::scene {
+namespace {
+
+const std::vector<std::string> kSolverTypes = {"spring_damper", "bullet_softbody", "bullet_deformable"};
+const std::vector<std::string> kLaterIntegrators = {"midpoint", "rk4", "verlet", "leapfrog", "implicit_euler"};
+const std::vector<std::string> kCommonKeys = {"name", "type", "dt", "round_dt", "max_speed", "runaway_stretch"};
+const std::vector<std::string> kSpringDamperKeys = {"integrator"};
+const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size", "collider_margin", "kLST"};
+
+// Largest ks w over the springs (1/s^2): the classic cloth's mapping holds while ks w h^2 <= 0.1.
+double largest_link_rate(const ClothModel& model) {
+  double largest = 0.0;
+  const SpringSet& s = model.springs;
+  for (std::size_t e = 0; e < s.size(); ++e)
+    largest = std::max(largest, s.ks[e] * (model.inverse_mass[s.v0[e]] + model.inverse_mass[s.v1[e]]));
+  return largest;
+}
+
+class SolverReader {
+ public:
+  SolverReader(SceneReader& r, const Scene& scene, bool cloth_ok, std::vector<std::string>& notes)
+      : r_(r), scene_(scene), cloth_ok_(cloth_ok), notes_(notes) {}
+
+  std::optional<SolverSpec> read(const YAML::Node& node, const std::string& path) {
+    // The type decides which keys are valid, so read it first.
+    std::string type = "spring_damper";
+    record_key_lines(r_, node, path);
+    if (node.IsMap() && node["type"].IsDefined()) {
+      const auto chosen = r_.choice(node["type"], path + ".type", kSolverTypes);
+      if (!chosen) return std::nullopt;
+      type = *chosen;
+    }
+    if (type == "bullet_deformable") {
+      r_.error(node["type"], path + ".type",
+               "'bullet_deformable' is not available yet in this version of drapelab; use spring_damper or "
+               "bullet_softbody");
+      return std::nullopt;
+    }
+    std::vector<std::string> allowed = kCommonKeys;
+    const auto& own = type == "spring_damper" ? kSpringDamperKeys : kBulletSoftBodyKeys;
+    allowed.insert(allowed.end(), own.begin(), own.end());
+    MapReader solver(r_, node, path, allowed);
+    if (!solver.valid()) return std::nullopt;
+    const std::size_t errors_before = r_.error_count();
+    SolverSpec spec;
+    spec.type = type;
+    spec.name = solver.text("name", spec.type).value_or(spec.type);
+    static const std::regex pattern("[a-z0-9_-]+");
+    if (!std::regex_match(spec.name, pattern))
+      r_.error(solver.get("name"), path + ".name", "must use only a-z, 0-9, _ and -, got '" + spec.name + "'");
+    if (type == "spring_damper") read_integrator(solver, path, spec);
+    else read_bullet_options(solver, spec);
+    const double frame_period = scene_.frame_period();
+    if (solver.has("dt")) spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);
+    else spec.dt = automatic_step(spec);
+    spec.round_dt = solver.boolean("round_dt", false).value_or(false);
+    const double free_fall_speed = scene_.gravity.norm() * std::max(scene_.duration, 0.0);  // m/s
+    const double default_max_speed = 100.0 + 2.0 * free_fall_speed;
+    spec.max_speed = solver.number("max_speed", Range::positive(), default_max_speed).value_or(default_max_speed);
+    spec.runaway_stretch = solver.number("runaway_stretch", Range::positive(), 10.0).value_or(10.0);
+    if (r_.error_count() != errors_before) return std::nullopt;
+    if (!whole_steps_per_frame(solver, path, spec)) return std::nullopt;
+    return spec;
+  }
+
+ private:
+  void read_integrator(MapReader& solver, const std::string& path, SolverSpec& spec) {
+    if (!solver.has("integrator")) return;
+    std::vector<std::string> known = integrator_names();
+    known.insert(known.end(), kLaterIntegrators.begin(), kLaterIntegrators.end());
+    if (const auto name = r_.choice(solver.get("integrator"), path + ".integrator", known)) {
+      if (const auto integrator = parse_integrator(*name)) spec.integrator = *integrator;
+      else
+        r_.error(solver.get("integrator"), path + ".integrator",
+                 "'" + *name + "' is not available yet in this version; use symplectic_euler or explicit_euler");
+    }
+  }
+
+  // Bullet's classic cloth (bullet-notes 1.7): soft margin = thickness, voxel small enough.
+  void read_bullet_options(MapReader& solver, SolverSpec& spec) {
+    spec.iterations = static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
+    const double thickness = scene_.cloth.grid.thickness;
+    spec.margin = solver.number("margin", Range::positive(), thickness).value_or(thickness);
+    spec.collider_margin = solver.number("collider_margin", Range::positive(), 1e-3).value_or(1e-3);
+    double feature = std::numeric_limits<double>::infinity();  // m, the smallest collider size
+    for (const auto& c : scene_.colliders) {
+      if (c.shape == ColliderShape::sphere || c.shape == ColliderShape::capsule) feature = std::min(feature, c.radius);
+      if (c.shape == ColliderShape::cylinder) feature = std::min({feature, c.radius, c.height});
+      if (c.shape == ColliderShape::box) feature = std::min(feature, 2.0 * c.half_extents.minCoeff());
+    }
+    const double voxel = std::min(spec.margin, feature / 10.0);
+    spec.voxel_size = solver.number("voxel_size", Range::positive(), voxel).value_or(voxel);
+    if (!solver.has("kLST")) return;
+    MapReader raw(r_, solver.get("kLST"), solver.path_of("kLST"), {"stretch", "shear", "bend"});
+    if (!raw.valid()) return;
+    const Range unit{0.0, true, 1.0, true};
+    const char* kinds[] = {"stretch", "shear", "bend"};
+    for (int k = 0; k < 3; ++k)
+      if (raw.has(kinds[k])) spec.link_stiffness[k] = raw.number(kinds[k], unit, std::nullopt);
+  }
+
+  // Without a dt: our solver takes 0.9 of the Gershgorin stable step of its springs, dampers and
+  // contact (0.1 for explicit Euler, which has no stable step on an undamped spring); Bullet's classic
+  // cloth the step where its stiffness mapping holds, ks w h^2 = 0.1. Both are rounded down to a
+  // whole number of steps per frame.
+  double automatic_step(SolverSpec& spec) {
+    const double frame_period = scene_.frame_period();
+    if (!cloth_ok_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
+    double target = frame_period;
+    std::string reason;
+    try {
+      const ClothModel model = build_grid_cloth(scene_.cloth.grid);
+      if (spec.type == "bullet_softbody") {
+        const double rate = largest_link_rate(model);
+        if (rate > 0.0) target = std::sqrt(0.1 / rate);
+        reason = "where ks w h^2 = 0.1, the limit of the stiffness mapping";
+      } else {
+        const double bound =
+            symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
+        const double factor = spec.integrator == Integrator::explicit_euler ? 0.1 : 0.9;
+        target = factor * bound;
+        reason = format_number(factor) + " x the stable step bound " + format_number(bound) + " s";
+      }
+    } catch (const std::invalid_argument&) {
+      return frame_period;  // reported elsewhere (mass missing, bad pins)
+    }
+    const double steps = std::max(1.0, std::ceil(frame_period / target));
+    spec.note = "dt chosen automatically: " + format_number(steps) + " steps per frame (" + reason + ")";
+    return frame_period / steps;
+  }
+
+  bool whole_steps_per_frame(MapReader& solver, const std::string& path, SolverSpec& spec) {
+    const double frame_period = scene_.frame_period();
+    if (spec.dt > frame_period * (1.0 + 1e-12)) {
+      r_.error(solver.get("dt"), path + ".dt",
+               "must not exceed the frame period 1/frame_rate = " + format_number(frame_period) + " s, got " +
+                   format_number(spec.dt));
+      return false;
+    }
+    const double steps = frame_period / spec.dt;
+    const double whole = std::round(steps);
+    if (std::abs(steps - whole) <= 1e-9 * steps) {
+      spec.steps_per_frame = static_cast<int>(whole);
+      if (!spec.note.empty()) notes_.push_back("solver '" + spec.name + "': " + spec.note);
+      return true;
+    }
+    if (spec.round_dt) {
+      spec.steps_per_frame = static_cast<int>(std::ceil(steps));
+      const double rounded = frame_period / spec.steps_per_frame;
+      spec.note = "dt rounded from " + format_number(spec.dt) + " s to " + format_number(rounded) + " s (" +
+                  std::to_string(spec.steps_per_frame) + " steps per frame)";
+      notes_.push_back("solver '" + spec.name + "': " + spec.note);
+      spec.dt = rounded;
+      return true;
+    }
+    r_.error(solver.get("dt"), path + ".dt",
+             "must divide the frame period 1/frame_rate = " + format_number(frame_period) + " s into whole steps, got " +
+                 format_number(spec.dt) + " (" + format_number(steps) + " steps per frame); try dt = " +
+                 format_number(frame_period / std::ceil(steps)) + ", or set round_dt: true on this solver");
+    return false;
+  }
+
+  SceneReader& r_;
+  const Scene& scene_;
+  bool cloth_ok_;
+  std::vector<std::string>& notes_;
+};
+
+}  // namespace
+
+std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list, const Scene& scene,
+                                     bool cloth_ok, std::vector<std::string>& notes) {
+  std::vector<SolverSpec> solvers;
+  if (!list.IsSequence() || list.size() == 0) {
+    reader.error(list, "solvers", "must be a non-empty list of solvers, got " + describe_scalar(list));
+    return solvers;
+  }
+  record_item_lines(reader, list, "solvers");
+  SolverReader solver_reader(reader, scene, cloth_ok, notes);
+  std::set<std::string> names;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string path = "solvers." + std::to_string(k);
+    auto solver = solver_reader.read(list[k], path);
+    if (!solver) continue;
+    if (!names.insert(solver->name).second) {
+      const YAML::Node& item = list[k];
+      const YAML::Node at = item["name"].IsDefined() ? item["name"] : item;  // a default name: the item
+      reader.error(at, path + ".name", "'" + solver->name + "' is already used by another solver; names must be unique");
+      continue;
+    }
+    solvers.push_back(*solver);
+  }
+  return solvers;
+}
+
+}  // namespace drapelab::scene

@@ -1,0 +1,20 @@
+// Reading the scene's `solvers:` list: each solver's type, step and type-specific options.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+#include "drapelab/scene/scene.hpp"
+#include "yaml_reader.hpp"
+
+namespace drapelab::scene {
+
+// `scene` holds everything read before the solvers (run settings, cloth, colliders, contact), which
+// the automatic steps and Bullet's defaults depend on; `cloth_ok` says the cloth can be built.
+// Things chosen on the user's behalf (an automatic or rounded dt) are added to `notes`.
+std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list, const Scene& scene,
+                                     bool cloth_ok, std::vector<std::string>& notes);
+
+}  // namespace drapelab::scene
