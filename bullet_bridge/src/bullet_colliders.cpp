@@ -91,6 +91,16 @@ void KinematicColliders::move_to(double t0, double t1) {
   }
 }
 
+Eigen::Isometry3d KinematicColliders::collider_pose_in_world(std::size_t c) const {
+  const btTransform& t = bodies_[c]->getWorldTransform();
+  Eigen::Isometry3d shape_pose = Eigen::Isometry3d::Identity();
+  for (int row = 0; row < 3; ++row) {
+    for (int column = 0; column < 3; ++column) shape_pose.linear()(row, column) = t.getBasis()[row][column];
+    shape_pose.translation()[row] = t.getOrigin()[row];
+  }
+  return shape_pose * shapes_[c].shape_in_collider.inverse();
+}
+
 int KinematicColliders::index_of(const btCollisionObject* body) const {
   for (std::size_t c = 0; c < bodies_.size(); ++c)
     if (bodies_[c].get() == body) return static_cast<int>(c);

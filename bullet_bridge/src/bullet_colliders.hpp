@@ -35,6 +35,9 @@ class KinematicColliders {
   void move_to(double t0, double t1);
   // The collider index of a Bullet body, or -1.
   int index_of(const btCollisionObject* body) const;
+  std::size_t size() const { return bodies_.size(); }
+  // Where Bullet has collider c now, as the collider's own pose (its shape offset taken out).
+  Eigen::Isometry3d collider_pose_in_world(std::size_t c) const;
 
  private:
   btDynamicsWorld& world_;
