@@ -89,6 +89,13 @@ std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
   return forces;
 }
 
+std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() const {
+  std::vector<std::pair<std::string, double>> phases;
+  for (int p = 0; p < static_cast<int>(StepPhase::count); ++p)
+    phases.emplace_back(step_phase_name(static_cast<StepPhase>(p)), stats_.seconds[p]);
+  return phases;
+}
+
 void SpringDamperSolver::step(double h) {
   if (status_ != SolverStatus::ok) return;
   evaluate_forces(state_.x, state_.v, state_.time, h);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "drapelab/cloth_state.hpp"
@@ -32,6 +33,8 @@ class Solver {
   virtual const std::string& message() const = 0;
   // One entry per scene collider, in scene order (empty without colliders).
   virtual std::vector<ColliderForce> collider_forces() const = 0;
+  // Wall time per phase of the step (s, accumulated), for solvers that time their phases.
+  virtual std::vector<std::pair<std::string, double>> phase_seconds() const { return {}; }
 };
 
 }  // namespace drapelab

@@ -47,6 +47,7 @@ class SpringDamperSolver final : public Solver {
   SolverStatus status() const override { return status_; }
   const std::string& message() const override { return message_; }
   std::vector<ColliderForce> collider_forces() const override;
+  std::vector<std::pair<std::string, double>> phase_seconds() const override;
 
   const ClothModel& model() const { return *model_; }
   const SpringDamperSettings& settings() const { return settings_; }

@@ -118,7 +118,9 @@ std::string resolved_scene_yaml(const Scene& s) {
   for (const auto& solver : s.solvers) {
     out << "  - name: " << solver.name << "\n"
         << "    type: " << solver.type << "\n";
-    if (solver.type == "spring_damper") out << "    integrator: " << integrator_name(solver.integrator) << "\n";
+    if (solver.type == "spring_damper")
+      out << "    integrator: " << integrator_name(solver.integrator) << "\n"
+          << "    host: " << (solver.bullet_host ? "bullet" : "none") << "  # a plugin in a Bullet world, or bare\n";
     if (solver.type == "bullet_softbody") {
       out << "    iterations: " << solver.iterations << "\n"
           << "    margin: " << format_number(solver.margin) << "  # m, soft collision margin\n"

@@ -14,7 +14,7 @@ namespace {
 const std::vector<std::string> kSolverTypes = {"spring_damper", "bullet_softbody", "bullet_deformable"};
 const std::vector<std::string> kLaterIntegrators = {"midpoint", "rk4", "verlet", "leapfrog", "implicit_euler"};
 const std::vector<std::string> kCommonKeys = {"name", "type", "dt", "round_dt", "max_speed", "runaway_stretch"};
-const std::vector<std::string> kSpringDamperKeys = {"integrator"};
+const std::vector<std::string> kSpringDamperKeys = {"integrator", "host"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size", "collider_margin", "kLST"};
 
 // Largest ks w over the springs (1/s^2): the classic cloth's mapping holds while ks w h^2 <= 0.1.
@@ -58,7 +58,11 @@ class SolverReader {
     static const std::regex pattern("[a-z0-9_-]+");
     if (!std::regex_match(spec.name, pattern))
       r_.error(solver.get("name"), path + ".name", "must use only a-z, 0-9, _ and -, got '" + spec.name + "'");
-    if (type == "spring_damper") read_integrator(solver, path, spec);
+    if (type == "spring_damper") {
+      read_integrator(solver, path, spec);
+      // A plugin in a Bullet world (default), or stepped bare, without Bullet.
+      spec.bullet_host = solver.choice("host", {"bullet", "none"}, "bullet").value_or("bullet") == "bullet";
+    }
     else read_bullet_options(solver, spec);
     const double frame_period = scene_.frame_period();
     if (solver.has("dt")) spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);

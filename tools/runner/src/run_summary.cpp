@@ -48,11 +48,11 @@ ordered_json solver_json(const SolverRun& run) {
   j["ms_per_step"] = run.steps > 0 ? 1e3 * run.wall_seconds / static_cast<double>(run.steps) : 0.0;
   const double simulated = static_cast<double>(run.steps) * run.spec->dt;
   j["wall_seconds_per_simulated_second"] = simulated > 0.0 ? run.wall_seconds / simulated : 0.0;
-  if (const auto* ours = dynamic_cast<const SpringDamperSolver*>(run.solver.get())) {
-    ordered_json phases;
-    for (int p = 0; p < static_cast<int>(StepPhase::count); ++p)
-      phases[step_phase_name(static_cast<StepPhase>(p))] = ours->stats().seconds[p];
-    j["phase_seconds"] = phases;
+  const auto phases = run.solver->phase_seconds();
+  if (!phases.empty()) {
+    ordered_json timings = ordered_json::object();
+    for (const auto& [phase, seconds] : phases) timings[phase] = seconds;
+    j["phase_seconds"] = timings;
   }
   j["final"] = run.last_metrics ? metrics_json(*run.last_metrics) : ordered_json::object();
   return j;

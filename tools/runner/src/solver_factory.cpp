@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 
@@ -17,7 +18,9 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
     settings.air_damping = scene.cloth.air_damping;
     settings.max_speed = spec.max_speed;
     settings.contacts = std::move(contacts);
-    return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
+    auto solver = std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
+    if (!spec.bullet_host) return solver;
+    return bullet::host_in_bullet_world(std::move(solver), scene.colliders, scene.gravity);
   }
   if (spec.type == "bullet_softbody") {
     bullet::BulletSoftBodyOptions options;

@@ -41,6 +41,8 @@ struct SolverSpec {
   double max_speed = 0.0;             // m/s, a faster particle stops the solver as unstable
   double runaway_stretch = 10.0;      // a stretch spring longer than (1 + this) x rest is unstable
   std::string note;                   // what the loader chose or changed (automatic or rounded dt)
+  // spring_damper only: stepped as an action inside a Bullet world (host: bullet) or bare (host: none).
+  bool bullet_host = true;
   // bullet_softbody only (bullet-notes 1.7; README, "Bullet's classic cloth"):
   int iterations = 1;                 // position-solver sweeps per substep
   double margin = 0.0;                // m, soft collision margin (default: the cloth's thickness)
