@@ -645,9 +645,13 @@ TEST(SceneLoader, DrapeSupportIsNotAvailableYet) {
   EXPECT_TRUE(HasError(result, at(36), {"metrics.drape_support is not available yet"}));
 }
 
-TEST(SceneLoader, BulletDeformableIsNotAvailableYet) {
-  EXPECT_TRUE(HasError(load(with_line(kBase, 32, "    type: bullet_deformable")), at(32),
-                       {"solvers.0.type", "'bullet_deformable'", "not available yet", "bullet_softbody"}));
+TEST(SceneLoader, BulletDeformableTakesMarginAndVoxelButNoIterations) {
+  const auto result = load(with_line(with_line(kBase, 32, "    type: bullet_deformable"), 33, "    margin: 0.006"));
+  ASSERT_LOADS(result);
+  EXPECT_EQ(result.scene->solvers[0].type, "bullet_deformable");
+  EXPECT_DOUBLE_EQ(result.scene->solvers[0].margin, 0.006);
+  EXPECT_TRUE(HasError(load(with_line(with_line(kBase, 32, "    type: bullet_deformable"), 33, "    iterations: 4")),
+                       at(33), {"solvers.0.iterations is not a known key"}));
 }
 
 TEST(SceneLoader, BulletSoftBodyTakesItsOptionsAndRefusesAnIntegrator) {

@@ -5,14 +5,14 @@
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 
 #include "bullet_math.hpp"
-#include "classic_cloth_solver.hpp"
+#include "bullet_cloth_solver.hpp"
 
 namespace drapelab::bullet {
 
 std::optional<BulletClothLayout> bullet_cloth_layout(const Solver& solver) {
-  const auto* classic = dynamic_cast<const BulletSoftBodySolver*>(&solver);
-  if (!classic) return std::nullopt;
-  const btSoftBody& cloth = classic->cloth();
+  const auto* bullet_solver = dynamic_cast<const BulletClothSolver*>(&solver);
+  if (!bullet_solver) return std::nullopt;
+  const btSoftBody& cloth = bullet_solver->cloth();
   BulletClothLayout layout;
   layout.positions.resize(3, cloth.m_nodes.size());
   layout.inverse_mass.resize(cloth.m_nodes.size());
@@ -36,9 +36,9 @@ std::optional<BulletClothLayout> bullet_cloth_layout(const Solver& solver) {
 
 std::vector<Eigen::Isometry3d> bullet_collider_poses(const Solver& solver) {
   std::vector<Eigen::Isometry3d> poses;
-  if (const auto* classic = dynamic_cast<const BulletSoftBodySolver*>(&solver))
-    for (std::size_t c = 0; c < classic->colliders().size(); ++c)
-      poses.push_back(classic->colliders().collider_pose_in_world(c));
+  if (const auto* bullet_solver = dynamic_cast<const BulletClothSolver*>(&solver))
+    for (std::size_t c = 0; c < bullet_solver->colliders().size(); ++c)
+      poses.push_back(bullet_solver->colliders().collider_pose_in_world(c));
   return poses;
 }
 

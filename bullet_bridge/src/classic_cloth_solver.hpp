@@ -11,12 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "bullet_cloth_solver.hpp"
 #include "bullet_colliders.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
 
 namespace drapelab::bullet {
 
-class BulletSoftBodySolver final : public Solver {
+class BulletSoftBodySolver final : public BulletClothSolver {
  public:
   BulletSoftBodySolver(std::string name, std::shared_ptr<const ClothModel> model, const ClothState& initial,
                        std::vector<Collider> colliders, BulletSoftBodyOptions options);
@@ -30,8 +31,8 @@ class BulletSoftBodySolver final : public Solver {
   const std::string& message() const override { return message_; }
   std::vector<ColliderForce> collider_forces() const override { return forces_; }
 
-  const btSoftBody& cloth() const { return *cloth_; }
-  const KinematicColliders& colliders() const { return *colliders_; }
+  const btSoftBody& cloth() const override { return *cloth_; }
+  const KinematicColliders& colliders() const override { return *colliders_; }
 
  private:
   static void before_substep(btDynamicsWorld* world, btScalar h);

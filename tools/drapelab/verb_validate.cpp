@@ -47,9 +47,9 @@ int validate_verb(const ValidateArguments& arguments) {
   for (const auto& solver : s.solvers) {
     std::cout << "  solver " << solver.name << ": " << solver.type;
     if (solver.type == "spring_damper") std::cout << ", " << integrator_name(solver.integrator);
-    if (solver.type == "bullet_softbody")
-      std::cout << ", " << solver.iterations << " iteration(s), margin " << solver.margin << " m, voxel "
-                << solver.voxel_size << " m";
+    if (solver.type == "bullet_softbody") std::cout << ", " << solver.iterations << " iteration(s)";
+    if (solver.type != "spring_damper")
+      std::cout << ", margin " << solver.margin << " m, voxel " << solver.voxel_size << " m";
     std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";
     if (solver.type == "spring_damper" && solver.dt > stable_step)
       std::cerr << "warning: solver " << solver.name << ": dt " << solver.dt

@@ -121,9 +121,9 @@ std::string resolved_scene_yaml(const Scene& s) {
     if (solver.type == "spring_damper")
       out << "    integrator: " << integrator_name(solver.integrator) << "\n"
           << "    host: " << (solver.bullet_host ? "bullet" : "none") << "  # a plugin in a Bullet world, or bare\n";
-    if (solver.type == "bullet_softbody") {
-      out << "    iterations: " << solver.iterations << "\n"
-          << "    margin: " << format_number(solver.margin) << "  # m, soft collision margin\n"
+    if (solver.type != "spring_damper") {
+      if (solver.type == "bullet_softbody") out << "    iterations: " << solver.iterations << "\n";
+      out << "    margin: " << format_number(solver.margin) << "  # m, soft collision margin\n"
           << "    voxel_size: " << format_number(solver.voxel_size) << "  # m, sparse SDF cell\n"
           << "    collider_margin: " << format_number(solver.collider_margin) << "  # m\n";
       std::string raw;

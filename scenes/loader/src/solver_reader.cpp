@@ -16,6 +16,7 @@ const std::vector<std::string> kLaterIntegrators = {"midpoint", "rk4", "verlet",
 const std::vector<std::string> kCommonKeys = {"name", "type", "dt", "round_dt", "max_speed", "runaway_stretch"};
 const std::vector<std::string> kSpringDamperKeys = {"integrator", "host"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size", "collider_margin", "kLST"};
+const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", "collider_margin"};
 
 // Largest ks w over the springs (1/s^2): the classic cloth's mapping holds while ks w h^2 <= 0.1.
 double largest_link_rate(const ClothModel& model) {
@@ -40,14 +41,10 @@ class SolverReader {
       if (!chosen) return std::nullopt;
       type = *chosen;
     }
-    if (type == "bullet_deformable") {
-      r_.error(node["type"], path + ".type",
-               "'bullet_deformable' is not available yet in this version of drapelab; use spring_damper or "
-               "bullet_softbody");
-      return std::nullopt;
-    }
     std::vector<std::string> allowed = kCommonKeys;
-    const auto& own = type == "spring_damper" ? kSpringDamperKeys : kBulletSoftBodyKeys;
+    const auto& own = type == "spring_damper"     ? kSpringDamperKeys
+                      : type == "bullet_softbody" ? kBulletSoftBodyKeys
+                                                  : kBulletDeformableKeys;
     allowed.insert(allowed.end(), own.begin(), own.end());
     MapReader solver(r_, node, path, allowed);
     if (!solver.valid()) return std::nullopt;
@@ -90,9 +87,10 @@ class SolverReader {
     }
   }
 
-  // Bullet's classic cloth (bullet-notes 1.7): soft margin = thickness, voxel small enough.
+  // Bullet's cloths (bullet-notes 1.7, 2.4): soft margin = thickness, voxel small enough.
   void read_bullet_options(MapReader& solver, SolverSpec& spec) {
-    spec.iterations = static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
+    if (spec.type == "bullet_softbody")
+      spec.iterations = static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
     const double thickness = scene_.cloth.grid.thickness;
     spec.margin = solver.number("margin", Range::positive(), thickness).value_or(thickness);
     spec.collider_margin = solver.number("collider_margin", Range::positive(), 1e-3).value_or(1e-3);
@@ -128,6 +126,11 @@ class SolverReader {
         const double rate = largest_link_rate(model);
         if (rate > 0.0) target = std::sqrt(0.1 / rate);
         reason = "where ks w h^2 = 0.1, the limit of the stiffness mapping";
+      } else if (spec.type == "bullet_deformable") {
+        // Its elastic force is explicit and its damping implicit: the springs alone bound the step.
+        const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
+        if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);
+        reason = "0.9 x the stable step of its explicit springs";
       } else {
         const double bound =
             symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());

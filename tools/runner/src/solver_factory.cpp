@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
 #include "drapelab/spring_damper_solver.hpp"
@@ -35,7 +36,18 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
     options.max_speed = spec.max_speed;
     return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders, options);
   }
-  // The loader refuses every other type in this version, so reaching here is a programming error.
+  if (spec.type == "bullet_deformable") {
+    bullet::BulletDeformableOptions options;
+    options.dt = spec.dt;
+    options.margin = spec.margin;
+    options.voxel_size = spec.voxel_size;
+    options.collider_margin = spec.collider_margin;
+    options.gravity = scene.gravity;
+    options.air_damping = scene.cloth.air_damping;
+    options.max_speed = spec.max_speed;
+    return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial, scene.colliders, options);
+  }
+  // The loader knows no other type, so reaching here is a programming error.
   throw std::logic_error("solver type '" + spec.type + "' has no implementation");
 }
 

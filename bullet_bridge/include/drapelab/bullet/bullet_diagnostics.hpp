@@ -22,7 +22,7 @@ struct BulletClothLayout {
   double margin = 0.0;                   // m, the soft body's collision margin
 };
 
-// The layout of a bullet_softbody solver's cloth; nothing for any other solver.
+// The layout of a Bullet cloth (bullet_softbody or bullet_deformable); nothing for any other solver.
 std::optional<BulletClothLayout> bullet_cloth_layout(const Solver& solver);
 
 // The collider poses (collider frame -> world) Bullet's kinematic bodies hold now, in scene order;

@@ -1,0 +1,133 @@
+// Bullet's deformable world as a drapelab Solver (see bullet_deformable_solver.hpp).
+#include "drapelab/bullet/bullet_deformable_solver.hpp"
+
+#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletSoftBody/btDeformableBodySolver.h>
+#include <BulletSoftBody/btDeformableGravityForce.h>
+#include <BulletSoftBody/btDeformableMultiBodyConstraintSolver.h>
+#include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+
+#include <cmath>
+
+#include "bullet_cloth_solver.hpp"
+#include "bullet_colliders.hpp"
+#include "bullet_math.hpp"
+#include "per_link_spring_force.hpp"
+#include "soft_body_cloth.hpp"
+
+namespace drapelab::bullet {
+namespace {
+
+class BulletDeformableSolver final : public BulletClothSolver {
+ public:
+  BulletDeformableSolver(std::string name, std::shared_ptr<const ClothModel> model, const ClothState& initial,
+                         std::vector<Collider> colliders, BulletDeformableOptions options)
+      : name_(std::move(name)), model_(std::move(model)), options_(std::move(options)), state_(initial) {
+    // As in Bullet's examples/DeformableDemo: the deformable solver inside the constraint solver.
+    constraint_solver_.setDeformableSolver(&deformable_solver_);
+    world_ = std::make_unique<btDeformableMultiBodyDynamicsWorld>(&dispatcher_, &broadphase_, &constraint_solver_,
+                                                                  &configuration_, &deformable_solver_);
+    world_->setGravity(to_bullet(options_.gravity));  // rigid bodies only; the cloth gets a force
+    world_->setInternalTickCallback(&BulletDeformableSolver::before_substep, this, /*isPreTick=*/true);
+    btSoftBodyWorldInfo& info = world_->getWorldInfo();
+    info.m_gravity = to_bullet(options_.gravity);
+    info.m_sparsesdf.Initialize();
+    info.m_sparsesdf.setDefaultVoxelsz(options_.voxel_size);
+    info.m_sparsesdf.Reset();
+    colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_);
+
+    cloth_ = make_soft_body(info, *model_, initial, [](std::size_t) { return 1.0; });  // kLST unused here
+    btSoftBody::Config& cfg = cloth_->m_cfg;
+    cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;  // node contacts
+    cfg.kDF = 1.0;  // friction = collider friction
+    cfg.kCHR = cfg.kKHR = 1.0;
+    cfg.drag = 1.0 - std::exp(-options_.air_damping * options_.dt);
+    cloth_->getCollisionShape()->setMargin(options_.margin);
+    world_->addSoftBody(cloth_.get());
+    springs_ = std::make_unique<PerLinkSpringForce>(model_->springs.ks, model_->springs.kd);
+    gravity_ = std::make_unique<btDeformableGravityForce>(to_bullet(options_.gravity));
+    world_->addForce(cloth_.get(), springs_.get());
+    world_->addForce(cloth_.get(), gravity_.get());
+    world_->setImplicit(false);  // explicit elastic force, implicit damping (bullet-notes 2.2)
+    previous_velocity_ = state_.v;
+    forces_.assign(colliders.size(), ColliderForce{});
+  }
+
+  ~BulletDeformableSolver() override {
+    world_->removeSoftBody(cloth_.get());
+    colliders_.reset();
+  }
+
+  void step(double h) override {
+    if (status_ != SolverStatus::ok) return;
+    substep_start_ = state_.time;
+    previous_velocity_ = state_.v;
+    world_->stepSimulation(h, 0);
+    state_.time += h;
+    ++state_.step_count;
+    read_soft_body_state(*cloth_, state_);
+    std::vector<NodeContact> contacts;
+    for (int k = 0; k < cloth_->m_nodeRigidContacts.size(); ++k) {
+      const auto& contact = cloth_->m_nodeRigidContacts[k];
+      const int c = colliders_->index_of(contact.m_cti.m_colObj);
+      if (c >= 0)
+        contacts.push_back({static_cast<int>(contact.m_node - &cloth_->m_nodes[0]), c, to_eigen(contact.m_cti.m_normal)});
+    }
+    estimate_contact_forces(*model_, contacts, previous_velocity_, state_.v, options_.gravity, h, forces_);
+    if (const auto message = runaway_message(*model_, state_, options_.max_speed, h,
+                                             "a smaller dt (its elastic force is explicit: the same step bound "
+                                             "as our symplectic Euler holds), or softer springs.")) {
+      status_ = SolverStatus::unstable;
+      message_ = *message;
+    }
+  }
+
+  const ClothState& state() const override { return state_; }
+  const std::string& name() const override { return name_; }
+  const std::string& type() const override { return type_; }
+  SolverStatus status() const override { return status_; }
+  const std::string& message() const override { return message_; }
+  std::vector<ColliderForce> collider_forces() const override { return forces_; }
+  const btSoftBody& cloth() const override { return *cloth_; }
+  const KinematicColliders& colliders() const override { return *colliders_; }
+
+ private:
+  static void before_substep(btDynamicsWorld* world, btScalar h) {
+    auto* self = static_cast<BulletDeformableSolver*>(world->getWorldUserInfo());
+    self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
+  }
+
+  std::string name_;
+  std::string type_ = "bullet_deformable";
+  std::shared_ptr<const ClothModel> model_;
+  BulletDeformableOptions options_;
+  ClothState state_;
+  Eigen::Matrix3Xd previous_velocity_;
+  std::vector<ColliderForce> forces_;
+  SolverStatus status_ = SolverStatus::ok;
+  std::string message_;
+  double substep_start_ = 0.0;  // s
+
+  btSoftBodyRigidBodyCollisionConfiguration configuration_;
+  btCollisionDispatcher dispatcher_{&configuration_};
+  btDbvtBroadphase broadphase_;
+  btDeformableBodySolver deformable_solver_;
+  btDeformableMultiBodyConstraintSolver constraint_solver_;
+  std::unique_ptr<btDeformableMultiBodyDynamicsWorld> world_;
+  std::unique_ptr<KinematicColliders> colliders_;
+  std::unique_ptr<PerLinkSpringForce> springs_;
+  std::unique_ptr<btDeformableGravityForce> gravity_;
+  std::unique_ptr<btSoftBody> cloth_;
+};
+
+}  // namespace
+
+std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name, std::shared_ptr<const ClothModel> model,
+                                                      const ClothState& initial, std::vector<Collider> colliders,
+                                                      BulletDeformableOptions options) {
+  return std::make_unique<BulletDeformableSolver>(std::move(name), std::move(model), initial, std::move(colliders),
+                                                  std::move(options));
+}
+
+}  // namespace drapelab::bullet

@@ -1,0 +1,91 @@
+// Shared parts of Bullet's two cloths (see soft_body_cloth.hpp).
+#include "soft_body_cloth.hpp"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "bullet_math.hpp"
+
+namespace drapelab::bullet {
+
+std::unique_ptr<btSoftBody> make_soft_body(btSoftBodyWorldInfo& info, const ClothModel& model,
+                                           const ClothState& initial,
+                                           const std::function<double(std::size_t)>& link_stiffness) {
+  const int n = model.particle_count();
+  std::vector<btVector3> rest(n);
+  std::vector<btScalar> masses(n);
+  for (int i = 0; i < n; ++i) {
+    rest[i] = to_bullet(model.rest_positions.col(i));
+    masses[i] = model.is_pinned(i) ? 0.0 : model.mass[i];  // Bullet: mass 0 = pinned
+  }
+  auto body = std::make_unique<btSoftBody>(&info, n, rest.data(), masses.data());
+  const SpringSet& s = model.springs;
+  std::map<double, btSoftBody::Material*> materials;  // one material per distinct kLST
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    const double k = link_stiffness(e);
+    btSoftBody::Material*& material = materials[k];
+    if (!material) {
+      material = body->appendMaterial();
+      material->m_kLST = k;
+    }
+    body->appendLink(s.v0[e], s.v1[e], material);
+    // m_bbending is a signed one-bit field (0 or -1); Bullet only tests it for non-zero.
+    if (s.kind[e] == SpringKind::bend) body->m_links[body->m_links.size() - 1].m_bbending = -1;
+  }
+  for (Eigen::Index t = 0; t < model.triangles.cols(); ++t)
+    body->appendFace(model.triangles(0, t), model.triangles(1, t), model.triangles(2, t));
+  body->m_bUpdateRtCst = false;
+  body->updateConstants();
+  for (std::size_t e = 0; e < s.size(); ++e) {  // our rest lengths, exactly
+    btSoftBody::Link& link = body->m_links[static_cast<int>(e)];
+    link.m_rl = s.rest_length[e];
+    link.m_c1 = link.m_rl * link.m_rl;
+  }
+  for (int i = 0; i < n; ++i) {
+    btSoftBody::Node& node = body->m_nodes[i];
+    node.m_x = node.m_q = to_bullet(initial.x.col(i));
+    node.m_v = to_bullet(initial.v.col(i));
+  }
+  body->setActivationState(DISABLE_DEACTIVATION);  // the solvers skip inactive bodies
+  return body;
+}
+
+void read_soft_body_state(const btSoftBody& body, ClothState& state) {
+  for (int i = 0; i < body.m_nodes.size(); ++i) {
+    state.x.col(i) = to_eigen(body.m_nodes[i].m_x);
+    state.v.col(i) = to_eigen(body.m_nodes[i].m_v);
+  }
+}
+
+void estimate_contact_forces(const ClothModel& model, const std::vector<NodeContact>& contacts,
+                             const Eigen::Matrix3Xd& previous_velocity, const Eigen::Matrix3Xd& velocity,
+                             const Eigen::Vector3d& gravity, double h, std::vector<ColliderForce>& forces) {
+  forces.assign(forces.size(), ColliderForce{});
+  for (const auto& contact : contacts) {
+    const int i = contact.node;
+    const Eigen::Vector3d force = model.mass[i] * ((velocity.col(i) - previous_velocity.col(i)) / h - gravity);
+    const double normal = force.dot(contact.normal);
+    forces[contact.collider].normal += std::max(0.0, normal);
+    forces[contact.collider].friction += (force - normal * contact.normal).norm();
+  }
+}
+
+std::optional<std::string> runaway_message(const ClothModel& model, const ClothState& state, double max_speed,
+                                           double h, const std::string& advice) {
+  for (int i = 0; i < model.particle_count(); ++i) {
+    const bool finite = state.x.col(i).allFinite() && state.v.col(i).allFinite();
+    const double speed = finite ? state.v.col(i).norm() : 0.0;
+    if (finite && speed <= max_speed) continue;
+    std::ostringstream text;
+    text.precision(4);
+    text << "node " << i << " (" << model.describe_particle(i) << ") ";
+    if (finite) text << "moves at " << speed << " m/s, above the runaway limit of " << max_speed << " m/s";
+    else text << "has a non-finite position or velocity";
+    text << " after step " << state.step_count << " (t = " << state.time << " s, dt = " << h << " s). Try: " << advice;
+    return text.str();
+  }
+  return std::nullopt;
+}
+
+}  // namespace drapelab::bullet

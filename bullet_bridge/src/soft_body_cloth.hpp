@@ -1,0 +1,48 @@
+// What Bullet's two cloths share: a btSoftBody built from our model (node i = particle i, our masses,
+// pins, links and rest lengths), reading its state back, estimating contact forces, and the health check.
+#pragma once
+
+#include <BulletSoftBody/btSoftBody.h>
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/cloth_state.hpp"
+#include "drapelab/solver.hpp"
+
+namespace drapelab::bullet {
+
+// Built in the rest pose so that Bullet computes our rest lengths (it recomputes them from current
+// positions whenever masses or links change: bullet-notes 1.3), then set exactly to ours and moved to
+// the initial state. `link_stiffness(e)` gives spring e's kLST (the classic solver's only stiffness).
+std::unique_ptr<btSoftBody> make_soft_body(btSoftBodyWorldInfo& info, const ClothModel& model,
+                                           const ClothState& initial,
+                                           const std::function<double(std::size_t)>& link_stiffness);
+
+void read_soft_body_state(const btSoftBody& body, ClothState& state);
+
+// A node touching a collider during the last step, with the contact's outward normal.
+struct NodeContact {
+  int node = 0;
+  int collider = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+};
+
+// Bullet's solvers store no usable contact impulses, so the force a collider exerted on a node in
+// contact is estimated from the node's momentum change over the step beyond gravity,
+// m ((v(n+1) - v(n)) / h - g), split along the contact normal (normal force, pushing part only) and
+// across it (friction). It includes the node's link forces: exact for a cloth resting flat, an
+// estimate elsewhere.
+void estimate_contact_forces(const ClothModel& model, const std::vector<NodeContact>& contacts,
+                             const Eigen::Matrix3Xd& previous_velocity, const Eigen::Matrix3Xd& velocity,
+                             const Eigen::Vector3d& gravity, double h, std::vector<ColliderForce>& forces);
+
+// A message naming the first non-finite or runaway node, the step and `advice`; nothing when healthy.
+std::optional<std::string> runaway_message(const ClothModel& model, const ClothState& state, double max_speed,
+                                           double h, const std::string& advice);
+
+}  // namespace drapelab::bullet
