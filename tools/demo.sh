@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Quickstart 1: install what is missing, build in Release, run the default scene, list the outputs.
-# Usage: tools/demo.sh [SCENE] [OUT_DIR]   (default: scenes/curtain.yaml into out/curtain)
+# Usage: tools/demo.sh [SCENE] [OUT_DIR]   (default: scenes/sphere_drape.yaml into out/sphere_drape)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
-scene=${1:-scenes/curtain.yaml}
+scene=${1:-scenes/sphere_drape.yaml}
 out=${2:-out/$(basename "$scene" .yaml)}
 
 bash tools/install-deps.sh

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The only way the project's golden files change: re-records tests/golden/NAME.json for every
-# scenes/NAME.yaml (or the scenes given) from a 1-second run, and prints what changed. Review the
+# scenes/NAME.yaml (or the scenes given) from a half-second run, and prints what changed. Review the
 # printed changes and `git diff tests/golden` like code before committing them.
 # Usage: tools/update-golden.sh [scenes/NAME.yaml ...]
 set -euo pipefail
@@ -13,5 +13,5 @@ scenes=("$@")
 [[ ${#scenes[@]} -gt 0 ]] || scenes=(scenes/*.yaml)
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .yaml)
-  ./build/tools/drapelab/drapelab check "$scene" --golden "tests/golden/$name.json" --update --set duration=1
+  ./build/tools/drapelab/drapelab check "$scene" --golden "tests/golden/$name.json" --update --set duration=0.5
 done

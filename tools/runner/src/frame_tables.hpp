@@ -15,6 +15,7 @@ namespace drapelab::runner {
 struct StateDifference {
   double rms_distance = 0.0;  // m, weighted by vertex area (uniform for a chain, which has no area)
   double max_distance = 0.0;  // m
+  double hausdorff_distance = 0.0;  // m, between the triangle surfaces (sampled)
 };
 StateDifference compare_states(const ClothModel& model, const ClothState& a, const ClothState& b);
 
