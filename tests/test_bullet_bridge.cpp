@@ -220,15 +220,23 @@ TEST(BulletBridge, KinematicCollidersArePosedLikeEverySolverSeesThem) {
   GridClothSpec spec = sheet(5, 0.2, {0, 2, 0}, 0.01);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const double h = 1e-3;
-  auto solver = bullet::make_bullet_softbody_solver("b", model, initial_grid_state(*model, spec, 0.0, 0), {arm, ball},
-                                                    options_for(h, 0.01));
-  for (int k = 1; k <= 80; ++k) {
-    solver->step(h);
-    const double t = k * h;  // the end of the substep just taken
-    const auto poses = bullet::bullet_collider_poses(*solver);
-    ASSERT_EQ(poses.size(), 2u);
-    EXPECT_LT((poses[0].matrix() - collider_pose(arm, t).matrix()).cwiseAbs().maxCoeff(), 1e-12) << t;
-    EXPECT_LT((poses[1].matrix() - collider_pose(ball, t).matrix()).cwiseAbs().maxCoeff(), 1e-12) << t;
+  bullet::BulletDeformableOptions deformable_options;
+  deformable_options.dt = h;
+  deformable_options.margin = deformable_options.voxel_size = 0.01;
+  std::unique_ptr<Solver> solvers[] = {
+      bullet::make_bullet_softbody_solver("b", model, initial_grid_state(*model, spec, 0.0, 0), {arm, ball},
+                                          options_for(h, 0.01)),
+      bullet::make_bullet_deformable_solver("d", model, initial_grid_state(*model, spec, 0.0, 0), {arm, ball},
+                                            deformable_options)};
+  for (auto& solver : solvers) {
+    for (int k = 1; k <= 80; ++k) {
+      solver->step(h);
+      const double t = k * h;  // the end of the substep just taken
+      const auto poses = bullet::bullet_collider_poses(*solver);
+      ASSERT_EQ(poses.size(), 2u);
+      EXPECT_LT((poses[0].matrix() - collider_pose(arm, t).matrix()).cwiseAbs().maxCoeff(), 1e-12) << t;
+      EXPECT_LT((poses[1].matrix() - collider_pose(ball, t).matrix()).cwiseAbs().maxCoeff(), 1e-12) << t;
+    }
   }
 }
 
