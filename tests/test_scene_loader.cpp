@@ -156,23 +156,32 @@ TEST(SceneLoader, MinimalSceneGetsTheContractDefaults) {
   EXPECT_EQ(s.output.meshes, drapelab::scene::MeshOutput::none);
 }
 
-// Without dt, the step is 0.9 (symplectic Euler) or 0.1 (explicit Euler) of the cloth's stable step
-// bound, rounded down to a whole number of steps per frame.
+// Without dt, the step is 0.9 of the integrator's stable step estimate (0.1 of the symplectic bound
+// when the estimate is zero), implicit Euler's is 1/240 s, rounded down to whole steps per frame.
 TEST(SceneLoader, AutomaticDtIsBelowTheStableStepAndDividesTheFrame) {
-  for (const char* integrator : {"symplectic_euler", "explicit_euler"}) {
+  for (const std::string& integrator : drapelab::integrator_names()) {
     SCOPED_TRACE(integrator);
-    const auto result =
-        load(with_line(without_lines(kBase, 34, 34), 33, std::string("    integrator: ") + integrator));
+    const auto result = load(with_line(without_lines(kBase, 34, 34), 33, "    integrator: " + integrator));
     ASSERT_LOADS(result);
     const Scene& s = *result.scene;
     const auto& solver = s.solvers[0];
-    const double bound = drapelab::symplectic_euler_stable_step(drapelab::build_grid_cloth(s.cloth.grid),
-                                                                s.cloth.air_damping);
-    const double factor = solver.integrator == drapelab::Integrator::explicit_euler ? 0.1 : 0.9;
+    const drapelab::ClothModel model = drapelab::build_grid_cloth(s.cloth.grid);
+    double bound = drapelab::stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), solver.integrator);
+    double factor = 0.9;
+    if (bound == 0.0) {
+      bound = drapelab::symplectic_euler_stable_step(model, s.cloth.air_damping, s.contact_rates());
+      factor = 0.1;
+    }
+    if (solver.integrator == drapelab::Integrator::implicit_euler) {
+      bound = 1.0 / 240.0;
+      factor = 1.0;
+    }
     ASSERT_GT(solver.steps_per_frame, 0);
     EXPECT_LE(solver.dt, factor * bound * (1 + 1e-12));
-    EXPECT_GT(solver.dt, factor * bound * (solver.steps_per_frame - 1) / solver.steps_per_frame * (1 - 1e-12))
-        << "one step per frame fewer would also be below the bound";
+    if (solver.steps_per_frame > 1) {
+      EXPECT_GT(solver.dt, factor * bound * (solver.steps_per_frame - 1) / solver.steps_per_frame * (1 - 1e-12))
+          << "one step per frame fewer would also be below the bound";
+    }
     EXPECT_NEAR(solver.dt * solver.steps_per_frame, s.frame_period(), 1e-15);
     EXPECT_NE(solver.note.find("automatic"), std::string::npos) << solver.note;
   }
@@ -676,12 +685,31 @@ TEST(SceneLoader, BulletSoftBodyTakesItsOptionsAndRefusesAnIntegrator) {
                        at(33), {"solvers.0.kLST.bend must be >= 0 and <= 1"}));
 }
 
-TEST(SceneLoader, LaterIntegratorsAreNotAvailableYet) {
-  for (const char* integrator : {"rk4", "midpoint", "verlet", "leapfrog", "implicit_euler"})
-    EXPECT_TRUE(HasError(load(with_line(kBase, 33, std::string("    integrator: ") + integrator)), at(33),
-                         {"solvers.0.integrator", std::string("'") + integrator + "'", "not available yet",
-                          "symplectic_euler"}))
-        << integrator;
+TEST(SceneLoader, EveryIntegratorLoads) {
+  for (const std::string& integrator : drapelab::integrator_names()) {
+    const auto result = load(with_line(kBase, 33, "    integrator: " + integrator));
+    ASSERT_LOADS(result);
+    EXPECT_EQ(drapelab::integrator_name(result.scene->solvers[0].integrator), integrator);
+  }
+}
+
+TEST(SceneLoader, ImplicitOptionsAreReadAndChecked) {
+  const auto base = with_line(kBase, 33, "    integrator: implicit_euler");
+  const auto result = load(base + "    implicit: {tolerance: 1e-8, max_iterations: 50}\n");
+  ASSERT_LOADS(result);
+  EXPECT_DOUBLE_EQ(result.scene->solvers[0].implicit.tolerance, 1e-8);
+  EXPECT_EQ(result.scene->solvers[0].implicit.max_iterations, 50);
+  const auto defaults = load(base);
+  ASSERT_LOADS(defaults);
+  EXPECT_DOUBLE_EQ(defaults.scene->solvers[0].implicit.tolerance, drapelab::ImplicitSolveSettings{}.tolerance);
+
+  const int last = static_cast<int>(std::count(base.begin(), base.end(), '\n')) + 1;
+  EXPECT_TRUE(HasError(load(base + "    implicit: {tolerance: 0}\n"), at(last), {"solvers.0.implicit.tolerance must be > 0"}));
+  EXPECT_TRUE(HasError(load(base + "    implicit: {max_iterations: 0}\n"), at(last),
+                       {"solvers.0.implicit.max_iterations must be >= 1"}));
+  EXPECT_TRUE(HasError(load(base + "    implicit: {tolerence: 1e-3}\n"), at(last), {"did you mean", "tolerance"}));
+  EXPECT_TRUE(HasError(load(with_line(kBase, 33, "    integrator: rk4") + "    implicit: {tolerance: 1e-3}\n"),
+                       at(last), {"solvers.0.implicit applies only to integrator: implicit_euler", "rk4"}));
 }
 
 TEST(SceneLoader, ExplicitEulerIsAvailable) {
@@ -804,7 +832,7 @@ TEST(SceneLoader, SeveralErrorsAreAllReportedAtOnce) {
   text = with_line(text, 14, "  thickness: 0");
   text = with_line(text, 18, "    stretch: {ks: -3, kd: 0.1}");
   text = with_line(text, 28, "  damping: -4");
-  text = with_line(text, 33, "    integrator: rk4");
+  text = with_line(text, 33, "    integrator: rk5");
   const auto result = load(text);
   ASSERT_FALSE(result.ok());
   EXPECT_TRUE(HasError(result, at(3), {"durration is not a known key"}));
@@ -812,7 +840,7 @@ TEST(SceneLoader, SeveralErrorsAreAllReportedAtOnce) {
   EXPECT_TRUE(HasError(result, at(14), {"cloth.thickness must be > 0"}));
   EXPECT_TRUE(HasError(result, at(18), {"cloth.springs.stretch.ks must be > 0"}));
   EXPECT_TRUE(HasError(result, at(28), {"contact.damping must be >= 0"}));
-  EXPECT_TRUE(HasError(result, at(33), {"solvers.0.integrator", "not available yet"}));
+  EXPECT_TRUE(HasError(result, at(33), {"solvers.0.integrator must be one of", "rk4"}));
   EXPECT_GE(result.errors.size(), 6u);
   EXPECT_FALSE(result.scene.has_value());
 }

@@ -53,6 +53,7 @@ class BulletHostedSolver final : public Solver {
   const std::string& message() const override { return guest_->message(); }
   std::vector<ColliderForce> collider_forces() const override { return guest_->collider_forces(); }
   std::vector<std::pair<std::string, double>> phase_seconds() const override { return guest_->phase_seconds(); }
+  std::vector<std::pair<std::string, double>> counters() const override { return guest_->counters(); }
 
  private:
   static void before_substep(btDynamicsWorld* world, btScalar h) {

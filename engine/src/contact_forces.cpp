@@ -56,7 +56,9 @@ Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
 
 void ContactModel::add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
                                       const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
-                                      std::vector<ColliderContactTotals>& totals) const {
+                                      std::vector<ColliderContactTotals>& totals,
+                                      std::vector<ActiveContact>* active) const {
+  if (active) active->clear();
   totals.assign(colliders_.size(), ColliderContactTotals{});  // capacity kept after the first step
   for (std::size_t c = 0; c < colliders_.size(); ++c) {
     const Collider& collider = colliders_[c];
@@ -75,6 +77,7 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
       const double fn = penalty_normal_force(touching->depth, relative_velocity.dot(n), parameters_.stiffness,
                                              parameters_.damping);
       force.col(i) += fn * n;
+      if (active && fn > 0.0) active->push_back({i, n});
       Eigen::Vector3d friction = Eigen::Vector3d::Zero();
       if (fn > 0.0 && collider.static_friction > 0.0) {
         const double mass = model.mass[i];

@@ -1,23 +1,70 @@
-// Explicit integrators. Acceleration a = f / m with the model's inverse masses; a pinned particle
-// (inverse mass 0) gets a = 0 and, starting at rest, never moves.
+// Integrator names, properties and the single-evaluation updates. Acceleration a = f / m with the
+// model's inverse masses; a pinned particle (inverse mass 0) gets a = 0 and, starting at rest, never
+// moves.
 #include "drapelab/integrators.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace drapelab {
+
+std::vector<Integrator> all_integrators() {
+  return {Integrator::explicit_euler, Integrator::symplectic_euler, Integrator::midpoint, Integrator::rk4,
+          Integrator::verlet,         Integrator::leapfrog,         Integrator::implicit_euler};
+}
 
 const char* integrator_name(Integrator integrator) {
   switch (integrator) {
     case Integrator::explicit_euler: return "explicit_euler";
     case Integrator::symplectic_euler: return "symplectic_euler";
+    case Integrator::midpoint: return "midpoint";
+    case Integrator::rk4: return "rk4";
+    case Integrator::verlet: return "verlet";
+    case Integrator::leapfrog: return "leapfrog";
+    case Integrator::implicit_euler: return "implicit_euler";
   }
   return "unknown";
 }
 
-std::vector<std::string> integrator_names() { return {"explicit_euler", "symplectic_euler"}; }
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (Integrator integrator : all_integrators()) names.emplace_back(integrator_name(integrator));
+  return names;
+}
 
 std::optional<Integrator> parse_integrator(std::string_view name) {
-  if (name == "explicit_euler") return Integrator::explicit_euler;
-  if (name == "symplectic_euler") return Integrator::symplectic_euler;
+  for (Integrator integrator : all_integrators())
+    if (name == integrator_name(integrator)) return integrator;
   return std::nullopt;
+}
+
+int force_evaluations_per_step(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::midpoint: return 2;
+    case Integrator::rk4: return 4;
+    default: return 1;  // leapfrog reuses the end-of-step force as the next step's first kick
+  }
+}
+
+int order_of_accuracy(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::midpoint:
+    case Integrator::verlet:
+    case Integrator::leapfrog: return 2;
+    case Integrator::rk4: return 4;
+    default: return 1;
+  }
+}
+
+double undamped_stability_limit(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::symplectic_euler:
+    case Integrator::verlet:
+    case Integrator::leapfrog: return 2.0;
+    case Integrator::rk4: return 2.0 * std::sqrt(2.0);
+    case Integrator::implicit_euler: return std::numeric_limits<double>::infinity();
+    default: return 0.0;
+  }
 }
 
 void explicit_euler_update(const Eigen::VectorXd& inverse_mass, const Eigen::Matrix3Xd& force,

@@ -53,7 +53,33 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       settings_(std::move(settings)),
       state_(std::move(initial)),
       force_(3, model_->particle_count()) {
+  const int n = model_->particle_count();
   if (settings_.contacts) contact_totals_.resize(settings_.contacts->size());
+  switch (settings_.integrator) {
+    case Integrator::explicit_euler:
+    case Integrator::symplectic_euler: break;
+    case Integrator::rk4:
+      sum_x_.resize(3, n);
+      sum_v_.resize(3, n);
+      [[fallthrough]];
+    case Integrator::midpoint:
+      stage_x_.resize(3, n);
+      stage_v_.resize(3, n);
+      acceleration_.resize(3, n);
+      break;
+    case Integrator::verlet:
+      previous_x_.resize(3, n);
+      [[fallthrough]];
+    case Integrator::leapfrog:
+      stage_v_.resize(3, n);
+      acceleration_.resize(3, n);
+      break;
+    case Integrator::implicit_euler:
+      implicit_ = std::make_unique<ImplicitEulerSystem>(*model_, settings_.implicit);
+      stage_v_.resize(3, n);  // dv
+      active_contacts_.reserve(static_cast<std::size_t>(n));
+      break;
+  }
   for (int i = 0; i < model_->particle_count(); ++i)
     if (model_->is_pinned(i)) state_.v.col(i).setZero();  // a pin holds its particle still
 }
@@ -78,7 +104,8 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
   }
   if (settings_.contacts) {
     PhaseTimer timer(stats_, StepPhase::contacts);
-    settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_);
+    settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
+                                           implicit_ ? &active_contacts_ : nullptr);
   }
   return force_;
 }
@@ -96,25 +123,72 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() 
   return phases;
 }
 
+std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const {
+  if (!implicit_) return {};
+  const ImplicitSolveStats& cg = implicit_->stats();
+  const double mean = cg.solves > 0 ? static_cast<double>(cg.iterations_total) / static_cast<double>(cg.solves) : 0.0;
+  return {{"cg_solves", static_cast<double>(cg.solves)},
+          {"cg_iterations_total", static_cast<double>(cg.iterations_total)},
+          {"cg_iterations_mean", mean},
+          {"cg_iterations_max", cg.iterations_max},
+          {"cg_relative_residual_max", cg.residual_max},
+          {"cg_unconverged_steps", static_cast<double>(cg.unconverged)},
+          {"cg_tolerance", settings_.implicit.tolerance},
+          {"cg_max_iterations", settings_.implicit.max_iterations}};
+}
+
+double SpringDamperSolver::force_phase_seconds() const {
+  double total = 0.0;
+  for (StepPhase phase : {StepPhase::clear_forces, StepPhase::gravity, StepPhase::springs, StepPhase::air,
+                          StepPhase::contacts})
+    total += stats_.seconds[static_cast<int>(phase)];
+  return total;
+}
+
+const Eigen::Matrix3Xd& SpringDamperSolver::acceleration_of_force(Eigen::Matrix3Xd& into) const {
+  into.noalias() = force_ * model_->inverse_mass.asDiagonal();
+  return into;
+}
+
 void SpringDamperSolver::step(double h) {
   if (status_ != SolverStatus::ok) return;
-  evaluate_forces(state_.x, state_.v, state_.time, h);
-  {
-    PhaseTimer timer(stats_, StepPhase::integrate);
-    switch (settings_.integrator) {
-      case Integrator::explicit_euler:
-        explicit_euler_update(model_->inverse_mass, force_, h, state_.x, state_.v);
-        break;
-      case Integrator::symplectic_euler:
-        symplectic_euler_update(model_->inverse_mass, force_, h, state_.x, state_.v);
-        break;
-    }
+  const auto start = Clock::now();
+  const double force_seconds_before = force_phase_seconds();
+  switch (settings_.integrator) {
+    case Integrator::explicit_euler:
+    case Integrator::symplectic_euler: euler_step(h); break;
+    case Integrator::midpoint: midpoint_step(h); break;
+    case Integrator::rk4: rk4_step(h); break;
+    case Integrator::verlet: verlet_step(h); break;
+    case Integrator::leapfrog: leapfrog_step(h); break;
+    case Integrator::implicit_euler: implicit_euler_step(h); break;
   }
+  // Whatever the step spent outside the force phases is the integrator's own work.
+  const double step_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  stats_.seconds[static_cast<int>(StepPhase::integrate)] += step_seconds - (force_phase_seconds() - force_seconds_before);
   state_.time += h;
   ++state_.step_count;
   ++stats_.steps;
   PhaseTimer timer(stats_, StepPhase::health_check);
   check_health(h);
+}
+
+void SpringDamperSolver::euler_step(double h) {
+  evaluate_forces(state_.x, state_.v, state_.time, h);
+  if (settings_.integrator == Integrator::explicit_euler)
+    explicit_euler_update(model_->inverse_mass, force_, h, state_.x, state_.v);
+  else
+    symplectic_euler_update(model_->inverse_mass, force_, h, state_.x, state_.v);
+}
+
+// Backward Euler, linearised at the start of the step (implicit_euler.hpp).
+void SpringDamperSolver::implicit_euler_step(double h) {
+  evaluate_forces(state_.x, state_.v, state_.time, h);
+  const ContactParameters contact = settings_.contacts ? settings_.contacts->parameters() : ContactParameters{};
+  implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact, active_contacts_,
+                   stage_v_);
+  state_.v += stage_v_;         // v(n+1) = v(n) + dv
+  state_.x.noalias() += h * state_.v;  // x(n+1) = x(n) + h v(n+1)
 }
 
 // Stops the solver on a non-finite or runaway particle, naming it, the step, and what to try. Runs
@@ -138,16 +212,29 @@ void SpringDamperSolver::check_health(double h) {
          << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
     ContactRates contact;
     if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
-    const double stable_step = symplectic_euler_stable_step(*model_, settings_.air_damping, contact);
+    const double stable_step = stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
     const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping, contact);
-    if (settings_.integrator == Integrator::explicit_euler)
-      text << "integrator symplectic_euler (explicit Euler gains energy on every undamped spring), ";
-    if (std::isfinite(stable_step))
-      text << "a smaller dt (the Gershgorin bound of these springs and dampers guarantees a stable "
-              "symplectic step below "
-           << stable_step << " s), ";
+    if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
+      text << "integrator symplectic_euler, leapfrog or implicit_euler (" << integrator_name(settings_.integrator)
+           << " gains energy on every undamped spring and is stable only while damping outweighs it), ";
+    if (settings_.integrator == Integrator::implicit_euler)
+      text << "a smaller dt or a larger implicit max_iterations (the conjugate gradient reached a relative "
+              "residual of "
+           << implicit_->stats().residual_last << " in " << implicit_->stats().iterations_last
+           << " iterations; a collider moving faster than its contact can push back also needs a smaller dt), ";
+    else if (stable_step > 0.0 && std::isfinite(stable_step) && stable_step < h)
+      text << "a smaller dt (the Gershgorin bound of these springs, dampers and contacts gives a stable "
+           << integrator_name(settings_.integrator) << " step below about " << stable_step << " s), ";
+    else if (std::isfinite(stable_step) && stable_step >= h)
+      text << "a smaller dt (dt is inside the springs' stable step of about " << stable_step
+           << " s, so a contact or a fast collider is the likely cause: try half the dt, or a softer contact), ";
     // In h^2 K + 2 h C < 4, the larger term says whether springs or dampers limit the step.
-    if (2.0 * rates.damping > h * rates.stiffness)
+    if (settings_.integrator == Integrator::implicit_euler)
+      text << "or a softer contact (lower contact.stiffness).";
+    else if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
+      text << "or more damping for the stiffness (this scheme is stable only for dt below about kd / ks of "
+              "the springs).";
+    else if (2.0 * rates.damping > h * rates.stiffness)
       text << "or less damping (lower kd, air_damping or contact.damping: here the dampers, not the springs, "
               "limit the step; they act per spring or particle, so light particles need small values).";
     else

@@ -1,6 +1,7 @@
 // Gershgorin bounds of the damped spring network (see stability.hpp).
 #include "drapelab/stability.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -33,6 +34,33 @@ double symplectic_euler_stable_step(const ClothModel& model, double air_damping,
   const NetworkRates r = network_rate_bounds(model, air_damping, contact);
   if (r.stiffness > 0.0) return (std::sqrt(r.damping * r.damping + 4.0 * r.stiffness) - r.damping) / r.stiffness;
   if (r.damping > 0.0) return 2.0 / r.damping;
+  return std::numeric_limits<double>::infinity();
+}
+
+double damping_ratio_step(const ClothModel& model, ContactRates contact) {
+  double smallest = std::numeric_limits<double>::infinity();  // s
+  const SpringSet& s = model.springs;
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    if (s.ks[e] <= 0.0) continue;
+    if (model.is_pinned(s.v0[e]) && model.is_pinned(s.v1[e])) continue;  // never moves
+    smallest = std::min(smallest, s.kd[e] / s.ks[e]);
+  }
+  if (contact.stiffness > 0.0) smallest = std::min(smallest, contact.damping / contact.stiffness);
+  return smallest;
+}
+
+double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
+                            Integrator integrator) {
+  const double symplectic = symplectic_euler_stable_step(model, air_damping, contact);
+  switch (integrator) {
+    case Integrator::symplectic_euler:
+    case Integrator::verlet:
+    case Integrator::leapfrog: return symplectic;
+    case Integrator::rk4: return 1.39 * symplectic;
+    case Integrator::explicit_euler:
+    case Integrator::midpoint: return std::min(damping_ratio_step(model, contact), symplectic);
+    case Integrator::implicit_euler: break;
+  }
   return std::numeric_limits<double>::infinity();
 }
 

@@ -25,6 +25,14 @@ struct ColliderContactTotals {
   double max_depth = 0.0;       // m, deepest overlap
 };
 
+// A particle that a collider's penalty spring pushed in the last evaluation, for the implicit solve:
+// inside the contact the normal force fn n = (k depth - c vn) n changes with x and v as
+// d/dx = -k n n^T (the surface taken as flat at the contact) and d/dv = -c n n^T.
+struct ActiveContact {
+  int particle = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // outward, unit
+};
+
 class ContactModel {
  public:
   // `radius`: the particles' contact radius, the cloth's thickness (m).
@@ -42,10 +50,12 @@ class ContactModel {
 
   // Adds penalty and friction forces (N) to `force` for the state (x, v) at time t, for a step of h.
   // Friction uses the force already accumulated, so call it after every other force phase.
-  // `totals` (one per collider) is overwritten. Pinned particles are skipped. Allocates nothing.
+  // `totals` (one per collider) is overwritten. Pinned particles are skipped. When `active` is given,
+  // it is cleared and receives every pushing contact. Allocates nothing once `active` has grown.
   void add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
                           const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
-                          std::vector<ColliderContactTotals>& totals) const;
+                          std::vector<ColliderContactTotals>& totals,
+                          std::vector<ActiveContact>* active = nullptr) const;
 
  private:
   std::vector<Collider> colliders_;

@@ -1,5 +1,19 @@
 // Time integrators for the particle system M x'' = f(x, v). Pinned particles (inverse mass 0) keep
 // their position and a zero velocity under every scheme.
+//
+// Single-evaluation updates (both Euler schemes) are free functions here; the multi-stage schemes
+// (midpoint, RK4), the two-level schemes (Verlet, leapfrog) and implicit Euler need the solver's force
+// evaluation and live in spring_damper_solver / explicit_schemes.cpp / implicit_euler.hpp. Each
+// scheme's update, its order, its force evaluations per step and its stability on x'' = -w^2 x:
+//
+//   explicit_euler   x1 = x0 + h v0, v1 = v0 + h a0                    order 1, 1 eval, never stable undamped
+//   symplectic_euler v1 = v0 + h a0, x1 = x0 + h v1                    order 1, 1 eval, w h < 2
+//   midpoint (RK2)   half step to (xm, vm), then x1 = x0 + h vm,
+//                    v1 = v0 + h a(xm, vm)                              order 2, 2 evals, never stable undamped
+//   rk4              classic Runge-Kutta                               order 4, 4 evals, w h < 2 sqrt(2)
+//   verlet           x1 = 2 x0 - x_prev + h^2 a0 (position Verlet)     order 2, 1 eval, w h < 2
+//   leapfrog         kick h/2, drift h, kick h/2 (velocity Verlet)     order 2, 1 eval, w h < 2
+//   implicit_euler   (M - h D - h^2 K) dv = h (f0 + h K v0)            order 1, 1 eval + CG, unconditionally
 #pragma once
 
 #include <Eigen/Core>
@@ -13,11 +27,26 @@ namespace drapelab {
 enum class Integrator {
   explicit_euler,    // v(n+1) = v(n) + a(n) h,  x(n+1) = x(n) + v(n) h      (classic Forward Euler)
   symplectic_euler,  // v(n+1) = v(n) + a(n) h,  x(n+1) = x(n) + v(n+1) h    (semi-implicit Euler)
+  midpoint,          // explicit midpoint rule (RK2)
+  rk4,               // classic fourth-order Runge-Kutta
+  verlet,            // position (Stoermer) Verlet; velocity estimated, see explicit_schemes.cpp
+  leapfrog,          // kick-drift-kick (velocity Verlet)
+  implicit_euler,    // backward Euler linearised once per step (Baraff & Witkin 1998)
 };
 
 const char* integrator_name(Integrator integrator);
 std::optional<Integrator> parse_integrator(std::string_view name);
 std::vector<std::string> integrator_names();
+std::vector<Integrator> all_integrators();
+
+// Force evaluations per step (implicit Euler: one, plus its linear solve).
+int force_evaluations_per_step(Integrator integrator);
+// Global order of accuracy on smooth problems.
+int order_of_accuracy(Integrator integrator);
+// The largest w h for which the scheme stays bounded on the undamped oscillator x'' = -w^2 x:
+// 2 for symplectic Euler, Verlet and leapfrog, 2 sqrt(2) for RK4, 0 for explicit Euler and midpoint
+// (their stability regions miss the imaginary axis), infinity for implicit Euler.
+double undamped_stability_limit(Integrator integrator);
 
 // One step of each scheme from the force at the start of the step (N, 3 x N).
 void explicit_euler_update(const Eigen::VectorXd& inverse_mass, const Eigen::Matrix3Xd& force,

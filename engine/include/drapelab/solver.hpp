@@ -35,6 +35,8 @@ class Solver {
   virtual std::vector<ColliderForce> collider_forces() const = 0;
   // Wall time per phase of the step (s, accumulated), for solvers that time their phases.
   virtual std::vector<std::pair<std::string, double>> phase_seconds() const { return {}; }
+  // Scheme-specific counts worth reporting (implicit Euler: CG iterations and residuals).
+  virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
 };
 
 }  // namespace drapelab

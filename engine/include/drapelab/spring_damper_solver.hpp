@@ -1,8 +1,10 @@
 // Our spring-damper cloth: forces from gravity, damped springs, air damping and penalty contact with
-// friction, advanced by an explicit integrator. A step is a visible list of phases, each timed into
-// StepStats:
+// friction, advanced by any integrator of integrators.hpp. A step is a visible list of phases, each
+// timed into StepStats:
 //   clear forces -> gravity -> springs -> air -> contacts -> integrate (pins held) -> health check.
-// The step allocates nothing: every buffer is sized when the solver is built.
+// Multi-stage schemes run the force phases once per stage; "integrate" is the rest of the step (stage
+// arithmetic, and for implicit Euler the assembly and conjugate-gradient solve).
+// The explicit step allocates nothing: every buffer is sized when the solver is built.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,6 +16,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/contact_model.hpp"
+#include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/solver.hpp"
 
@@ -25,6 +28,7 @@ struct SpringDamperSettings {
   double air_damping = 0.0;                  // 1/s: force -air_damping * m * v
   double max_speed = 1000.0;                 // m/s: a faster particle means the run has blown up
   std::shared_ptr<const ContactModel> contacts;  // colliders and penalty parameters; none when null
+  ImplicitSolveSettings implicit;                // implicit_euler only: CG tolerance and iteration cap
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
@@ -48,6 +52,7 @@ class SpringDamperSolver final : public Solver {
   const std::string& message() const override { return message_; }
   std::vector<ColliderForce> collider_forces() const override;
   std::vector<std::pair<std::string, double>> phase_seconds() const override;
+  std::vector<std::pair<std::string, double>> counters() const override;
 
   const ClothModel& model() const { return *model_; }
   const SpringDamperSettings& settings() const { return settings_; }
@@ -60,8 +65,20 @@ class SpringDamperSolver final : public Solver {
                                           double h);
   // What each collider did in the last force evaluation (empty without colliders).
   const std::vector<ColliderContactTotals>& contact_totals() const { return contact_totals_; }
+  // The implicit solve's statistics (null unless the integrator is implicit_euler).
+  const ImplicitEulerSystem* implicit_system() const { return implicit_.get(); }
 
  private:
+  // One step of each scheme (explicit_schemes.cpp, except the Euler pair and implicit Euler here).
+  void euler_step(double h);
+  void midpoint_step(double h);
+  void rk4_step(double h);
+  void verlet_step(double h);
+  void leapfrog_step(double h);
+  void implicit_euler_step(double h);
+  // a = f / m for the force just evaluated (zero on pinned particles).
+  const Eigen::Matrix3Xd& acceleration_of_force(Eigen::Matrix3Xd& into) const;
+  double force_phase_seconds() const;
   void check_health(double h);
 
   std::string name_;
@@ -70,6 +87,14 @@ class SpringDamperSolver final : public Solver {
   SpringDamperSettings settings_;
   ClothState state_;
   Eigen::Matrix3Xd force_;  // N, the step's scratch buffer
+  // Stage buffers of the multi-stage and two-level schemes (3 x N; empty when the scheme needs none):
+  Eigen::Matrix3Xd stage_x_, stage_v_;  // m, m/s: the state a stage evaluates the force at
+  Eigen::Matrix3Xd sum_x_, sum_v_;      // RK4's weighted sums of stage slopes (m/s, m/s^2)
+  Eigen::Matrix3Xd acceleration_;       // m/s^2: the last stage's, or the two-level schemes' a(n)
+  Eigen::Matrix3Xd previous_x_;         // m: Verlet's x(n-1)
+  double two_level_step_ = 0.0;         // s: the h Verlet/leapfrog history holds; 0 = start afresh
+  std::unique_ptr<ImplicitEulerSystem> implicit_;
+  std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
   StepStats stats_;
   SolverStatus status_ = SolverStatus::ok;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "drapelab/cloth_model.hpp"
+#include "drapelab/integrators.hpp"
 
 namespace drapelab {
 
@@ -30,5 +31,21 @@ NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, Co
 // A step (s) for which symplectic Euler is stable on the whole network (sufficient, from the bounds
 // above; typically within a factor 2 of the true limit). Infinity when nothing constrains it.
 double symplectic_euler_stable_step(const ClothModel& model, double air_damping, ContactRates contact = {});
+
+// Explicit Euler and the midpoint rule have no stable step on an undamped spring: their stability
+// regions touch the imaginary axis only at 0. A damped mode with rate c and frequency w needs
+// |1 + lambda h| < 1, i.e. h < c / w^2 (and h < 2 / c when overdamped). When every spring's damping is
+// kd / ks times its stiffness, each mode's c / w^2 is a weighted mean of the springs' kd / ks, so
+//   h < min over springs (and the contact) of kd / ks
+// bounds explicit Euler near the rest shape (air damping only helps). RK2's region contains Euler's
+// disc, so the same bound is safe for it. Zero when some spring is undamped.
+double damping_ratio_step(const ClothModel& model, ContactRates contact = {});
+
+// A step (s) below which `integrator` is stable on this network, from the bounds above: symplectic
+// Euler's bound for it, Verlet and leapfrog (all w h < 2 undamped); 1.39 x that for RK4 (its region
+// reaches 2.83 on the imaginary axis and 2.79 on the negative real axis); min(damping_ratio_step,
+// symplectic bound) for explicit Euler and midpoint; infinity for implicit Euler.
+double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
+                            Integrator integrator);
 
 }  // namespace drapelab

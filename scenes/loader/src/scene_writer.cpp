@@ -121,6 +121,9 @@ std::string resolved_scene_yaml(const Scene& s) {
     if (solver.type == "spring_damper")
       out << "    integrator: " << integrator_name(solver.integrator) << "\n"
           << "    host: " << (solver.bullet_host ? "bullet" : "none") << "  # a plugin in a Bullet world, or bare\n";
+    if (solver.type == "spring_damper" && solver.integrator == Integrator::implicit_euler)
+      out << "    implicit: {tolerance: " << format_number(solver.implicit.tolerance)
+          << ", max_iterations: " << solver.implicit.max_iterations << "}  # conjugate gradient\n";
     if (solver.type != "spring_damper") {
       if (solver.type == "bullet_softbody") out << "    iterations: " << solver.iterations << "\n";
       out << "    margin: " << format_number(solver.margin) << "  # m, soft collision margin\n"

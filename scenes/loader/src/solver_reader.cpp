@@ -12,9 +12,8 @@ namespace drapelab::scene {
 namespace {
 
 const std::vector<std::string> kSolverTypes = {"spring_damper", "bullet_softbody", "bullet_deformable"};
-const std::vector<std::string> kLaterIntegrators = {"midpoint", "rk4", "verlet", "leapfrog", "implicit_euler"};
 const std::vector<std::string> kCommonKeys = {"name", "type", "dt", "round_dt", "max_speed", "runaway_stretch"};
-const std::vector<std::string> kSpringDamperKeys = {"integrator", "host"};
+const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size", "collider_margin", "kLST"};
 const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", "collider_margin"};
 
@@ -76,15 +75,23 @@ class SolverReader {
 
  private:
   void read_integrator(MapReader& solver, const std::string& path, SolverSpec& spec) {
-    if (!solver.has("integrator")) return;
-    std::vector<std::string> known = integrator_names();
-    known.insert(known.end(), kLaterIntegrators.begin(), kLaterIntegrators.end());
-    if (const auto name = r_.choice(solver.get("integrator"), path + ".integrator", known)) {
-      if (const auto integrator = parse_integrator(*name)) spec.integrator = *integrator;
-      else
-        r_.error(solver.get("integrator"), path + ".integrator",
-                 "'" + *name + "' is not available yet in this version; use symplectic_euler or explicit_euler");
+    if (solver.has("integrator"))
+      if (const auto name = r_.choice(solver.get("integrator"), path + ".integrator", integrator_names()))
+        spec.integrator = *parse_integrator(*name);
+    if (!solver.has("implicit")) return;
+    if (spec.integrator != Integrator::implicit_euler) {
+      r_.error(solver.get("implicit"), path + ".implicit",
+               "applies only to integrator: implicit_euler (this solver uses " +
+                   std::string(integrator_name(spec.integrator)) + ")");
+      return;
     }
+    MapReader implicit(r_, solver.get("implicit"), solver.path_of("implicit"), {"tolerance", "max_iterations"});
+    if (!implicit.valid()) return;
+    const ImplicitSolveSettings defaults;
+    spec.implicit.tolerance =
+        implicit.number("tolerance", {0.0, false, 1.0, false}, defaults.tolerance).value_or(defaults.tolerance);
+    spec.implicit.max_iterations = static_cast<int>(
+        implicit.integer("max_iterations", {1.0, true, 1e6, true}, defaults.max_iterations).value_or(defaults.max_iterations));
   }
 
   // Bullet's cloths (bullet-notes 1.7, 2.4): soft margin = thickness, voxel small enough.
@@ -111,10 +118,12 @@ class SolverReader {
       if (raw.has(kinds[k])) spec.link_stiffness[k] = raw.number(kinds[k], unit, std::nullopt);
   }
 
-  // Without a dt: our solver takes 0.9 of the Gershgorin stable step of its springs, dampers and
-  // contact (0.1 for explicit Euler, which has no stable step on an undamped spring); Bullet's classic
-  // cloth the step where its stiffness mapping holds, ks w h^2 = 0.1. Both are rounded down to a
-  // whole number of steps per frame.
+  // Without a dt: our solver takes 0.9 of its integrator's stable step estimate on its springs,
+  // dampers and contact (stability.hpp; explicit Euler and midpoint 0.1 of the symplectic bound when
+  // some spring is undamped, since they have no stable step then), and implicit Euler 1/240 s (four
+  // steps per 60 Hz frame: large steps are its point, but contacts and friction are explicit in it);
+  // Bullet's classic cloth the step where its stiffness mapping holds, ks w h^2 = 0.1. All are
+  // rounded down to a whole number of steps per frame.
   double automatic_step(SolverSpec& spec) {
     const double frame_period = scene_.frame_period();
     if (!cloth_ok_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
@@ -131,12 +140,19 @@ class SolverReader {
         const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
         if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);
         reason = "0.9 x the stable step of its explicit springs";
+      } else if (spec.integrator == Integrator::implicit_euler) {
+        target = 1.0 / 240.0;
+        reason = "implicit Euler's default of 1/240 s";
       } else {
-        const double bound =
-            symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
-        const double factor = spec.integrator == Integrator::explicit_euler ? 0.1 : 0.9;
+        double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(), spec.integrator);
+        double factor = 0.9;
+        if (bound == 0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step at all
+          bound = symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
+          factor = 0.1;
+        }
         target = factor * bound;
-        reason = format_number(factor) + " x the stable step bound " + format_number(bound) + " s";
+        reason = format_number(factor) + " x the " + integrator_name(spec.integrator) + " stable step estimate " +
+                 format_number(bound) + " s";
       }
     } catch (const std::invalid_argument&) {
       return frame_period;  // reported elsewhere (mass missing, bad pins)

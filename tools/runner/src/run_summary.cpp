@@ -54,6 +54,12 @@ ordered_json solver_json(const SolverRun& run) {
     for (const auto& [phase, seconds] : phases) timings[phase] = seconds;
     j["phase_seconds"] = timings;
   }
+  const auto counters = run.solver->counters();
+  if (!counters.empty()) {
+    ordered_json counts = ordered_json::object();
+    for (const auto& [counter, value] : counters) counts[counter] = value;
+    j["integrator_statistics"] = counts;
+  }
   j["final"] = run.last_metrics ? metrics_json(*run.last_metrics) : ordered_json::object();
   return j;
 }

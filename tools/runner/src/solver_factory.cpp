@@ -19,6 +19,7 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
     settings.air_damping = scene.cloth.air_damping;
     settings.max_speed = spec.max_speed;
     settings.contacts = std::move(contacts);
+    settings.implicit = spec.implicit;
     auto solver = std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
     if (!spec.bullet_host) return solver;
     return bullet::host_in_bullet_world(std::move(solver), scene.colliders, scene.gravity);

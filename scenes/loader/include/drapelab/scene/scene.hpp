@@ -12,6 +12,7 @@
 
 #include "drapelab/collider.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/stability.hpp"
 
@@ -43,6 +44,8 @@ struct SolverSpec {
   std::string note;                   // what the loader chose or changed (automatic or rounded dt)
   // spring_damper only: stepped as an action inside a Bullet world (host: bullet) or bare (host: none).
   bool bullet_host = true;
+  // spring_damper with implicit_euler only: the conjugate gradient's relative tolerance and cap.
+  ImplicitSolveSettings implicit;
   // bullet_softbody only (bullet-notes 1.7; README, "Bullet's classic cloth"):
   int iterations = 1;                 // position-solver sweeps per substep
   double margin = 0.0;                // m, soft collision margin (default: the cloth's thickness)

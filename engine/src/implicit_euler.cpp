@@ -1,0 +1,124 @@
+// Backward Euler's linear system: fixed block pattern, values rewritten each step, solved by CG.
+#include "drapelab/implicit_euler.hpp"
+
+#include <algorithm>
+
+#include "drapelab/spring_jacobian.hpp"
+
+namespace drapelab {
+namespace {
+
+constexpr int kSlotsPerBlock = 9;
+constexpr int kSlotsPerSpring = 4 * kSlotsPerBlock;
+
+void add_block_triplets(std::vector<Eigen::Triplet<double>>& triplets, int row, int col) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * row + r, 3 * col + c, 0.0);
+}
+
+}  // namespace
+
+ImplicitEulerSystem::ImplicitEulerSystem(const ClothModel& model, ImplicitSolveSettings settings)
+    : settings_(settings) {
+  const int n = model.particle_count();
+  const SpringSet& s = model.springs;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(n) * kSlotsPerBlock + s.size() * kSlotsPerSpring);
+  for (int i = 0; i < n; ++i) add_block_triplets(triplets, i, i);
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    add_block_triplets(triplets, s.v0[e], s.v1[e]);
+    add_block_triplets(triplets, s.v1[e], s.v0[e]);
+  }
+  matrix_.resize(3 * n, 3 * n);
+  matrix_.setFromTriplets(triplets.begin(), triplets.end());
+  matrix_.makeCompressed();
+
+  // Where each block's entries live in the compressed value array (coeffRef finds, never inserts).
+  const double* values = matrix_.valuePtr();
+  auto block_slots = [&](int row, int col) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        slots_.push_back(static_cast<std::int32_t>(&matrix_.coeffRef(3 * row + r, 3 * col + c) - values));
+  };
+  slots_.reserve(static_cast<std::size_t>(n) * kSlotsPerBlock + s.size() * kSlotsPerSpring);
+  for (int i = 0; i < n; ++i) block_slots(i, i);
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    block_slots(s.v0[e], s.v0[e]);
+    block_slots(s.v1[e], s.v1[e]);
+    block_slots(s.v0[e], s.v1[e]);
+    block_slots(s.v1[e], s.v0[e]);
+  }
+  free_.resize(n);
+  for (int i = 0; i < n; ++i) free_[i] = model.is_pinned(i) ? 0 : 1;
+  rhs_ = Eigen::VectorXd::Zero(3 * n);
+  solution_ = Eigen::VectorXd::Zero(3 * n);
+  stiffness_times_velocity_ = Eigen::Matrix3Xd::Zero(3, n);
+  cg_.setTolerance(settings_.tolerance);
+  cg_.setMaxIterations(settings_.max_iterations);
+}
+
+void ImplicitEulerSystem::add_block(std::size_t first, const Eigen::Matrix3d& block) {
+  double* values = matrix_.valuePtr();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) values[slots_[first + 3 * r + c]] += block(r, c);
+}
+
+void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                const Eigen::Matrix3Xd& force, double h, double air_damping,
+                                const ContactParameters& contact, const std::vector<ActiveContact>& contacts,
+                                Eigen::Matrix3Xd& dv) {
+  const int n = model.particle_count();
+  std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
+  stiffness_times_velocity_.setZero();
+
+  // Diagonal: M + h a M (air damping), or the identity for a pinned particle.
+  for (int i = 0; i < n; ++i) {
+    const double diagonal = free_[i] ? model.mass[i] * (1.0 + h * air_damping) : 1.0;
+    add_block(static_cast<std::size_t>(kSlotsPerBlock) * i, diagonal * Eigen::Matrix3d::Identity());
+  }
+  // Springs: A gets -(h D + h^2 K) on the two diagonal blocks and its negative off the diagonal.
+  const SpringSet& s = model.springs;
+  const std::size_t spring_base = static_cast<std::size_t>(kSlotsPerBlock) * n;
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    const int a = s.v0[e], b = s.v1[e];
+    const SpringJacobian j = spring_jacobian_for_solve(x.col(a), x.col(b), s.ks[e], s.kd[e], s.rest_length[e]);
+    const Eigen::Matrix3d block = -(h * j.dforce_dv + h * h * j.dforce_dx);
+    const std::size_t first = spring_base + kSlotsPerSpring * e;
+    if (free_[a]) add_block(first, block);
+    if (free_[b]) add_block(first + kSlotsPerBlock, block);
+    if (free_[a] && free_[b]) {
+      add_block(first + 2 * kSlotsPerBlock, -block);
+      add_block(first + 3 * kSlotsPerBlock, -block);
+    }
+    const Eigen::Vector3d kv = j.dforce_dx * (v.col(a) - v.col(b));  // K v0 of this spring, N/s
+    stiffness_times_velocity_.col(a) += kv;
+    stiffness_times_velocity_.col(b) -= kv;
+  }
+  // Pushing contacts: a spring k and damper c along the normal, tied to the (moving) collider.
+  for (const ActiveContact& touch : contacts) {
+    const Eigen::Matrix3d along = touch.normal * touch.normal.transpose();
+    add_block(static_cast<std::size_t>(kSlotsPerBlock) * touch.particle,
+              (h * contact.damping + h * h * contact.stiffness) * along);
+    stiffness_times_velocity_.col(touch.particle) -= contact.stiffness * along * v.col(touch.particle);
+  }
+
+  for (int i = 0; i < n; ++i)
+    rhs_.segment<3>(3 * i) =
+        free_[i] ? Eigen::Vector3d(h * (force.col(i) + h * stiffness_times_velocity_.col(i))) : Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i)
+    if (!free_[i]) solution_.segment<3>(3 * i).setZero();
+
+  cg_.compute(matrix_);
+  solution_ = cg_.solveWithGuess(rhs_, solution_);
+  const int iterations = static_cast<int>(cg_.iterations());
+  ++stats_.solves;
+  stats_.iterations_total += iterations;
+  stats_.iterations_max = std::max(stats_.iterations_max, iterations);
+  stats_.iterations_last = iterations;
+  stats_.residual_last = cg_.error();
+  stats_.residual_max = std::max(stats_.residual_max, cg_.error());
+  if (cg_.info() != Eigen::Success) ++stats_.unconverged;
+  dv = Eigen::Map<const Eigen::Matrix3Xd>(solution_.data(), 3, n);
+}
+
+}  // namespace drapelab
