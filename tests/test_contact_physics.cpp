@@ -51,16 +51,21 @@ struct Simulation {
   }
 };
 
-// A solver at 0.8 x the Gershgorin stable step of the cloth with its contacts.
+// A solver at 0.8 x its integrator's stable step estimate for the cloth with its contacts (implicit
+// Euler: 1/240 s, the loader's default for it).
 Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> colliders, ContactParameters contact,
-                           double air_damping, const ClothState* initial = nullptr) {
+                           double air_damping, const ClothState* initial = nullptr,
+                           Integrator integrator = Integrator::symplectic_euler) {
   Simulation s;
   s.model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   s.contacts = std::make_shared<const ContactModel>(std::move(colliders), contact, spec.thickness);
   SpringDamperSettings settings;
   settings.air_damping = air_damping;
   settings.contacts = s.contacts;
-  s.h = 0.8 * symplectic_euler_stable_step(*s.model, air_damping, {contact.stiffness, contact.damping});
+  settings.integrator = integrator;
+  s.h = integrator == Integrator::implicit_euler
+            ? 1.0 / 240.0
+            : 0.8 * stable_step_estimate(*s.model, air_damping, {contact.stiffness, contact.damping}, integrator);
   const ClothState start = initial ? *initial : initial_grid_state(*s.model, spec, 0.0, 0);
   s.solver = std::make_unique<SpringDamperSolver>("test", s.model, start, settings);
   return s;
@@ -169,7 +174,7 @@ struct InclineRun {
   double acceleration = 0.0;  // m/s^2 along the slope, from the velocity at 1 s and 2 s
 };
 
-InclineRun slide_on_incline(double degrees) {
+InclineRun slide_on_incline(double degrees, Integrator integrator = Integrator::symplectic_euler) {
   Collider incline = floor_collider(0.3);
   incline.rotation = {0, 0, degrees};  // the floor turned about z: the slope descends towards -x
   GridClothSpec spec = sheet(5, 0.1, {0, 0, 0}, 0.01);
@@ -179,7 +184,7 @@ InclineRun slide_on_incline(double degrees) {
   ClothState start = initial_grid_state(model, spec, 0.0, 0);
   for (int i = 0; i < model.particle_count(); ++i)
     start.x.col(i) = turn * (model.rest_positions.col(i) + Eigen::Vector3d(0, spec.thickness, 0));
-  Simulation s = make_simulation(spec, {incline}, {2000.0, 0.02}, 0.0, &start);
+  Simulation s = make_simulation(spec, {incline}, {2000.0, 0.02}, 0.0, &start, integrator);
   const Eigen::Vector3d downhill = turn * Eigen::Vector3d(-1, 0, 0);
   auto position = [&] { return s.solver->state().x.rowwise().mean().dot(downhill); };
   auto velocity = [&] { return s.solver->state().v.rowwise().mean().dot(downhill); };
@@ -196,20 +201,27 @@ InclineRun slide_on_incline(double degrees) {
   return result;
 }
 
+// Contacts and friction work with every integrator (explicit Euler and midpoint on the contact's
+// damping-limited step).
 TEST(ContactPhysics, V9SlidesWithTheCoulombAccelerationOnASteepIncline) {
   const double theta = 20.0 * std::numbers::pi / 180.0;
   const double expected = kGravity * (std::sin(theta) - 0.3 * std::cos(theta));
   EXPECT_NEAR(expected, 0.5897, 1e-4);
-  const InclineRun run = slide_on_incline(20.0);
-  EXPECT_NEAR(run.acceleration, expected, 0.02 * expected);
+  for (Integrator integrator : all_integrators()) {
+    const InclineRun run = slide_on_incline(20.0, integrator);
+    EXPECT_NEAR(run.acceleration, expected, 0.02 * expected) << integrator_name(integrator);
+  }
 }
 
 TEST(ContactPhysics, V9StickingThresholdIsTheFrictionAngle) {
   const double threshold = std::atan(0.3) * 180.0 / std::numbers::pi;  // 16.70 deg
-  const InclineRun below = slide_on_incline(threshold - 0.5);
-  EXPECT_LT(std::abs(below.creep), 1e-3);  // sticks: less than 1 mm over 2 s
-  const InclineRun above = slide_on_incline(threshold + 0.5);
-  EXPECT_GT(above.creep, 0.05);  // slides: a = 0.08 m/s^2 gives 0.16 m over 2 s
+  for (Integrator integrator : all_integrators()) {
+    SCOPED_TRACE(integrator_name(integrator));
+    const InclineRun below = slide_on_incline(threshold - 0.5, integrator);
+    EXPECT_LT(std::abs(below.creep), 1e-3);  // sticks: less than 1 mm over 2 s
+    const InclineRun above = slide_on_incline(threshold + 0.5, integrator);
+    EXPECT_GT(above.creep, 0.05);  // slides: a = 0.08 m/s^2 gives 0.16 m over 2 s
+  }
 }
 
 // A sphere rising at 0.5 m/s through a cloth pinned at its corners: the contact keeps every

@@ -51,7 +51,9 @@ TEST(StepAllocations, CounterSeesAnAllocation) {
   EXPECT_GT(g_allocations.load(), before);  // the counter works, so the next test can fail
 }
 
-TEST(StepAllocations, StepAllocatesNothingForEveryIntegrator) {
+// Every explicit scheme. Implicit Euler is left out: Eigen's conjugate gradient allocates its work
+// vectors on each solve (a few 3N vectors per step, small beside the solve itself).
+TEST(StepAllocations, StepAllocatesNothingForEveryExplicitIntegrator) {
   if (!DRAPELAB_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
   GridClothSpec spec;
   spec.nx = 17;
@@ -60,7 +62,8 @@ TEST(StepAllocations, StepAllocatesNothingForEveryIntegrator) {
   spec.mass = 0.1;
   spec.stretch = {500.0, 0.01};
   spec.pins = {PinNamed{"top_corners"}};
-  for (Integrator integrator : {Integrator::explicit_euler, Integrator::symplectic_euler}) {
+  for (Integrator integrator : all_integrators()) {
+    if (integrator == Integrator::implicit_euler) continue;
     auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
     SpringDamperSettings settings;
     settings.integrator = integrator;
