@@ -1,4 +1,4 @@
-// Union area of projected triangles by rasterisation on a square-cell grid over their bounding box.
+// Union area of projected triangles by rasterisation on a square-cell grid.
 #include "drapelab/projected_area.hpp"
 
 #include <Eigen/Geometry>
@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 namespace drapelab {
 namespace {
@@ -18,33 +17,34 @@ double edge_function(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const E
 
 }  // namespace
 
-double projected_union_area(const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xi& triangles,
-                            const Eigen::Vector3d& up, const ProjectedAreaSettings& settings) {
-  if (triangles.cols() == 0 || positions.cols() == 0) return 0.0;
-  // Orthonormal basis (e1, e2) of the plane normal to `up`.
+ProjectionPlane::ProjectionPlane(const Eigen::Vector3d& up) {
   const Eigen::Vector3d n = up.normalized();
   const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d e1 = n.cross(helper).normalized();
-  const Eigen::Vector3d e2 = n.cross(e1);
-  Eigen::Matrix2Xd projected(2, positions.cols());
-  projected.row(0) = e1.transpose() * positions;
-  projected.row(1) = e2.transpose() * positions;
+  e1 = n.cross(helper).normalized();
+  e2 = n.cross(e1);
+}
 
-  const Eigen::Vector2d low = projected.rowwise().minCoeff();
-  const Eigen::Vector2d high = projected.rowwise().maxCoeff();
-  const double extent = (high - low).maxCoeff();
-  if (!(extent > 0.0)) return 0.0;
-  const int cells = std::max(1, settings.cells_per_side);
-  const double cell = extent / cells;  // m, square cells covering the longer side
-  const int cells_x = std::max(1, static_cast<int>(std::ceil((high.x() - low.x()) / cell)));
-  const int cells_y = std::max(1, static_cast<int>(std::ceil((high.y() - low.y()) / cell)));
-  std::vector<unsigned char> covered(static_cast<std::size_t>(cells_x) * cells_y, 0);
+Eigen::Matrix2Xd ProjectionPlane::project(const Eigen::Matrix3Xd& points) const {
+  Eigen::Matrix2Xd projected(2, points.cols());
+  projected.row(0) = e1.transpose() * points;
+  projected.row(1) = e2.transpose() * points;
+  return projected;
+}
 
-  // Scanline fill: for each cell row, the triangle's span along the row's centre line.
+Raster::Raster(const Eigen::Vector2d& low_corner, double cell_size, int nx, int ny)
+    : low(low_corner), cell(cell_size), cells_x(nx), cells_y(ny),
+      covered(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0) {}
+
+double Raster::covered_area() const {
+  return static_cast<double>(std::count(covered.begin(), covered.end(), 1)) * cell * cell;
+}
+
+// Scanline fill: for each cell row, the triangle's span along the row's centre line.
+void Raster::fill_triangles(const Eigen::Matrix2Xd& points, const Eigen::Matrix3Xi& triangles) {
   for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    const Eigen::Vector2d a = projected.col(triangles(0, t));
-    const Eigen::Vector2d b = projected.col(triangles(1, t));
-    const Eigen::Vector2d c = projected.col(triangles(2, t));
+    const Eigen::Vector2d a = points.col(triangles(0, t));
+    const Eigen::Vector2d b = points.col(triangles(1, t));
+    const Eigen::Vector2d c = points.col(triangles(2, t));
     if (edge_function(a, b, c) == 0.0) continue;  // degenerate: no area
     const double t_low = std::min({a.y(), b.y(), c.y()}), t_high = std::max({a.y(), b.y(), c.y()});
     const int y0 = std::max(0, static_cast<int>(std::ceil((t_low - low.y()) / cell - 0.5)));
@@ -75,8 +75,23 @@ double projected_union_area(const Eigen::Matrix3Xd& positions, const Eigen::Matr
                   covered.begin() + static_cast<std::ptrdiff_t>(iy) * cells_x + x1 + 1, 1);
     }
   }
-  const auto covered_cells = std::count(covered.begin(), covered.end(), 1);
-  return static_cast<double>(covered_cells) * cell * cell;
+}
+
+double projected_union_area(const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xi& triangles,
+                            const Eigen::Vector3d& up, const ProjectedAreaSettings& settings) {
+  if (triangles.cols() == 0 || positions.cols() == 0) return 0.0;
+  const Eigen::Matrix2Xd projected = ProjectionPlane(up).project(positions);
+  const Eigen::Vector2d low = projected.rowwise().minCoeff();
+  const Eigen::Vector2d high = projected.rowwise().maxCoeff();
+  const double extent = (high - low).maxCoeff();
+  if (!(extent > 0.0)) return 0.0;
+  const int cells = std::max(1, settings.cells_per_side);
+  const double cell = extent / cells;  // m, square cells covering the longer side
+  const int cells_x = std::max(1, static_cast<int>(std::ceil((high.x() - low.x()) / cell)));
+  const int cells_y = std::max(1, static_cast<int>(std::ceil((high.y() - low.y()) / cell)));
+  Raster raster(low, cell, cells_x, cells_y);
+  raster.fill_triangles(projected, triangles);
+  return raster.covered_area();
 }
 
 }  // namespace drapelab
