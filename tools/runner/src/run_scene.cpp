@@ -7,8 +7,8 @@
 #include <ostream>
 
 #include "drapelab/collision_metrics.hpp"
-#include "drapelab/grid_cloth.hpp"
 #include "drapelab/runner/output_files.hpp"
+#include "drapelab/runner/scene_setup.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_writer.hpp"
 #include "frame_tables.hpp"
@@ -50,24 +50,10 @@ void advance_one_frame(SolverRun& run, const std::atomic<bool>* interrupt) {
 // length means the state has exploded even if every number is still finite.
 void check_runaway(SolverRun& run, const ClothModel& model, const ClothMetrics& metrics, int frame) {
   if (metrics.max_stretch <= run.spec->runaway_stretch) return;
-  const SpringSet& s = model.springs;
-  const ClothState& state = run.solver->state();
-  std::size_t worst = 0;
-  double worst_strain = -1.0;
-  for (std::size_t e = 0; e < s.size(); ++e) {
-    if (s.kind[e] != SpringKind::stretch) continue;
-    const double strain = (state.x.col(s.v0[e]) - state.x.col(s.v1[e])).norm() / s.rest_length[e] - 1.0;
-    if (strain > worst_strain) {
-      worst_strain = strain;
-      worst = e;
-    }
-  }
   run.status = SolverStatus::unstable;
-  run.message = "the stretch spring between " + model.describe_particle(s.v0[worst]) + " and " +
-                model.describe_particle(s.v1[worst]) + " is stretched by " + format_number(worst_strain) +
-                " (more than runaway_stretch = " + format_number(run.spec->runaway_stretch) + ") at frame " +
-                std::to_string(frame) + ", step " + std::to_string(run.steps) +
-                ". Try: a smaller dt, stiffer stretch springs, or more damping.";
+  run.message = describe_most_stretched_spring(model, run.solver->state()) + " (more than runaway_stretch = " +
+                format_number(run.spec->runaway_stretch) + ") at frame " + std::to_string(frame) + ", step " +
+                std::to_string(run.steps) + ". Try: a smaller dt, stiffer stretch springs, or more damping.";
 }
 
 // Clearance metrics from FCL on the solver's state (the same for every solver), and one contacts.csv
@@ -99,13 +85,10 @@ int run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream
   write_file_atomically(out / "scene.yaml", options.scene_text);
   write_file_atomically(out / "resolved.yaml", resolved);
 
-  const auto model = std::make_shared<const ClothModel>(build_grid_cloth(scene.cloth.grid));
-  const ClothState initial =
-      initial_grid_state(*model, scene.cloth.grid, scene.cloth.perturbation, scene.seed);
-  std::shared_ptr<const ContactModel> contacts;
-  if (!scene.colliders.empty())
-    contacts = std::make_shared<const ContactModel>(
-        scene.colliders, ContactParameters{scene.contact.stiffness, scene.contact.damping}, model->thickness);
+  const SceneSetup setup = build_scene_setup(scene);
+  const std::shared_ptr<const ClothModel>& model = setup.model;
+  const ClothState& initial = setup.initial;
+  const std::shared_ptr<const ContactModel>& contacts = setup.contacts;
   std::vector<SolverRun> runs;
   runs.reserve(scene.solvers.size());
   for (const auto& spec : scene.solvers) {

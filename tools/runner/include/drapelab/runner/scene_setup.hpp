@@ -1,0 +1,30 @@
+// What every solver of a scene starts from: the model, the initial state and the colliders' contact
+// model. Built once per scene by run_scene and by the in-process simulations (simulate_solver.hpp),
+// so both start every solver from exactly the same cloth.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/cloth_state.hpp"
+#include "drapelab/contact_model.hpp"
+#include "drapelab/scene/scene.hpp"
+
+namespace drapelab::runner {
+
+struct SceneSetup {
+  std::shared_ptr<const ClothModel> model;
+  ClothState initial;                            // rest positions plus the seeded perturbation
+  std::shared_ptr<const ContactModel> contacts;  // null when the scene has no colliders
+};
+
+// Builds the grid cloth, its initial state (scene.cloth.perturbation, scene.seed) and the contact
+// model (scene.contact, the cloth's thickness as the particles' radius).
+SceneSetup build_scene_setup(const scene::Scene& scene);
+
+// "the stretch spring between particle a (grid i, j) and particle b (...) is stretched by s": the
+// most stretched stretch spring of `state` (strain |x_a - x_b| / L - 1), for unstable-run messages.
+std::string describe_most_stretched_spring(const ClothModel& model, const ClothState& state);
+
+}  // namespace drapelab::runner
