@@ -1,4 +1,4 @@
-// drapelab: the command line. Verbs: run, validate, check. Exit codes: 0 ok, 1 a solver became unstable or
+// drapelab: the command line. Verbs: run, validate, check, stability, study. Exit codes: 0 ok, 1 a solver became unstable or
 // failed, 2 bad input (nothing was run), 130 interrupted (files hold the frames recorded so far).
 #include <CLI/CLI.hpp>
 
@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
       "  drapelab run scenes/curtain.yaml --out out/curtain\n"
       "  drapelab validate scenes/curtain.yaml --set cloth.resolution=[65,65]\n"
       "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
+      "  drapelab stability scenes/curtain.yaml\n"
+      "  drapelab study scenes/curtain.yaml --duration 0.5 --factors 1,4\n"
       "Run 'drapelab VERB --help' for a verb's options.");
 
   drapelab::cli::RunArguments run_arguments;
@@ -38,6 +40,16 @@ int main(int argc, char** argv) {
   drapelab::cli::CheckArguments check_arguments;
   CLI::App* check = app.add_subcommand("check", "Compare a run of a scene with its golden file (regression test)");
   drapelab::cli::add_check_options(*check, check_arguments);
+
+  drapelab::cli::StabilityArguments stability_arguments;
+  CLI::App* stability =
+      app.add_subcommand("stability", "Find the largest stable step of one solver of a scene (bisection)");
+  drapelab::cli::add_stability_options(*stability, stability_arguments);
+
+  drapelab::cli::StudyArguments study_arguments;
+  CLI::App* study = app.add_subcommand(
+      "study", "Cost and accuracy of every integrator at several steps, against an RK4 reference");
+  drapelab::cli::add_study_options(*study, study_arguments);
 
   std::string command_line;
   for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
@@ -58,5 +70,7 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, on_interrupt);
   if (*run) return drapelab::cli::run_verb(run_arguments, command_line, g_interrupted);
   if (*check) return drapelab::cli::check_verb(check_arguments, g_interrupted);
+  if (*stability) return drapelab::cli::stability_verb(stability_arguments, g_interrupted);
+  if (*study) return drapelab::cli::study_verb(study_arguments, command_line, g_interrupted);
   return drapelab::cli::validate_verb(validate_arguments);
 }

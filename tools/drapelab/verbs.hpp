@@ -40,4 +40,31 @@ struct CheckArguments {
 void add_check_options(CLI::App& verb, CheckArguments& arguments);
 int check_verb(const CheckArguments& arguments, const std::atomic<bool>& interrupt);
 
+// drapelab stability: the largest stable step of one solver, by bisection on steps per frame.
+struct StabilityArguments {
+  std::string scene;
+  std::string solver;                  // default: the first spring_damper solver, else the first
+  std::vector<std::string> overrides;  // --set key.path=value
+  double duration = 0.0;               // s, 0 = the scene's
+  double tolerance = 0.01;             // stop when (unstable dt - stable dt) / stable dt <= this
+  double max_dt = 0.0;                 // s, the largest step tried; 0 = the frame period
+  std::string json;                    // write the trials and the answer here
+};
+void add_stability_options(CLI::App& verb, StabilityArguments& arguments);
+int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>& interrupt);
+
+// drapelab study: cost and accuracy of every integrator at several steps, against an RK4 reference.
+struct StudyArguments {
+  std::string scene;
+  std::string solver;                  // a spring_damper solver; default the first one
+  std::vector<std::string> overrides;  // --set key.path=value
+  std::vector<std::string> integrators;  // default: all seven
+  double dt = 0.0;                     // s, the base step; 0 = the solver's dt in the scene
+  std::vector<double> factors{1.0, 2.0, 4.0, 8.0};  // steps tried: dt x factor
+  std::string out;                     // folder for study.csv and study.md; default out/SCENE-study
+  double duration = 0.0;               // s, 0 = the scene's
+};
+void add_study_options(CLI::App& verb, StudyArguments& arguments);
+int study_verb(const StudyArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
+
 }  // namespace drapelab::cli
