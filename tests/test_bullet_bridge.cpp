@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 
+#include "bullet_test_sheet.hpp"
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_diagnostics.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
@@ -21,16 +22,7 @@ namespace {
 using bullet::BulletSoftBodyOptions;
 
 GridClothSpec sheet(int n, double size, Eigen::Vector3d center, double mass) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.size = {size, size};
-  spec.center = center;
-  spec.mass = mass;
-  spec.thickness = 0.01;
-  spec.stretch = {500.0, 0.0};
-  spec.shear = {50.0, 0.0};
-  spec.bend = {5.0, 0.0};
-  return spec;
+  return testing::bullet_test_sheet(n, size, center, mass);
 }
 
 BulletSoftBodyOptions options_for(double dt, double margin) {

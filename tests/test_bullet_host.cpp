@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "bullet_test_sheet.hpp"
 #include "drapelab/bullet/bullet_diagnostics.hpp"
 #include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/grid_cloth.hpp"
@@ -13,15 +14,7 @@ namespace drapelab {
 namespace {
 
 GridClothSpec pinned_sheet(int n, double size, Eigen::Vector3d center, double mass) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.size = {size, size};
-  spec.center = center;
-  spec.mass = mass;
-  spec.thickness = 0.01;
-  spec.stretch = {500.0, 0.0};
-  spec.shear = {50.0, 0.0};
-  spec.bend = {5.0, 0.0};
+  GridClothSpec spec = testing::bullet_test_sheet(n, size, center, mass);
   spec.pins = {PinNamed{"corners"}};
   return spec;
 }
