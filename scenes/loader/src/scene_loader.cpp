@@ -14,6 +14,7 @@
 #include "collider_reader.hpp"
 #include "solver_reader.hpp"
 #include "overrides.hpp"
+#include "run_limits.hpp"
 #include "yaml_reader.hpp"
 
 namespace drapelab::scene {
@@ -66,10 +67,18 @@ class SceneBuilder {
   void check_frame_count(MapReader& top) {
     if (scene_.duration <= 0.0) return;
     const double frames = scene_.duration * scene_.frame_rate;
+    const std::string product =
+        format_number(scene_.duration) + " s x " + format_number(scene_.frame_rate) + " /s = " + format_number(frames);
     if (std::abs(frames - std::round(frames)) > 1e-9 * std::max(1.0, frames))
+      r_.error(top.get("duration"), "duration", "times frame_rate must be a whole number of frames, got " + product,
+               top.node());
+    else if (std::round(frames) < 1.0 && top.has("frame_rate"))  // a frame longer than the run
+      r_.error(top.get("frame_rate"), "frame_rate",
+               "(frames per second) times duration must give at least 1 frame, got " + product);
+    else if (std::round(frames) < 1.0 || std::round(frames) > kMaxFrames)
       r_.error(top.get("duration"), "duration",
-               "times frame_rate must be a whole number of frames, got " + format_number(scene_.duration) +
-                   " s x " + format_number(scene_.frame_rate) + " /s = " + format_number(frames),
+               "times frame_rate must give from 1 to " + std::to_string(static_cast<long long>(kMaxFrames)) +
+                   " frames, got " + product,
                top.node());
   }
 

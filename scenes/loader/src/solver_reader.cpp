@@ -7,6 +7,7 @@
 
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
+#include "run_limits.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -168,6 +169,11 @@ class SolverReader {
       r_.error(solver.get("dt"), path + ".dt",
                "must not exceed the frame period 1/frame_rate = " + format_number(frame_period) + " s, got " +
                    format_number(spec.dt));
+      return false;
+    }
+    if (frame_period / spec.dt > kMaxStepsPerFrame) {  // before any count is cast to int
+      r_.error(solver.get("dt"), path + ".dt", too_many_steps_message(frame_period, spec.dt, !solver.has("dt")),
+               solver.node());
       return false;
     }
     const double steps = frame_period / spec.dt;
