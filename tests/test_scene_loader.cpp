@@ -623,22 +623,6 @@ TEST(SceneLoader, EmptyValueIsReportedOnItsOwnLine) {
 // ---------------------------------------------------------------------------------------------
 // Features of later versions: refused with "not available yet", never silently ignored
 
-TEST(SceneLoader, DiscAndMeshShapesAreNotAvailableYet) {
-  for (const char* shape : {"disc", "mesh"})
-    EXPECT_TRUE(HasError(load(with_line(kBase, 8, std::string("  shape: ") + shape)), at(8),
-                         {"cloth.shape", std::string("'") + shape + "'", "not available yet"}))
-        << shape;
-}
-
-TEST(SceneLoader, LaterClothKeysAreNotAvailableYet) {
-  for (const char* key : {"radius: 0.15", "rings: 20", "path: meshes/tshirt.obj", "material: cotton"}) {
-    const std::string name = std::string(key).substr(0, std::string(key).find(':'));
-    EXPECT_TRUE(HasError(load(insert_after(kBase, 8, std::string("  ") + key)), at(9),
-                         {"cloth." + name, "not available yet"}))
-        << key;
-  }
-}
-
 TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
   const auto result =
       load(kBase + "colliders:\n  - {name: ball, type: sphere, center: [0, 0.5, 0], radius: 0.3}\n");
@@ -647,11 +631,6 @@ TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
   EXPECT_EQ(result.scene->colliders[0].name, "ball");
   EXPECT_DOUBLE_EQ(result.scene->colliders[0].radius, 0.3);
   EXPECT_DOUBLE_EQ(result.scene->colliders[0].friction, result.scene->contact.friction);
-}
-
-TEST(SceneLoader, DrapeSupportIsNotAvailableYet) {
-  const auto result = load(kBase + "metrics:\n  drape_support: table\n");
-  EXPECT_TRUE(HasError(result, at(36), {"metrics.drape_support is not available yet"}));
 }
 
 TEST(SceneLoader, BulletDeformableTakesMarginAndVoxelButNoIterations) {

@@ -80,11 +80,20 @@ std::string resolved_scene_yaml(const Scene& s) {
       << "gravity: " << format_list(s.gravity) << "  # m/s^2\n"
       << "seed: " << s.seed << "\n"
       << "cloth:\n"
-      << "  shape: " << s.cloth.shape << "\n"
-      << "  size: " << format_list(g.size) << "  # m\n"
-      << "  resolution: [" << g.nx << ", " << g.ny << "]  # particles along each side\n"
-      << "  plane: " << (g.plane == GridPlane::xz ? "xz" : "xy") << "\n"
-      << "  center: " << format_list(g.center) << "  # m\n"
+      << "  shape: " << s.cloth.shape << "\n";
+  if (s.cloth.shape == "grid")
+    out << "  size: " << format_list(g.size) << "  # m\n"
+        << "  resolution: [" << g.nx << ", " << g.ny << "]  # particles along each side\n"
+        << "  plane: " << (g.plane == GridPlane::xz ? "xz" : "xy") << "\n";
+  if (s.cloth.shape == "disc")
+    out << "  radius: " << format_number(s.cloth.disc.radius) << "  # m\n"
+        << "  rings: " << s.cloth.disc.rings << "\n";
+  if (s.cloth.shape == "mesh")
+    out << "  path: " << quoted(s.cloth.mesh_file.string()) << "\n"
+        << "  scale: " << format_number(s.cloth.mesh_scale) << "\n";
+  if (!s.cloth.material.empty())
+    out << "  material: " << s.cloth.material << "  # a preset; the values below are what it gave, with any explicit keys\n";
+  out << "  center: " << format_list(g.center) << "  # m\n"
       << "  rotation: " << format_list(g.rotation) << "  # deg, Euler x, y, z about the centre\n";
   if (g.mass) out << "  mass: " << format_number(*g.mass) << "  # kg, total\n";
   if (g.areal_density) out << "  areal_density: " << format_number(*g.areal_density) << "  # kg/m^2\n";
@@ -136,7 +145,13 @@ std::string resolved_scene_yaml(const Scene& s) {
         << "    max_speed: " << format_number(solver.max_speed) << "  # m/s, runaway limit\n"
         << "    runaway_stretch: " << format_number(solver.runaway_stretch) << "  # stretch spring strain limit\n";
   }
-  out << "metrics: {}\n"
+  if (!s.drape_support) out << "metrics: {}\n";
+  else if (!s.drape_support->collider.empty())
+    out << "metrics:\n  drape_support: " << s.drape_support->collider << "  # a collider's cross-section, radius "
+        << format_number(s.drape_support->disc.radius) << " m\n";
+  else
+    out << "metrics:\n  drape_support: " << format_number(s.drape_support->disc.radius) << "  # m, a disc under the cloth's centre\n";
+  out
       << "output:\n"
       << "  meshes: " << mesh_output_name(s.output.meshes) << "  # none | obj | pc2 | both\n";
   return out.str();

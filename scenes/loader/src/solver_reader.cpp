@@ -99,7 +99,7 @@ class SolverReader {
   void read_bullet_options(MapReader& solver, SolverSpec& spec) {
     if (spec.type == "bullet_softbody")
       spec.iterations = static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
-    const double thickness = scene_.cloth.grid.thickness;
+    const double thickness = scene_.cloth.grid.thickness;  // every shape's thickness lives in grid
     spec.margin = solver.number("margin", Range::positive(), thickness).value_or(thickness);
     spec.collider_margin = solver.number("collider_margin", Range::positive(), 1e-3).value_or(1e-3);
     double feature = std::numeric_limits<double>::infinity();  // m, the smallest collider size
@@ -131,7 +131,7 @@ class SolverReader {
     double target = frame_period;
     std::string reason;
     try {
-      const ClothModel model = build_grid_cloth(scene_.cloth.grid);
+      const ClothModel model = build_scene_cloth(scene_);
       if (spec.type == "bullet_softbody") {
         const double rate = largest_link_rate(model);
         if (rate > 0.0) target = std::sqrt(0.1 / rate);
