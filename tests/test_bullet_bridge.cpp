@@ -7,9 +7,9 @@
 #include <memory>
 #include <random>
 
+#include "bullet_test_sheet.hpp"
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_diagnostics.hpp"
-#include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
 #include "drapelab/collision_metrics.hpp"
 #include "drapelab/contact_fcl.hpp"
@@ -22,16 +22,7 @@ namespace {
 using bullet::BulletSoftBodyOptions;
 
 GridClothSpec sheet(int n, double size, Eigen::Vector3d center, double mass) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.size = {size, size};
-  spec.center = center;
-  spec.mass = mass;
-  spec.thickness = 0.01;
-  spec.stretch = {500.0, 0.0};
-  spec.shear = {50.0, 0.0};
-  spec.bend = {5.0, 0.0};
-  return spec;
+  return testing::bullet_test_sheet(n, size, center, mass);
 }
 
 BulletSoftBodyOptions options_for(double dt, double margin) {
@@ -238,44 +229,6 @@ TEST(BulletBridge, KinematicCollidersArePosedLikeEverySolverSeesThem) {
       EXPECT_LT((poses[1].matrix() - collider_pose(ball, t).matrix()).cwiseAbs().maxCoeff(), 1e-12) << t;
     }
   }
-}
-
-}  // namespace
-}  // namespace drapelab
-
-namespace drapelab {
-namespace {
-
-// Our cloth stepped by a Bullet world as an action moves exactly as when stepped bare: Bullet poses
-// the colliders, our contact reads the same collider_pose(t), and nothing else touches the cloth.
-TEST(BulletHost, HostedSolverStepsBitForBitLikeTheBareOne) {
-  GridClothSpec spec = sheet(11, 0.5, {0, 0.8, 0}, 0.05);
-  spec.pins = {PinNamed{"corners"}};
-  const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-  Collider ball;
-  ball.shape = ColliderShape::sphere;
-  ball.center = {0, 0.5, 0};
-  ball.radius = 0.15;
-  ball.motion.velocity = {0, 0.5, 0};
-  SpringDamperSettings settings;
-  settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball}, ContactParameters{500, 0.05},
-                                                           spec.thickness);
-  const ClothState initial = initial_grid_state(*model, spec, 0.0, 0);
-  SpringDamperSolver bare("bare", model, initial, settings);
-  auto hosted = bullet::host_in_bullet_world(std::make_unique<SpringDamperSolver>("hosted", model, initial, settings),
-                                             {ball}, settings.gravity);
-  const double h = 2e-4;
-  double largest_push = 0.0;  // N
-  for (int k = 0; k < 2000; ++k) {
-    bare.step(h);
-    hosted->step(h);
-    largest_push = std::max(largest_push, hosted->collider_forces().at(0).normal);
-  }
-  EXPECT_EQ(hosted->state().step_count, 2000);
-  EXPECT_EQ(hosted->state().x, bare.state().x);
-  EXPECT_EQ(hosted->state().v, bare.state().v);
-  EXPECT_GT(largest_push, 0.0);  // the ball reached the cloth
-  EXPECT_FALSE(hosted->phase_seconds().empty());
 }
 
 }  // namespace

@@ -678,6 +678,49 @@ TEST(ColliderMotion, KeyframesLoadWithRotationDefaultZero) {
   EXPECT_EQ(colliders[0].center, Vector3d(0, 0.5, 0));
 }
 
+// Keyframes give the centre at every time: a collider's center may be left out (it becomes the first
+// keyframe's), and one that disagrees with the first keyframe is refused rather than ignored.
+TEST(ColliderMotion, KeyframedCenterMayBeLeftOutAndMustNotDisagree) {
+  const auto colliders = colliders_of(
+      with_colliders("  - {name: a, type: sphere, radius: 0.1, motion: {keyframes: [{t: 0, center: [1, 2, 3]}]}}\n"
+                     "  - {name: b, type: plane, motion: {keyframes: [{t: 0, center: [0, -1, 0]}]}}\n"),
+      2);
+  ASSERT_EQ(colliders.size(), 2u);
+  EXPECT_EQ(colliders[0].center, Vector3d(1, 2, 3));
+  EXPECT_EQ(colliders[1].center, Vector3d(0, -1, 0));
+  const auto moved = load(insert_after(kScene, 14,
+                                       "    motion:\n"                                             // 15
+                                       "      keyframes: [{t: 0, center: [0, 0.6, 0]}]\n"));      // 16
+  EXPECT_TRUE(HasError(moved, at(13), {"colliders.0.center must equal the first keyframe's center [0, 0.6, 0]",
+                                       "or be left out", "got [0, 0.5, 0]"}));
+  const auto plane = load(with_colliders(
+      "  - name: floor\n"                                                   // 11
+      "    type: plane\n"                                                   // 12
+      "    point: [0, 0, 0]\n"                                              // 13
+      "    motion: {keyframes: [{t: 0, center: [0, -1, 0]}]}\n"));          // 14
+  EXPECT_TRUE(HasError(plane, at(13), {"colliders.0.point must equal the first keyframe's center [0, -1, 0]"}));
+  // Still required without keyframes.
+  EXPECT_FALSE(load(with_colliders("  - {name: a, type: sphere, radius: 0.1}\n")).ok());
+}
+
+// A keyframed collider's own rotation is its orientation at rest; the keyframes turn it further.
+TEST(ColliderMotion, KeyframedRotationIsComposedWithTheCollidersRotation) {
+  const auto colliders = colliders_of(
+      with_colliders("  - name: arm\n"
+                     "    type: capsule\n"
+                     "    radius: 0.05\n"
+                     "    height: 0.4\n"
+                     "    rotation: [0, 0, 90]\n"  // the y-axis capsule lies along -x at rest
+                     "    motion: {keyframes: [{t: 0, center: [0, 1, 0]}, {t: 1, center: [0, 1, 0], rotation: [0, 90, 0]}]}\n"),
+      1);
+  ASSERT_EQ(colliders.size(), 1u);
+  EXPECT_EQ(colliders[0].rotation, Vector3d(0, 0, 90));
+  const Vector3d at_rest = drapelab::collider_pose(colliders[0], 0.0).linear() * colliders[0].axis;
+  const Vector3d turned = drapelab::collider_pose(colliders[0], 1.0).linear() * colliders[0].axis;
+  EXPECT_LT((at_rest - Vector3d(-1, 0, 0)).norm(), 1e-12);
+  EXPECT_LT((turned - Vector3d(0, 0, 1)).norm(), 1e-12);  // then a quarter turn about y: -x -> +z
+}
+
 TEST(ColliderMotion, OneKeyframeIsEnough) {
   const auto colliders = colliders_of(
       with_colliders("  - {name: a, type: plane, motion: {keyframes: [{t: 2, center: [0, 1, 0], rotation: [5, 0, 0]}]}}\n"),
@@ -814,7 +857,7 @@ TEST(ColliderOverrides, SeveralCollidersAndContactOverrides) {
       colliders_of(kScene, 5,
                    {"colliders.3.half_extents=[1, 2, 3]", "colliders.4.normal=[0,0,-1]", "colliders.2.axis=[1,0,0]",
                     "contact.friction=0.05", "colliders.4.static_friction=0.2",
-                    "colliders.0.motion={keyframes: [{t: 0, center: [0, 0, 0]}, {t: 1, center: [0, 1, 0]}]}"});
+                    "colliders.0.motion={keyframes: [{t: 0, center: [0, 0.5, 0]}, {t: 1, center: [0, 1, 0]}]}"});
   ASSERT_EQ(colliders.size(), 5u);
   EXPECT_EQ(colliders[3].half_extents, Vector3d(1, 2, 3));
   EXPECT_EQ(colliders[4].normal, Vector3d(0, 0, -1));

@@ -2,8 +2,10 @@
 // rims, box corners, under rotation), kinematic motion, and the penalty and friction kernels.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <random>
 
 #include "drapelab/collider.hpp"
@@ -227,6 +229,30 @@ TEST(ColliderMotion, KeyframesInterpolateAndHoldAtTheEnds) {
   }
   EXPECT_EQ(collider_point_velocity(c, 0.1, Eigen::Vector3d(1, 1, 1)).norm(), 0.0);
   EXPECT_EQ(collider_point_velocity(c, 3.0, Eigen::Vector3d(1, 1, 1)).norm(), 0.0);
+}
+
+// The keyframes' rotation acts after the collider's own: R(t) = R_keyframes(t) R(rotation), about the
+// keyframe centre; the velocity field is that of the keyframes alone (the fixed rotation cancels).
+TEST(ColliderMotion, KeyframesTurnTheCollidersOwnRotationFurther) {
+  Collider c;
+  c.rotation = {30, 0, 0};
+  c.motion.keyframes = {{0.0, {0, 1, 0}, {0, 0, 0}}, {1.0, {1, 1, 0}, {0, 0, 90}}};
+  const Eigen::Matrix3d own = euler_rotation(c.rotation);
+  for (double t : {0.0, 0.25, 0.5, 1.0, 2.0}) {
+    const double s = std::clamp(t, 0.0, 1.0);
+    const Eigen::Matrix3d keyed = Eigen::AngleAxisd(s * std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Isometry3d pose = collider_pose(c, t);
+    EXPECT_LT((pose.linear() - keyed * own).cwiseAbs().maxCoeff(), 1e-12) << t;
+    EXPECT_LT((pose.translation() - Eigen::Vector3d(s, 1, 0)).norm(), 1e-15) << t;
+  }
+  Collider plain = c;
+  plain.rotation.setZero();
+  const Eigen::Vector3d p(0.3, 1.2, -0.4);
+  EXPECT_LT((collider_point_velocity(c, 0.5, p) - collider_point_velocity(plain, 0.5, p)).norm(), 1e-12);
+  const Eigen::Vector3d local(0.2, 0.3, -0.1);
+  const double dt = 1e-6;
+  const Eigen::Vector3d numeric = (collider_pose(c, 0.5 + dt) * local - collider_pose(c, 0.5 - dt) * local) / (2 * dt);
+  EXPECT_LT((collider_point_velocity(c, 0.5, collider_pose(c, 0.5) * local) - numeric).norm(), 1e-6);
 }
 
 TEST(PenaltyKernels, NormalForceIsSpringPlusDamperAndNeverPulls) {

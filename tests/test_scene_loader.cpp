@@ -623,22 +623,6 @@ TEST(SceneLoader, EmptyValueIsReportedOnItsOwnLine) {
 // ---------------------------------------------------------------------------------------------
 // Features of later versions: refused with "not available yet", never silently ignored
 
-TEST(SceneLoader, DiscAndMeshShapesAreNotAvailableYet) {
-  for (const char* shape : {"disc", "mesh"})
-    EXPECT_TRUE(HasError(load(with_line(kBase, 8, std::string("  shape: ") + shape)), at(8),
-                         {"cloth.shape", std::string("'") + shape + "'", "not available yet"}))
-        << shape;
-}
-
-TEST(SceneLoader, LaterClothKeysAreNotAvailableYet) {
-  for (const char* key : {"radius: 0.15", "rings: 20", "path: meshes/tshirt.obj", "material: cotton"}) {
-    const std::string name = std::string(key).substr(0, std::string(key).find(':'));
-    EXPECT_TRUE(HasError(load(insert_after(kBase, 8, std::string("  ") + key)), at(9),
-                         {"cloth." + name, "not available yet"}))
-        << key;
-  }
-}
-
 TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
   const auto result =
       load(kBase + "colliders:\n  - {name: ball, type: sphere, center: [0, 0.5, 0], radius: 0.3}\n");
@@ -647,11 +631,6 @@ TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
   EXPECT_EQ(result.scene->colliders[0].name, "ball");
   EXPECT_DOUBLE_EQ(result.scene->colliders[0].radius, 0.3);
   EXPECT_DOUBLE_EQ(result.scene->colliders[0].friction, result.scene->contact.friction);
-}
-
-TEST(SceneLoader, DrapeSupportIsNotAvailableYet) {
-  const auto result = load(kBase + "metrics:\n  drape_support: table\n");
-  EXPECT_TRUE(HasError(result, at(36), {"metrics.drape_support is not available yet"}));
 }
 
 TEST(SceneLoader, BulletDeformableTakesMarginAndVoxelButNoIterations) {
@@ -797,6 +776,42 @@ TEST(SceneLoader, DurationTimesFrameRateMustBeWhole) {
   // The frame rate can make it fractional too; the error sits on duration.
   const auto result = load(with_line(with_line(kBase, 4, "frame_rate: 25"), 34, "    dt: 0.001"));
   EXPECT_TRUE(HasError(result, at(3), {"duration times frame_rate must be a whole number of frames", "12.5"}));
+}
+
+// Run-length bounds (run_limits.hpp): at most 10^7 steps per frame and from 1 to 10^7 frames, checked
+// before any count is cast to int.
+TEST(SceneLoader, StepsPerFrameAboveTenMillionAreRefused) {
+  EXPECT_TRUE(HasError(load(with_line(kBase, 34, "    dt: 1e-13")), at(34),
+                       {"solvers.0.dt is 1e-13 s", "166666666666.6666", "steps per frame",
+                        "at most 10000000 steps per frame"}));
+  // Just under the bound still loads, with the exact count.
+  const auto result = load(with_line(kBase, 34, "    dt: 3.3333333333333334e-09"));
+  ASSERT_LOADS(result);
+  EXPECT_EQ(result.scene->solvers[0].steps_per_frame, 5'000'000);
+  EXPECT_FALSE(load(with_line(kBase, 34, "    dt: 8.333333333333334e-10")).ok());  // 2e7 steps
+  // round_dt does not rescue it: rounding would overflow the count it rounds to.
+  EXPECT_FALSE(load(insert_after(with_line(kBase, 34, "    dt: 1e-13"), 34, "    round_dt: true")).ok());
+}
+
+TEST(SceneLoader, AutomaticStepAboveTenMillionPerFrameIsRefusedAtTheSolver) {
+  // Springs so stiff that the stable step is about 1e-11 s; no dt: the error sits on the solver entry.
+  const auto result = load(with_line(without_lines(kBase, 34, 34), 18, "    stretch: {ks: 1e16, kd: 0}"));
+  EXPECT_TRUE(HasError(result, at(31), {"solvers.0.dt", "chosen automatically", "steps per frame",
+                                        "softer springs"}));
+}
+
+TEST(SceneLoader, FrameCountMustBeFromOneToTenMillion) {
+  EXPECT_TRUE(HasError(load(with_line(kBase, 4, "frame_rate: 1e-300")), at(4),
+                       {"frame_rate", "at least 1 frame", "0.5 s x 1e-300 /s"}));
+  // Without a frame_rate key the error sits on duration.
+  EXPECT_TRUE(HasError(load(with_line(kMinimal, 2, "duration: 1e-300")), at_line(kName, 2),
+                       {"duration times frame_rate must give from 1 to 10000000 frames", "6e-299"}));
+  EXPECT_TRUE(HasError(load(with_line(kBase, 3, "duration: 4e7")), at(3),
+                       {"duration times frame_rate must give from 1 to 10000000 frames", "2.4e+09"}));
+  const auto most = load(with_line(kBase, 3, "duration: 166666.66666666666"));  // 10^7 frames
+  ASSERT_LOADS(most);
+  EXPECT_EQ(most.scene->frame_count(), 10'000'000);
+  EXPECT_FALSE(load(with_line(kBase, 3, "duration: 166667.66666666666")).ok());  // 10^7 + 60 frames
 }
 
 TEST(SceneLoader, OtherFrameRatesWork) {

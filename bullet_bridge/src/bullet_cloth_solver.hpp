@@ -1,4 +1,6 @@
-// What Bullet's two cloth solvers expose inside the bridge, for the diagnostics.
+// What the bridge's solvers expose inside the bridge, for the diagnostics: every solver that owns a
+// Bullet world (Bullet's two cloths, our hosted cloth) has its kinematic colliders; Bullet's cloths
+// also have their btSoftBody.
 #pragma once
 
 #include <BulletSoftBody/btSoftBody.h>
@@ -8,10 +10,14 @@
 
 namespace drapelab::bullet {
 
-class BulletClothSolver : public Solver {
+class BulletWorldSolver : public Solver {
+ public:
+  virtual const KinematicColliders& colliders() const = 0;
+};
+
+class BulletClothSolver : public BulletWorldSolver {
  public:
   virtual const btSoftBody& cloth() const = 0;
-  virtual const KinematicColliders& colliders() const = 0;
 };
 
 }  // namespace drapelab::bullet

@@ -92,13 +92,20 @@ void KinematicColliders::move_to(double t0, double t1) {
 }
 
 Eigen::Isometry3d KinematicColliders::collider_pose_in_world(std::size_t c) const {
-  const btTransform& t = bodies_[c]->getWorldTransform();
-  Eigen::Isometry3d shape_pose = Eigen::Isometry3d::Identity();
-  for (int row = 0; row < 3; ++row) {
-    for (int column = 0; column < 3; ++column) shape_pose.linear()(row, column) = t.getBasis()[row][column];
-    shape_pose.translation()[row] = t.getOrigin()[row];
-  }
-  return shape_pose * shapes_[c].shape_in_collider.inverse();
+  return to_eigen(bodies_[c]->getWorldTransform()) * shapes_[c].shape_in_collider.inverse();
+}
+
+ColliderSubstepMotion KinematicColliders::substep_motion(std::size_t c, double h) const {
+  const btRigidBody& body = *bodies_[c];
+  ColliderSubstepMotion motion;
+  motion.start = to_eigen(body.getInterpolationWorldTransform()) * shapes_[c].shape_in_collider.inverse();
+  motion.end = collider_pose_in_world(c);
+  // Bullet's linear velocity is that of the shape's origin; the collider's origin differs from it
+  // where the shape is offset in the collider's frame (a plane's box), so take the collider origin's
+  // own displacement over the substep. The angular velocity is the same for both frames.
+  if (h > 0.0) motion.velocity = (motion.end.translation() - motion.start.translation()) / h;
+  motion.angular_velocity = to_eigen(body.getAngularVelocity());
+  return motion;
 }
 
 int KinematicColliders::index_of(const btCollisionObject* body) const {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "drapelab/collider.hpp"
+#include "drapelab/collider_pose_table.hpp"
 
 namespace drapelab::bullet {
 
@@ -38,6 +39,9 @@ class KinematicColliders {
   std::size_t size() const { return bodies_.size(); }
   // Where Bullet has collider c now, as the collider's own pose (its shape offset taken out).
   Eigen::Isometry3d collider_pose_in_world(std::size_t c) const;
+  // Collider c's motion over the substep of length h (s) that move_to prepared, read back from its
+  // Bullet body: the start (interpolation) and end (world) transforms and the velocities.
+  ColliderSubstepMotion substep_motion(std::size_t c, double h) const;
 
  private:
   btDynamicsWorld& world_;

@@ -13,6 +13,7 @@
 #include "bullet_cloth_solver.hpp"
 #include "bullet_colliders.hpp"
 #include "bullet_math.hpp"
+#include "deformable_contact_forces.hpp"
 #include "per_link_spring_force.hpp"
 #include "soft_body_cloth.hpp"
 
@@ -50,7 +51,6 @@ class BulletDeformableSolver final : public BulletClothSolver {
     world_->addForce(cloth_.get(), springs_.get());
     world_->addForce(cloth_.get(), gravity_.get());
     world_->setImplicit(false);  // explicit elastic force, implicit damping (bullet-notes 2.2)
-    previous_velocity_ = state_.v;
     forces_.assign(colliders.size(), ColliderForce{});
   }
 
@@ -62,19 +62,11 @@ class BulletDeformableSolver final : public BulletClothSolver {
   void step(double h) override {
     if (status_ != SolverStatus::ok) return;
     substep_start_ = state_.time;
-    previous_velocity_ = state_.v;
     world_->stepSimulation(h, 0);
     state_.time += h;
     ++state_.step_count;
     read_soft_body_state(*cloth_, state_);
-    std::vector<NodeContact> contacts;
-    for (int k = 0; k < cloth_->m_nodeRigidContacts.size(); ++k) {
-      const auto& contact = cloth_->m_nodeRigidContacts[k];
-      const int c = colliders_->index_of(contact.m_cti.m_colObj);
-      if (c >= 0)
-        contacts.push_back({static_cast<int>(contact.m_node - &cloth_->m_nodes[0]), c, to_eigen(contact.m_cti.m_normal)});
-    }
-    estimate_contact_forces(*model_, contacts, previous_velocity_, state_.v, options_.gravity, h, forces_);
+    deformable_contact_forces(deformable_solver_, *cloth_, *colliders_, h, forces_);
     if (const auto message = runaway_message(*model_, state_, options_.max_speed, h,
                                              "a smaller dt (its elastic force is explicit: the same step bound "
                                              "as our symplectic Euler holds), or softer springs.")) {
@@ -103,7 +95,6 @@ class BulletDeformableSolver final : public BulletClothSolver {
   std::shared_ptr<const ClothModel> model_;
   BulletDeformableOptions options_;
   ClothState state_;
-  Eigen::Matrix3Xd previous_velocity_;
   std::vector<ColliderForce> forces_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;

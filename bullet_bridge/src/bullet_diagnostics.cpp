@@ -36,7 +36,7 @@ std::optional<BulletClothLayout> bullet_cloth_layout(const Solver& solver) {
 
 std::vector<Eigen::Isometry3d> bullet_collider_poses(const Solver& solver) {
   std::vector<Eigen::Isometry3d> poses;
-  if (const auto* bullet_solver = dynamic_cast<const BulletClothSolver*>(&solver))
+  if (const auto* bullet_solver = dynamic_cast<const BulletWorldSolver*>(&solver))
     for (std::size_t c = 0; c < bullet_solver->colliders().size(); ++c)
       poses.push_back(bullet_solver->colliders().collider_pose_in_world(c));
   return poses;

@@ -7,28 +7,23 @@
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 
-#include "bullet_colliders.hpp"
+#include <stdexcept>
+#include <string>
+
+#include "bullet_cloth_solver.hpp"
 #include "bullet_math.hpp"
 
 namespace drapelab::bullet {
 namespace {
 
-// Bullet calls updateAction once per substep, after it has posed the colliders for [t, t + h].
-class GuestAction final : public btActionInterface {
+class BulletHostedSolver final : public BulletWorldSolver {
  public:
-  explicit GuestAction(Solver& guest) : guest_(guest) {}
-  void updateAction(btCollisionWorld*, btScalar h) override { guest_.step(h); }
-  void debugDraw(btIDebugDraw*) override {}
-
- private:
-  Solver& guest_;
-};
-
-class BulletHostedSolver final : public Solver {
- public:
-  BulletHostedSolver(std::unique_ptr<Solver> guest, const std::vector<Collider>& colliders,
-                     const Eigen::Vector3d& gravity, double collider_margin)
-      : guest_(std::move(guest)), action_(*guest_) {
+  BulletHostedSolver(std::unique_ptr<Solver> guest, std::shared_ptr<ColliderPoseTable> guest_poses,
+                     const std::vector<Collider>& colliders, const Eigen::Vector3d& gravity, double collider_margin)
+      : guest_(std::move(guest)), guest_poses_(std::move(guest_poses)), action_(*this) {
+    if (!guest_poses_ || guest_poses_->size() != colliders.size())
+      throw std::invalid_argument("the hosted solver's pose table needs one entry per collider (" +
+                                  std::to_string(colliders.size()) + ")");
     world_ = std::make_unique<btSoftRigidDynamicsWorld>(&dispatcher_, &broadphase_, &constraint_solver_,
                                                         &configuration_, nullptr);
     world_->setGravity(to_bullet(gravity));
@@ -55,13 +50,35 @@ class BulletHostedSolver final : public Solver {
   std::vector<std::pair<std::string, double>> phase_seconds() const override { return guest_->phase_seconds(); }
   std::vector<std::pair<std::string, double>> counters() const override { return guest_->counters(); }
 
+  const KinematicColliders& colliders() const override { return *colliders_; }
+
  private:
+  // Bullet calls updateAction once per substep, after the pre-tick callback has posed the colliders
+  // for [t, t + h].
+  class GuestAction final : public btActionInterface {
+   public:
+    explicit GuestAction(BulletHostedSolver& host) : host_(host) {}
+    void updateAction(btCollisionWorld*, btScalar h) override { host_.step_guest(h); }
+    void debugDraw(btIDebugDraw*) override {}
+
+   private:
+    BulletHostedSolver& host_;
+  };
+
   static void before_substep(btDynamicsWorld* world, btScalar h) {
     auto* self = static_cast<BulletHostedSolver*>(world->getWorldUserInfo());
     self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
   }
 
+  // Hands the guest the colliders as the world holds them at this point of the substep, then steps it.
+  void step_guest(double h) {
+    guest_poses_->set_substep(substep_start_, substep_start_ + h);
+    for (std::size_t c = 0; c < colliders_->size(); ++c) guest_poses_->set(c, colliders_->substep_motion(c, h));
+    guest_->step(h);
+  }
+
   std::unique_ptr<Solver> guest_;
+  std::shared_ptr<ColliderPoseTable> guest_poses_;  // read by the guest's ContactModel
   GuestAction action_;
   double substep_start_ = 0.0;  // s
   btSoftBodyRigidBodyCollisionConfiguration configuration_;
@@ -74,9 +91,12 @@ class BulletHostedSolver final : public Solver {
 
 }  // namespace
 
-std::unique_ptr<Solver> host_in_bullet_world(std::unique_ptr<Solver> guest, const std::vector<Collider>& colliders,
-                                             const Eigen::Vector3d& gravity, double collider_margin) {
-  return std::make_unique<BulletHostedSolver>(std::move(guest), colliders, gravity, collider_margin);
+std::unique_ptr<Solver> host_in_bullet_world(std::unique_ptr<Solver> guest,
+                                             std::shared_ptr<ColliderPoseTable> guest_poses,
+                                             const std::vector<Collider>& colliders, const Eigen::Vector3d& gravity,
+                                             double collider_margin) {
+  return std::make_unique<BulletHostedSolver>(std::move(guest), std::move(guest_poses), colliders, gravity,
+                                              collider_margin);
 }
 
 }  // namespace drapelab::bullet

@@ -17,4 +17,13 @@ inline btTransform to_bullet(const Eigen::Isometry3d& pose) {
   return btTransform(basis, to_bullet(pose.translation()));
 }
 
+inline Eigen::Isometry3d to_eigen(const btTransform& pose) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  for (int row = 0; row < 3; ++row) {
+    for (int column = 0; column < 3; ++column) out.linear()(row, column) = pose.getBasis()[row][column];
+    out.translation()[row] = pose.getOrigin()[row];
+  }
+  return out;
+}
+
 }  // namespace drapelab::bullet

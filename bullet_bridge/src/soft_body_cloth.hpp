@@ -32,11 +32,13 @@ struct NodeContact {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
 };
 
-// Bullet's solvers store no usable contact impulses, so the force a collider exerted on a node in
-// contact is estimated from the node's momentum change over the step beyond gravity,
+// For the classic cloth, which keeps no contact impulses (its contacts are position projections whose
+// impulse PSolve_RContacts computes and discards), the force a collider exerted on a node in contact
+// is estimated from the node's momentum change over the step beyond gravity,
 // m ((v(n+1) - v(n)) / h - g), split along the contact normal (normal force, pushing part only) and
-// across it (friction). It includes the node's link forces: exact for a cloth resting flat, an
-// estimate elsewhere.
+// across it (friction). It includes the node's link forces: it averages to the weight of a cloth
+// resting flat but jitters from step to step (test_bullet_contact_forces). The deformable world reads
+// its impulses instead (deformable_contact_forces.hpp).
 void estimate_contact_forces(const ClothModel& model, const std::vector<NodeContact>& contacts,
                              const Eigen::Matrix3Xd& previous_velocity, const Eigen::Matrix3Xd& velocity,
                              const Eigen::Vector3d& gravity, double h, std::vector<ColliderForce>& forces);

@@ -45,12 +45,15 @@ Eigen::Isometry3d collider_pose(const Collider& collider, double t) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   const ColliderMotion& motion = collider.motion;
   if (!motion.keyframes.empty()) {
-    // Linear in position, spherical-linear in orientation between neighbouring keyframes.
+    // Linear in position, spherical-linear in orientation between neighbouring keyframes. The
+    // keyframe's rotation turns the collider after its own `rotation` (its orientation at rest), about
+    // the keyframe's centre; the collider's `center` plays no part (the keyframes give the centre).
     const auto [k, s] = keyframe_segment(motion.keyframes, t);
     const ColliderKeyframe& a = motion.keyframes[k];
     const ColliderKeyframe& b = motion.keyframes.size() > 1 ? motion.keyframes[k + 1] : a;
     pose.translation() = (1.0 - s) * a.center + s * b.center;
-    pose.linear() = keyframe_rotation(a).slerp(s, keyframe_rotation(b)).toRotationMatrix();
+    pose.linear() =
+        keyframe_rotation(a).slerp(s, keyframe_rotation(b)).toRotationMatrix() * euler_rotation(collider.rotation);
     return pose;
   }
   pose.translation() = collider.center + t * motion.velocity;
@@ -75,6 +78,7 @@ Eigen::Vector3d collider_point_velocity(const Collider& collider, double t, cons
     const double span = b.t - a.t;  // s
     Eigen::Quaterniond qa = keyframe_rotation(a), qb = keyframe_rotation(b);
     if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();  // slerp takes the shorter way round
+    // The collider's own rotation, applied first, cancels from (Rb Rs)(Ra Rs)^T = Rb Ra^T.
     const Eigen::AngleAxisd turn(qb * qa.inverse());
     const Eigen::Vector3d omega = turn.axis() * turn.angle() / span;  // rad/s
     const Eigen::Vector3d center = (1.0 - s) * a.center + s * b.center;

@@ -5,6 +5,9 @@
 
 #include <fcl/geometry/shape/halfspace.h>
 
+#include <stdexcept>
+#include <string>
+
 namespace drapelab {
 namespace {
 
@@ -44,14 +47,22 @@ class NearTest {
 
 }  // namespace
 
-ContactModel::ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius)
-    : colliders_(std::move(colliders)), parameters_(parameters), query_(radius) {
+ContactModel::ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius,
+                           std::shared_ptr<const ColliderPoseTable> poses)
+    : colliders_(std::move(colliders)), parameters_(parameters), query_(radius), poses_(std::move(poses)) {
+  if (poses_ && poses_->size() != colliders_.size())
+    throw std::invalid_argument("collider pose table has " + std::to_string(poses_->size()) + " entries for " +
+                                std::to_string(colliders_.size()) + " colliders");
   fcl_colliders_.reserve(colliders_.size());
   for (const auto& collider : colliders_) fcl_colliders_.push_back(make_fcl_collider(collider));
 }
 
+Eigen::Isometry3d ContactModel::pose(std::size_t c, double t) const {
+  return poses_ ? poses_->at(c, t).pose : collider_pose(colliders_[c], t);
+}
+
 Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
-  return collider_pose(colliders_[c], t) * fcl_colliders_[c].shape_in_collider;
+  return pose(c, t) * fcl_colliders_[c].shape_in_collider;
 }
 
 void ContactModel::add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
@@ -62,9 +73,13 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
   totals.assign(colliders_.size(), ColliderContactTotals{});  // capacity kept after the first step
   for (std::size_t c = 0; c < colliders_.size(); ++c) {
     const Collider& collider = colliders_[c];
-    const Eigen::Isometry3d pose = shape_pose(c, t);
+    // Posed and moving as the host world has it when there is a pose table, else by the collider's
+    // own motion (the bare solver: every expression below as it was before hosts existed).
+    const ColliderKinematics hosted = poses_ ? poses_->at(c, t) : ColliderKinematics{};
+    const Eigen::Isometry3d pose =
+        (poses_ ? hosted.pose : collider_pose(collider, t)) * fcl_colliders_[c].shape_in_collider;
     const NearTest near(fcl_colliders_[c], pose, query_.radius());
-    const bool moving = !collider.motion.is_static();
+    const bool moving = poses_ ? hosted.moving() : !collider.motion.is_static();
     ColliderContactTotals& total = totals[c];
     for (int i = 0; i < model.particle_count(); ++i) {
       if (model.is_pinned(i) || !near.may_touch(x.col(i))) continue;  // broad phase
@@ -72,7 +87,9 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
       if (!touching) continue;
       const Eigen::Vector3d& n = touching->normal;
       const Eigen::Vector3d surface_velocity =
-          moving ? collider_point_velocity(collider, t, x.col(i)) : Eigen::Vector3d::Zero();
+          !moving  ? Eigen::Vector3d::Zero()
+          : poses_ ? hosted.point_velocity(x.col(i))
+                   : collider_point_velocity(collider, t, x.col(i));
       const Eigen::Vector3d relative_velocity = v.col(i) - surface_velocity;
       const double fn = penalty_normal_force(touching->depth, relative_velocity.dot(n), parameters_.stiffness,
                                              parameters_.damping);

@@ -13,10 +13,11 @@ namespace drapelab {
 enum class ColliderShape { sphere, cylinder, capsule, box, plane };
 const char* collider_shape_name(ColliderShape shape);
 
-// A pose at time t, for linear keyframe motion.
+// A pose at time t, for linear keyframe motion: the collider's centre in the world, and a rotation
+// applied after the collider's own `rotation`, about that centre.
 struct ColliderKeyframe {
   double t = 0.0;                                      // s
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();    // m
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();    // m, world
   Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // deg, Euler angles (x, y, z), see euler_rotation
 };
 
@@ -32,7 +33,8 @@ struct ColliderMotion {
 struct Collider {
   std::string name;
   ColliderShape shape = ColliderShape::sphere;
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();   // m; for a plane, a point on it
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();   // m; for a plane, a point on it; unused with
+                                                       //    keyframes, which give the centre
   double radius = 0.5;                                 // m: sphere, cylinder, capsule
   double height = 1.0;                                 // m: full length along the axis (capsule: of its
                                                        //    segment, without the end caps)
@@ -49,7 +51,8 @@ struct Collider {
 Eigen::Matrix3d euler_rotation(const Eigen::Vector3d& degrees);
 
 // The collider's rigid transform at time t (s): local frame -> world. The local frame has its origin at
-// the collider's centre (a plane: its point) and the shape's own axes before `rotation`.
+// the collider's centre (a plane: its point) and the shape's own axes before `rotation`. With
+// keyframes: translation = the interpolated keyframe centre, rotation = R_keyframes(t) * R(rotation).
 Eigen::Isometry3d collider_pose(const Collider& collider, double t);
 
 // Velocity (m/s) at time t of the collider's material point that is at world position p.

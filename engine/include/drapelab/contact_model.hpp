@@ -4,10 +4,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/collider.hpp"
+#include "drapelab/collider_pose_table.hpp"
 #include "drapelab/contact_fcl.hpp"
 
 namespace drapelab {
@@ -35,8 +37,11 @@ struct ActiveContact {
 
 class ContactModel {
  public:
-  // `radius`: the particles' contact radius, the cloth's thickness (m).
-  ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius);
+  // `radius`: the particles' contact radius, the cloth's thickness (m). Without `poses` the colliders
+  // are posed by collider_pose(t); with them (one entry per collider), by whatever the table holds
+  // when a force is evaluated: a host world fills it before each substep (collider_pose_table.hpp).
+  ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius,
+               std::shared_ptr<const ColliderPoseTable> poses = nullptr);
 
   std::size_t size() const { return colliders_.size(); }
   bool empty() const { return colliders_.empty(); }
@@ -45,7 +50,11 @@ class ContactModel {
   const std::vector<Collider>& colliders() const { return colliders_; }
   const ContactParameters& parameters() const { return parameters_; }
   const ParticleContactQuery& query() const { return query_; }
-  // FCL shape frame -> world at time t (s).
+  const ColliderPoseTable* pose_table() const { return poses_.get(); }
+  // Collider c's frame -> world at time t (s): from the pose table when there is one, else
+  // collider_pose(t). The contact phase uses exactly this pose.
+  Eigen::Isometry3d pose(std::size_t c, double t) const;
+  // FCL shape frame -> world at time t (s), posed like pose().
   Eigen::Isometry3d shape_pose(std::size_t c, double t) const;
 
   // Adds penalty and friction forces (N) to `force` for the state (x, v) at time t, for a step of h.
@@ -62,6 +71,7 @@ class ContactModel {
   std::vector<FclCollider> fcl_colliders_;
   ContactParameters parameters_;
   ParticleContactQuery query_;
+  std::shared_ptr<const ColliderPoseTable> poses_;  // null: analytic poses
 };
 
 }  // namespace drapelab

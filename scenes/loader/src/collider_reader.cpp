@@ -98,6 +98,20 @@ void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path
   }
 }
 
+// Keyframes give the collider's centre at every time (its `rotation` is composed with theirs, see
+// collider_pose): a `center` (a plane's `point`) that disagrees with the first keyframe would be
+// silently ignored, so it is an error; a missing one is the first keyframe's.
+void keyframe_center(SceneReader& r, MapReader& map, const std::string& key, Collider& c) {
+  const Eigen::Vector3d first = c.motion.keyframes.front().center;
+  if (!map.has(key)) {
+    c.center = first;
+  } else if (c.center != first) {
+    r.error(map.get(key), map.path_of(key),
+            "must equal the first keyframe's center " + format_list(first) + " or be left out (with keyframes " +
+                "the keyframes give the centre at every time), got " + format_list(c.center));
+  }
+}
+
 std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, const std::string& path,
                                       const ContactSpec& contact) {
   // The type decides which keys are valid, so read it before checking the keys.
@@ -135,9 +149,14 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, co
     if (!map.has(key)) map.missing(key, expected);
     return map.number(key, Range::positive(), 1.0).value_or(1.0);
   };
+  // With keyframes the centre comes from them, so `center` may be left out.
+  const bool keyframed = map.has("motion") && map.get("motion").IsMap() && map.get("motion")["keyframes"].IsDefined();
+  const std::string center_key = c.shape == ColliderShape::plane ? "point" : "center";
   if (c.shape == ColliderShape::plane) {
     c.center = map.numbers("point", 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
     c.normal = read_direction(r, map, "normal", Eigen::Vector3d::UnitY()).value_or(Eigen::Vector3d::UnitY());
+  } else if (keyframed) {
+    c.center = map.numbers("center", 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
   } else {
     c.center = required_vector("center", "the collider's centre [x, y, z] in m");
   }
@@ -164,6 +183,7 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, co
             map.path_of("static_friction"),
             "must be >= friction (" + format_number(c.friction) + "), got " + format_number(c.static_friction));
   if (map.has("motion")) read_motion(r, map.get("motion"), map.path_of("motion"), c.motion);
+  if (!c.motion.keyframes.empty()) keyframe_center(r, map, center_key, c);
   if (r.error_count() != errors_before) return std::nullopt;
   return c;
 }

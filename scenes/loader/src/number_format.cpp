@@ -12,4 +12,10 @@ std::string format_number(double value) {
   return std::string(buffer, result.ptr);
 }
 
+std::string format_list(const Eigen::VectorXd& values) {
+  std::string text = "[";
+  for (Eigen::Index k = 0; k < values.size(); ++k) text += (k ? ", " : "") + format_number(values[k]);
+  return text + "]";
+}
+
 }  // namespace drapelab

@@ -3,7 +3,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
+#include <numbers>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -11,16 +14,15 @@
 
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
+#include "cloth_reader.hpp"
 #include "collider_reader.hpp"
 #include "solver_reader.hpp"
 #include "overrides.hpp"
+#include "run_limits.hpp"
 #include "yaml_reader.hpp"
 
 namespace drapelab::scene {
 namespace {
-
-// Keys of the contract that later versions bring: named so the message says so, never ignored.
-const std::string kLaterCloth = "is not available yet in this version of drapelab";
 
 bool valid_name(const std::string& name) {
   static const std::regex pattern("[a-z0-9_-]+");
@@ -29,7 +31,8 @@ bool valid_name(const std::string& name) {
 
 class SceneBuilder {
  public:
-  explicit SceneBuilder(SceneReader& reader) : r_(reader) {}
+  SceneBuilder(SceneReader& reader, const std::filesystem::path& folder)
+      : r_(reader), cloth_reader_(reader, scene_, folder) {}
 
   Scene build(const YAML::Node& root) {
     MapReader top(r_, root, "",
@@ -50,11 +53,12 @@ class SceneBuilder {
     scene_.seed = static_cast<std::uint64_t>(top.integer("seed", Range::non_negative(), 0).value_or(0));
 
     check_frame_count(top);
-    if (top.has("cloth")) read_cloth(top.get("cloth"));
+    if (top.has("cloth")) cloth_reader_.read(top.get("cloth"));
     else top.missing("cloth", "a map describing the cloth (shape, size, resolution, mass, springs, pins)");
     if (top.has("contact")) read_contact(top.get("contact"));  // first: colliders take its friction
     if (top.has("colliders")) scene_.colliders = read_colliders(r_, top.get("colliders"), scene_.contact);
     if (top.has("metrics")) read_metrics(top.get("metrics"));
+    cloth_reader_.finish();
     if (top.has("output")) read_output(top.get("output"));
     read_solvers(top);
     return scene_;
@@ -66,151 +70,19 @@ class SceneBuilder {
   void check_frame_count(MapReader& top) {
     if (scene_.duration <= 0.0) return;
     const double frames = scene_.duration * scene_.frame_rate;
+    const std::string product =
+        format_number(scene_.duration) + " s x " + format_number(scene_.frame_rate) + " /s = " + format_number(frames);
     if (std::abs(frames - std::round(frames)) > 1e-9 * std::max(1.0, frames))
-      r_.error(top.get("duration"), "duration",
-               "times frame_rate must be a whole number of frames, got " + format_number(scene_.duration) +
-                   " s x " + format_number(scene_.frame_rate) + " /s = " + format_number(frames),
+      r_.error(top.get("duration"), "duration", "times frame_rate must be a whole number of frames, got " + product,
                top.node());
-  }
-
-  void read_cloth(const YAML::Node& node) {
-    static const std::map<std::string, std::string> later = {
-        {"radius", "(disc cloth) " + kLaterCloth + "; use shape: grid"},
-        {"rings", "(disc cloth) " + kLaterCloth + "; use shape: grid"},
-        {"path", "(mesh cloth) " + kLaterCloth + "; use shape: grid"},
-        {"material", "(material presets) " + kLaterCloth + "; give springs and mass explicitly"}};
-    MapReader cloth(r_, node, "cloth",
-                    {"shape", "size", "resolution", "plane", "center", "rotation", "mass", "areal_density",
-                     "thickness", "perturbation", "springs", "air_damping", "pins"},
-                    later);
-    if (!cloth.valid()) return;
-    ClothSpec& spec = scene_.cloth;
-    GridClothSpec& grid = spec.grid;
-    if (cloth.has("shape")) {
-      const auto shape = r_.choice(cloth.get("shape"), "cloth.shape", {"grid", "disc", "mesh"});
-      if (shape && *shape != "grid")
-        r_.error(cloth.get("shape"), "cloth.shape",
-                 "'" + *shape + "' " + kLaterCloth + "; only grid cloth can be simulated now");
-    }
-    if (const auto size = cloth.numbers("size", 2, Range::positive(), Eigen::Vector2d(1.0, 1.0))) grid.size = *size;
-    grid_ok_ = false;
-    if (cloth.has("resolution")) {
-      const auto resolution = r_.integers(cloth.get("resolution"), "cloth.resolution", 2, {1.0, true, 1e6, true});
-      if (resolution) {
-        grid.nx = static_cast<int>((*resolution)[0]);
-        grid.ny = static_cast<int>((*resolution)[1]);
-        if (grid.nx * static_cast<long long>(grid.ny) < 2)
-          r_.error(cloth.get("resolution"), "cloth.resolution", "must give at least 2 particles in all, got [1, 1]");
-        else if (grid.nx * static_cast<long long>(grid.ny) > 4'000'000)
-          r_.error(cloth.get("resolution"), "cloth.resolution", "gives more than 4 million particles");
-        else
-          grid_ok_ = true;
-      }
-    } else {
-      cloth.missing("resolution", "particles along each side, for example [33, 33] ([1, N] is a chain)");
-    }
-    if (const auto plane = cloth.choice("plane", {"xz", "xy"}, "xz"))
-      grid.plane = *plane == "xz" ? GridPlane::xz : GridPlane::xy;
-    if (const auto center = cloth.numbers("center", 3, Range::any(), Eigen::Vector3d(0, 1, 0))) grid.center = *center;
-    if (const auto rotation = cloth.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero()))
-      grid.rotation = *rotation;
-
-    const bool has_mass = cloth.has("mass"), has_density = cloth.has("areal_density");
-    if (has_mass && has_density) {
-      r_.error(cloth.get("areal_density"), "cloth.areal_density",
-               "cannot be given together with cloth.mass; give one of them");
-    } else if (has_mass) {
-      if (const auto mass = cloth.number("mass", Range::positive(), std::nullopt)) grid.mass = *mass;
-    } else if (has_density) {
-      if (const auto density = cloth.number("areal_density", Range::positive(), std::nullopt)) {
-        grid.areal_density = *density;
-        if (grid_ok_ && (grid.nx == 1 || grid.ny == 1))
-          r_.error(cloth.get("areal_density"), "cloth.areal_density",
-                   "needs a two-dimensional cloth, but a chain has no area; give cloth.mass instead");
-      }
-    } else {
-      cloth.missing("mass", "total kg (for example 0.25), or give cloth.areal_density in kg/m^2 instead");
-    }
-    grid.thickness = cloth.number("thickness", Range::positive(), 0.005).value_or(grid.thickness);
-    spec.perturbation = cloth.number("perturbation", Range::non_negative(), 0.0).value_or(0.0);
-    spec.air_damping = cloth.number("air_damping", Range::non_negative(), 0.0).value_or(0.0);
-    if (cloth.has("springs")) read_springs(cloth.get("springs"));
-    if (cloth.has("pins")) read_pins(cloth.get("pins"));
-  }
-
-  void read_springs(const YAML::Node& node) {
-    MapReader springs(r_, node, "cloth.springs", {"stretch", "shear", "bend"});
-    if (!springs.valid()) return;
-    GridClothSpec& grid = scene_.cloth.grid;
-    // Stretch springs hold the cloth together, so their ks must be > 0; shear and bend may be off.
-    read_spring_kind(springs, "stretch", Range::positive(), grid.stretch);
-    read_spring_kind(springs, "shear", Range::non_negative(), grid.shear);
-    read_spring_kind(springs, "bend", Range::non_negative(), grid.bend);
-  }
-
-  void read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range, SpringParams& out) {
-    if (!springs.has(kind)) return;
-    MapReader params(r_, springs.get(kind), springs.path_of(kind), {"ks", "kd"});
-    if (!params.valid()) return;
-    out.ks = params.number("ks", ks_range, out.ks).value_or(out.ks);
-    out.kd = params.number("kd", Range::non_negative(), out.kd).value_or(out.kd);
-  }
-
-  void read_pins(const YAML::Node& node) {
-    if (!node.IsSequence()) {
-      r_.error(node, "cloth.pins", "must be a list of pin selectors (corners, [i, j], {index: k}, "
-                                    "{within: {center: [x, y, z], radius: r}}), got " + describe_scalar(node));
-      return;
-    }
-    GridClothSpec& grid = scene_.cloth.grid;
-    record_item_lines(r_, node, "cloth.pins");
-    for (std::size_t k = 0; k < node.size(); ++k) {
-      const YAML::Node item = node[k];
-      const std::string path = "cloth.pins." + std::to_string(k);
-      std::optional<PinSelector> selector;
-      if (item.IsScalar()) {
-        auto names = pin_set_names(grid.plane);
-        if (const auto name = r_.choice(item, path, names)) selector = PinNamed{*name};
-      } else if (item.IsSequence()) {
-        if (const auto ij = r_.integers(item, path, 2, Range::non_negative()))
-          selector = PinGridCoord{static_cast<int>((*ij)[0]), static_cast<int>((*ij)[1])};
-      } else if (item.IsMap()) {
-        selector = read_pin_map(item, path);
-      } else {
-        r_.error(item, path, "must be a pin selector (a set name, [i, j], {index: k} or {within: ...}), got nothing");
-      }
-      if (!selector) continue;
-      if (grid_ok_) {
-        std::string why;
-        if (select_pins(grid, *selector, &why).empty()) {
-          r_.error(item, path, "selects no particle: " + why);
-          continue;
-        }
-      }
-      grid.pins.push_back(*selector);
-    }
-  }
-
-  std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path) {
-    MapReader pin(r_, item, path, {"index", "within"});
-    if (!pin.valid()) return std::nullopt;
-    if (pin.has("index") == pin.has("within")) {
-      r_.error(item, path, "must have exactly one of index or within");
-      return std::nullopt;
-    }
-    if (pin.has("index")) {
-      const auto index = pin.integer("index", Range::non_negative(), std::nullopt);
-      if (!index) return std::nullopt;
-      return PinIndex{static_cast<int>(*index)};
-    }
-    MapReader ball(r_, pin.get("within"), pin.path_of("within"), {"center", "radius"});
-    if (!ball.valid()) return std::nullopt;
-    const auto center = ball.numbers("center", 3, Range::any(), std::nullopt);
-    const auto radius = ball.number("radius", Range::positive(), std::nullopt);
-    if (!ball.has("center")) ball.missing("center", "the ball's centre [x, y, z] in m");
-    if (!ball.has("radius")) ball.missing("radius", "the ball's radius in m, > 0");
-    if (!center || !radius) return std::nullopt;
-    return PinWithin{*center, *radius};
+    else if (std::round(frames) < 1.0 && top.has("frame_rate"))  // a frame longer than the run
+      r_.error(top.get("frame_rate"), "frame_rate",
+               "(frames per second) times duration must give at least 1 frame, got " + product);
+    else if (std::round(frames) < 1.0 || std::round(frames) > kMaxFrames)
+      r_.error(top.get("duration"), "duration",
+               "times frame_rate must give from 1 to " + std::to_string(static_cast<long long>(kMaxFrames)) +
+                   " frames, got " + product,
+               top.node());
   }
 
   void read_contact(const YAML::Node& node) {
@@ -226,11 +98,65 @@ class SceneBuilder {
                "must be >= contact.friction (" + format_number(c.friction) + "), got " + format_number(c.static_friction));
   }
 
+  // metrics.drape_support: a collider's name (a vertical cylinder or capsule, or a sphere: its
+  // horizontal cross-section) or a radius in m (a disc centred under the cloth's centre).
   void read_metrics(const YAML::Node& node) {
-    MapReader metrics(r_, node, "metrics", {},
-                      {{"drape_support",
-                        "is not available yet in this version of drapelab (the drape coefficient comes "
-                        "with colliders and disc cloth); remove it"}});
+    MapReader metrics(r_, node, "metrics", {"drape_support"});
+    if (!metrics.valid() || !metrics.has("drape_support")) return;
+    const YAML::Node support = metrics.get("drape_support");
+    DrapeSupportSpec spec;
+    if (support.IsScalar() && !is_number(support)) {
+      const auto name = r_.text(support, "metrics.drape_support");
+      if (!name) return;
+      std::vector<std::string> names;
+      for (const auto& c : scene_.colliders) names.push_back(c.name);
+      const Collider* found = nullptr;
+      for (const auto& c : scene_.colliders)
+        if (c.name == *name) found = &c;
+      if (!found) {
+        const std::string near = nearest_word(*name, names);
+        r_.error(support, "metrics.drape_support",
+                 "must name a collider or give a radius in m, got '" + *name + "'" +
+                     (near.empty() ? std::string(names.empty() ? " (the scene has no colliders)" : "")
+                                   : "; did you mean " + near + "?"));
+        return;
+      }
+      const auto disc = support_disc(*found, scene_.gravity);
+      if (!disc) {
+        r_.error(support, "metrics.drape_support",
+                 "'" + *name + "' is a " + collider_shape_name(found->shape) +
+                     " with no circular cross-section across gravity; name a sphere, or a cylinder or capsule "
+                     "whose axis is along gravity, or give a radius in m");
+        return;
+      }
+      spec.collider = *name;
+      spec.disc = *disc;
+    } else {
+      const auto radius = r_.number(support, "metrics.drape_support", Range::positive());
+      if (!radius) return;
+      spec.disc = {scene_.cloth.grid.center, *radius};
+    }
+    scene_.drape_support = spec;
+  }
+
+  static bool is_number(const YAML::Node& node) {
+    try {
+      (void)node.as<double>();
+      return true;
+    } catch (const YAML::Exception&) {
+      return false;
+    }
+  }
+
+  // The collider's disc seen along gravity, when it has one.
+  static std::optional<DrapeSupport> support_disc(const Collider& c, const Eigen::Vector3d& gravity) {
+    const Eigen::Isometry3d pose = collider_pose(c, 0.0);
+    if (c.shape == ColliderShape::sphere) return DrapeSupport{pose.translation(), c.radius};
+    if (c.shape != ColliderShape::cylinder && c.shape != ColliderShape::capsule) return std::nullopt;
+    const Eigen::Vector3d axis = (pose.linear() * c.axis).normalized();
+    const Eigen::Vector3d down = gravity.squaredNorm() > 0.0 ? Eigen::Vector3d(gravity.normalized()) : Eigen::Vector3d(0, -1, 0);
+    if (std::abs(axis.dot(down)) < std::cos(std::numbers::pi / 180.0)) return std::nullopt;  // within 1 degree
+    return DrapeSupport{pose.translation(), c.radius};
   }
 
   void read_output(const YAML::Node& node) {
@@ -246,7 +172,7 @@ class SceneBuilder {
 
   void read_solvers(MapReader& top) {
     // Colliders and contact are read by now: the automatic steps depend on them.
-    const bool cloth_ok = grid_ok_ && r_.error_count() == 0;
+    const bool cloth_ok = cloth_reader_.geometry_ok() && r_.error_count() == 0;
     if (top.has("solvers")) {
       scene_.solvers = scene::read_solvers(r_, top.get("solvers"), scene_, cloth_ok, notes);
     } else {
@@ -258,7 +184,7 @@ class SceneBuilder {
 
   SceneReader& r_;
   Scene scene_;
-  bool grid_ok_ = false;  // resolution was read, so pins can be checked against the grid
+  ClothReader cloth_reader_;
 };
 
 LoadResult load_from_text(const std::string& text, const std::string& display_name,
@@ -277,7 +203,7 @@ LoadResult load_from_text(const std::string& text, const std::string& display_na
     return result;
   }
   if (!apply_overrides(root, overrides, reader)) return result;
-  SceneBuilder builder(reader);
+  SceneBuilder builder(reader, source.parent_path());
   Scene scene = builder.build(root);
   if (!result.errors.empty()) return result;
   scene.source = source;

@@ -10,11 +10,6 @@
 namespace drapelab::scene {
 namespace {
 
-std::string list(const Eigen::VectorXd& values) {
-  std::string text = "[";
-  for (Eigen::Index k = 0; k < values.size(); ++k) text += (k ? ", " : "") + format_number(values[k]);
-  return text + "]";
-}
 
 std::string quoted(const std::string& text) { return nlohmann::json(text).dump(); }  // JSON is YAML
 
@@ -24,7 +19,7 @@ std::string pin_text(const PinSelector& selector) {
     return "[" + std::to_string(coord->i) + ", " + std::to_string(coord->j) + "]";
   if (const auto* index = std::get_if<PinIndex>(&selector)) return "{index: " + std::to_string(index->index) + "}";
   const auto& ball = std::get<PinWithin>(selector);
-  return "{within: {center: " + list(ball.center) + ", radius: " + format_number(ball.radius) + "}}";
+  return "{within: {center: " + format_list(ball.center) + ", radius: " + format_number(ball.radius) + "}}";
 }
 
 std::string spring_text(const SpringParams& p) {
@@ -36,36 +31,36 @@ void write_collider(std::ostream& out, const Collider& c) {
       << "    type: " << collider_shape_name(c.shape) << "\n";
   switch (c.shape) {
     case ColliderShape::plane:
-      out << "    point: " << list(c.center) << "  # m\n"
-          << "    normal: " << list(c.normal) << "  # solid below\n";
+      out << "    point: " << format_list(c.center) << "  # m\n"
+          << "    normal: " << format_list(c.normal) << "  # solid below\n";
       break;
     case ColliderShape::box:
-      out << "    center: " << list(c.center) << "  # m\n"
-          << "    half_extents: " << list(c.half_extents) << "  # m\n";
+      out << "    center: " << format_list(c.center) << "  # m\n"
+          << "    half_extents: " << format_list(c.half_extents) << "  # m\n";
       break;
     case ColliderShape::sphere:
-      out << "    center: " << list(c.center) << "  # m\n"
+      out << "    center: " << format_list(c.center) << "  # m\n"
           << "    radius: " << format_number(c.radius) << "  # m\n";
       break;
     case ColliderShape::cylinder:
     case ColliderShape::capsule:
-      out << "    center: " << list(c.center) << "  # m\n"
+      out << "    center: " << format_list(c.center) << "  # m\n"
           << "    radius: " << format_number(c.radius) << "  # m\n"
           << "    height: " << format_number(c.height) << "  # m\n"
-          << "    axis: " << list(c.axis) << "\n";
+          << "    axis: " << format_list(c.axis) << "\n";
       break;
   }
-  out << "    rotation: " << list(c.rotation) << "  # deg, Euler x, y, z\n"
+  out << "    rotation: " << format_list(c.rotation) << "  # deg, Euler x, y, z\n"
       << "    friction: " << format_number(c.friction) << "\n"
       << "    static_friction: " << format_number(c.static_friction) << "\n";
   const ColliderMotion& m = c.motion;
   if (!m.keyframes.empty()) {
     out << "    motion:\n      keyframes:\n";
     for (const auto& k : m.keyframes)
-      out << "        - {t: " << format_number(k.t) << ", center: " << list(k.center)
-          << ", rotation: " << list(k.rotation) << "}\n";
+      out << "        - {t: " << format_number(k.t) << ", center: " << format_list(k.center)
+          << ", rotation: " << format_list(k.rotation) << "}\n";
   } else if (!m.is_static()) {
-    out << "    motion: {velocity: " << list(m.velocity) << ", angular_velocity: " << list(m.angular_velocity)
+    out << "    motion: {velocity: " << format_list(m.velocity) << ", angular_velocity: " << format_list(m.angular_velocity)
         << "}  # m/s, deg/s\n";
   }
 }
@@ -82,15 +77,24 @@ std::string resolved_scene_yaml(const Scene& s) {
       << "description: " << quoted(s.description) << "\n"
       << "duration: " << format_number(s.duration) << "  # s\n"
       << "frame_rate: " << format_number(s.frame_rate) << "  # frames recorded per simulated second\n"
-      << "gravity: " << list(s.gravity) << "  # m/s^2\n"
+      << "gravity: " << format_list(s.gravity) << "  # m/s^2\n"
       << "seed: " << s.seed << "\n"
       << "cloth:\n"
-      << "  shape: " << s.cloth.shape << "\n"
-      << "  size: " << list(g.size) << "  # m\n"
-      << "  resolution: [" << g.nx << ", " << g.ny << "]  # particles along each side\n"
-      << "  plane: " << (g.plane == GridPlane::xz ? "xz" : "xy") << "\n"
-      << "  center: " << list(g.center) << "  # m\n"
-      << "  rotation: " << list(g.rotation) << "  # deg, Euler x, y, z about the centre\n";
+      << "  shape: " << s.cloth.shape << "\n";
+  if (s.cloth.shape == "grid")
+    out << "  size: " << format_list(g.size) << "  # m\n"
+        << "  resolution: [" << g.nx << ", " << g.ny << "]  # particles along each side\n"
+        << "  plane: " << (g.plane == GridPlane::xz ? "xz" : "xy") << "\n";
+  if (s.cloth.shape == "disc")
+    out << "  radius: " << format_number(s.cloth.disc.radius) << "  # m\n"
+        << "  rings: " << s.cloth.disc.rings << "\n";
+  if (s.cloth.shape == "mesh")
+    out << "  path: " << quoted(s.cloth.mesh_file.string()) << "\n"
+        << "  scale: " << format_number(s.cloth.mesh_scale) << "\n";
+  if (!s.cloth.material.empty())
+    out << "  material: " << s.cloth.material << "  # a preset; the values below are what it gave, with any explicit keys\n";
+  out << "  center: " << format_list(g.center) << "  # m\n"
+      << "  rotation: " << format_list(g.rotation) << "  # deg, Euler x, y, z about the centre\n";
   if (g.mass) out << "  mass: " << format_number(*g.mass) << "  # kg, total\n";
   if (g.areal_density) out << "  areal_density: " << format_number(*g.areal_density) << "  # kg/m^2\n";
   out << "  thickness: " << format_number(g.thickness) << "  # m\n"
@@ -141,7 +145,13 @@ std::string resolved_scene_yaml(const Scene& s) {
         << "    max_speed: " << format_number(solver.max_speed) << "  # m/s, runaway limit\n"
         << "    runaway_stretch: " << format_number(solver.runaway_stretch) << "  # stretch spring strain limit\n";
   }
-  out << "metrics: {}\n"
+  if (!s.drape_support) out << "metrics: {}\n";
+  else if (!s.drape_support->collider.empty())
+    out << "metrics:\n  drape_support: " << s.drape_support->collider << "  # a collider's cross-section, radius "
+        << format_number(s.drape_support->disc.radius) << " m\n";
+  else
+    out << "metrics:\n  drape_support: " << format_number(s.drape_support->disc.radius) << "  # m, a disc under the cloth's centre\n";
+  out
       << "output:\n"
       << "  meshes: " << mesh_output_name(s.output.meshes) << "  # none | obj | pc2 | both\n";
   return out.str();

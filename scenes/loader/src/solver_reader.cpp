@@ -7,6 +7,7 @@
 
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
+#include "run_limits.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -98,7 +99,7 @@ class SolverReader {
   void read_bullet_options(MapReader& solver, SolverSpec& spec) {
     if (spec.type == "bullet_softbody")
       spec.iterations = static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
-    const double thickness = scene_.cloth.grid.thickness;
+    const double thickness = scene_.cloth.grid.thickness;  // every shape's thickness lives in grid
     spec.margin = solver.number("margin", Range::positive(), thickness).value_or(thickness);
     spec.collider_margin = solver.number("collider_margin", Range::positive(), 1e-3).value_or(1e-3);
     double feature = std::numeric_limits<double>::infinity();  // m, the smallest collider size
@@ -130,7 +131,7 @@ class SolverReader {
     double target = frame_period;
     std::string reason;
     try {
-      const ClothModel model = build_grid_cloth(scene_.cloth.grid);
+      const ClothModel model = build_scene_cloth(scene_);
       if (spec.type == "bullet_softbody") {
         const double rate = largest_link_rate(model);
         if (rate > 0.0) target = std::sqrt(0.1 / rate);
@@ -168,6 +169,11 @@ class SolverReader {
       r_.error(solver.get("dt"), path + ".dt",
                "must not exceed the frame period 1/frame_rate = " + format_number(frame_period) + " s, got " +
                    format_number(spec.dt));
+      return false;
+    }
+    if (frame_period / spec.dt > kMaxStepsPerFrame) {  // before any count is cast to int
+      r_.error(solver.get("dt"), path + ".dt", too_many_steps_message(frame_period, spec.dt, !solver.has("dt")),
+               solver.node());
       return false;
     }
     const double steps = frame_period / spec.dt;

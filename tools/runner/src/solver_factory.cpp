@@ -18,11 +18,21 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
     settings.gravity = scene.gravity;
     settings.air_damping = scene.cloth.air_damping;
     settings.max_speed = spec.max_speed;
-    settings.contacts = std::move(contacts);
     settings.implicit = spec.implicit;
-    auto solver = std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
-    if (!spec.bullet_host) return solver;
-    return bullet::host_in_bullet_world(std::move(solver), scene.colliders, scene.gravity);
+    if (!spec.bullet_host) {
+      settings.contacts = std::move(contacts);
+      return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
+    }
+    // Hosted: the solver's contacts read the poses the host's Bullet bodies hold (a table the host
+    // fills before every substep), not collider_pose(t); the runner's `contacts`, which the metrics
+    // use, keep the analytic poses.
+    auto poses = std::make_shared<ColliderPoseTable>(scene.colliders.size());
+    if (contacts)
+      settings.contacts = std::make_shared<const ContactModel>(contacts->colliders(), contacts->parameters(),
+                                                               contacts->query().radius(), poses);
+    auto guest = std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
+    return bullet::host_in_bullet_world(std::move(guest), std::move(poses), scene.colliders, scene.gravity,
+                                        spec.collider_margin);
   }
   if (spec.type == "bullet_softbody") {
     bullet::BulletSoftBodyOptions options;

@@ -25,8 +25,8 @@ struct BulletClothLayout {
 // The layout of a Bullet cloth (bullet_softbody or bullet_deformable); nothing for any other solver.
 std::optional<BulletClothLayout> bullet_cloth_layout(const Solver& solver);
 
-// The collider poses (collider frame -> world) Bullet's kinematic bodies hold now, in scene order;
-// empty for a solver that is not Bullet's.
+// The collider poses (collider frame -> world) Bullet's kinematic bodies hold now, in scene order, for
+// Bullet's cloths and our hosted cloth; empty for a solver without a Bullet world.
 std::vector<Eigen::Isometry3d> bullet_collider_poses(const Solver& solver);
 
 // Bullet's signed distance (m) from p to the collider posed at time t, as its soft-rigid contact sees

@@ -1,10 +1,13 @@
 // Numbers as text, in the shortest form that reads back as the same double.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 
 namespace drapelab {
 
 std::string format_number(double value);
+// "[a, b, c]", each number as format_number writes it.
+std::string format_list(const Eigen::VectorXd& values);
 
 }  // namespace drapelab

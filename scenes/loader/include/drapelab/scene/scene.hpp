@@ -7,11 +7,15 @@
 #include <optional>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "drapelab/collider.hpp"
+#include "drapelab/disc_cloth.hpp"
+#include "drapelab/drape_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "drapelab/mesh_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/stability.hpp"
@@ -19,10 +23,24 @@
 namespace drapelab::scene {
 
 struct ClothSpec {
-  std::string shape = "grid";   // grid (disc and mesh are not available yet)
-  GridClothSpec grid;           // size, resolution, plane, center, mass, springs, pins, thickness
+  std::string shape = "grid";   // grid | disc | mesh
+  // Every shape's common keys live here too: center, rotation, mass or areal_density, thickness,
+  // springs and pins (grid coordinates only for a grid).
+  GridClothSpec grid;           // size, resolution, plane, ...
+  DiscSpec disc;                // shape: disc: radius, rings (center, rotation and ring_at filled in)
+  std::string mesh_path;        // shape: mesh: the OBJ file as written in the scene
+  std::filesystem::path mesh_file;  // ... resolved against the scene file's folder
+  double mesh_scale = 1.0;      // shape: mesh: factor applied to the file's coordinates
+  std::shared_ptr<const TriangleMesh> mesh;  // shape: mesh: read at load, scaled, turned and moved
+  std::string material;         // preset applied before the explicit keys (empty: none)
   double perturbation = 0.0;    // m, random initial offset along the sheet normal
   double air_damping = 0.0;     // 1/s
+};
+
+// metrics.drape_support: the support disc of the drape coefficient.
+struct DrapeSupportSpec {
+  std::string collider;         // the collider it comes from, or empty when given as a radius
+  DrapeSupport disc;            // centre and radius (m)
 };
 
 struct ContactSpec {
@@ -73,6 +91,7 @@ struct Scene {
   std::vector<Collider> colliders;
   ContactSpec contact;
   std::vector<SolverSpec> solvers;
+  std::optional<DrapeSupportSpec> drape_support;
   OutputSpec output;
 
   int frame_count() const;         // recorded frames after frame 0: duration x frame_rate
@@ -82,5 +101,15 @@ struct Scene {
     return colliders.empty() ? ContactRates{} : ContactRates{contact.stiffness, contact.damping};
   }
 };
+
+// The scene's cloth as a model (any shape), and its initial state (rest pose, the seeded perturbation
+// along the normals, zero velocity). Grids keep their historical, bit-for-bit initial state.
+ClothModel build_scene_cloth(const Scene& scene);
+ClothState initial_scene_state(const Scene& scene, const ClothModel& model);
+
+// Named pin sets of the scene's cloth shape (grid: corners, ...; disc: center, rim; mesh: center).
+std::vector<std::string> pin_set_names(const ClothSpec& cloth);
+// The particles a selector picks on the scene's cloth, or empty with `error` set.
+std::vector<int> select_cloth_pins(const ClothSpec& cloth, const PinSelector& selector, std::string* error);
 
 }  // namespace drapelab::scene

@@ -1,0 +1,259 @@
+// cloth: shape, geometry, material preset, mass, springs, pins (cloth_reader.hpp).
+#include "cloth_reader.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "drapelab/obj_reader.hpp"
+#include "drapelab/scene/number_format.hpp"
+#include "materials.hpp"
+
+namespace drapelab::scene {
+namespace {
+
+const std::vector<std::string> kCommonKeys = {"shape", "center", "rotation", "material", "mass", "areal_density",
+                                              "thickness", "perturbation", "springs", "air_damping", "pins"};
+
+std::vector<std::string> keys_for(const std::string& shape) {
+  std::vector<std::string> keys = kCommonKeys;
+  if (shape == "grid") keys.insert(keys.end(), {"size", "resolution", "plane"});
+  if (shape == "disc") keys.insert(keys.end(), {"radius", "rings"});
+  if (shape == "mesh") keys.insert(keys.end(), {"path", "scale"});
+  return keys;
+}
+
+}  // namespace
+
+ClothReader::ClothReader(SceneReader& reader, Scene& scene, std::filesystem::path folder)
+    : r_(reader), scene_(scene), folder_(std::move(folder)) {}
+
+void ClothReader::read(const YAML::Node& node) {
+  // The shape decides which keys exist, so read it first.
+  std::string shape = "grid";
+  if (node.IsMap() && node["shape"].IsDefined())
+    if (const auto chosen = r_.choice(node["shape"], "cloth.shape", {"grid", "disc", "mesh"})) shape = *chosen;
+  MapReader cloth(r_, node, "cloth", keys_for(shape));
+  if (!cloth.valid()) return;
+  ClothSpec& spec = scene_.cloth;
+  spec.shape = shape;
+  GridClothSpec& common = spec.grid;
+  // A mesh keeps its file's coordinates unless moved; grids and discs default to 1 m up.
+  const Eigen::Vector3d default_center = shape == "mesh" ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0, 1, 0);
+  if (const auto center = cloth.numbers("center", 3, Range::any(), default_center)) common.center = *center;
+  if (const auto rotation = cloth.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero()))
+    common.rotation = *rotation;
+  if (shape == "grid") read_grid(cloth);
+  if (shape == "disc") read_disc(cloth);
+  if (shape == "mesh") read_mesh(cloth);
+  apply_material(cloth);
+  read_mass(cloth);
+  common.thickness = cloth.number("thickness", Range::positive(), common.thickness).value_or(common.thickness);
+  spec.perturbation = cloth.number("perturbation", Range::non_negative(), 0.0).value_or(0.0);
+  spec.air_damping = cloth.number("air_damping", Range::non_negative(), spec.air_damping).value_or(spec.air_damping);
+  if (cloth.has("springs")) read_springs(cloth.get("springs"));
+  if (cloth.has("pins")) read_pins(cloth.get("pins"));
+}
+
+void ClothReader::read_grid(MapReader& cloth) {
+  GridClothSpec& grid = scene_.cloth.grid;
+  if (const auto size = cloth.numbers("size", 2, Range::positive(), Eigen::Vector2d(1.0, 1.0))) grid.size = *size;
+  if (const auto plane = cloth.choice("plane", {"xz", "xy"}, "xz"))
+    grid.plane = *plane == "xz" ? GridPlane::xz : GridPlane::xy;
+  if (!cloth.has("resolution")) {
+    cloth.missing("resolution", "particles along each side, for example [33, 33] ([1, N] is a chain)");
+    return;
+  }
+  const auto resolution = r_.integers(cloth.get("resolution"), "cloth.resolution", 2, {1.0, true, 1e6, true});
+  if (!resolution) return;
+  grid.nx = static_cast<int>((*resolution)[0]);
+  grid.ny = static_cast<int>((*resolution)[1]);
+  if (grid.nx * static_cast<long long>(grid.ny) < 2)
+    r_.error(cloth.get("resolution"), "cloth.resolution", "must give at least 2 particles in all, got [1, 1]");
+  else if (grid.nx * static_cast<long long>(grid.ny) > 4'000'000)
+    r_.error(cloth.get("resolution"), "cloth.resolution", "gives more than 4 million particles");
+  else
+    geometry_ok_ = true;
+}
+
+void ClothReader::read_disc(MapReader& cloth) {
+  DiscSpec& disc = scene_.cloth.disc;
+  const std::size_t errors = r_.error_count();
+  disc.radius = cloth.number("radius", Range::positive(), 0.15).value_or(disc.radius);
+  disc.rings = static_cast<int>(cloth.integer("rings", {1.0, true, 2000.0, true}, 20).value_or(20));
+  disc.center = scene_.cloth.grid.center;
+  disc.rotation = scene_.cloth.grid.rotation;
+  geometry_ok_ = r_.error_count() == errors;
+}
+
+void ClothReader::read_mesh(MapReader& cloth) {
+  ClothSpec& spec = scene_.cloth;
+  spec.mesh_scale = cloth.number("scale", Range::positive(), 1.0).value_or(1.0);
+  if (!cloth.has("path")) {
+    cloth.missing("path", "the OBJ file of the cloth, relative to the scene file (for example meshes/cape.obj)");
+    return;
+  }
+  const auto path = cloth.text("path", std::nullopt);
+  if (!path) return;
+  spec.mesh_path = *path;
+  spec.mesh_file = std::filesystem::path(*path).is_absolute() ? std::filesystem::path(*path) : folder_ / *path;
+  const ObjReadResult read = read_obj_file(spec.mesh_file);
+  const std::string shown = spec.mesh_file.string() + (read.error_line > 0 ? ":" + std::to_string(read.error_line) : "");
+  if (!read.mesh) {
+    r_.error(cloth.get("path"), "cloth.path", "'" + shown + "': " + read.error);
+    return;
+  }
+  TriangleMesh mesh = *read.mesh;
+  if (const auto problem = mesh_problem(mesh)) {
+    r_.error(cloth.get("path"), "cloth.path", "'" + shown + "' is not a usable cloth: " + *problem);
+    return;
+  }
+  // Scaled about the file's origin, turned, then moved by `center`.
+  const Eigen::Matrix3d turn = euler_rotation(spec.grid.rotation);
+  for (Eigen::Index i = 0; i < mesh.vertices.cols(); ++i)
+    mesh.vertices.col(i) = spec.grid.center + turn * (spec.mesh_scale * mesh.vertices.col(i));
+  spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+  geometry_ok_ = true;
+}
+
+double ClothReader::particle_spacing() const {
+  const ClothSpec& spec = scene_.cloth;
+  if (spec.shape == "disc") return spec.disc.radius / spec.disc.rings;
+  if (spec.shape == "mesh") {
+    double total = 0.0;
+    const auto& m = *spec.mesh;
+    for (Eigen::Index t = 0; t < m.triangles.cols(); ++t)
+      for (int e = 0; e < 3; ++e) total += (m.vertices.col(m.triangles(e, t)) - m.vertices.col(m.triangles((e + 1) % 3, t))).norm();
+    return total / (3.0 * static_cast<double>(m.triangles.cols()));
+  }
+  const GridClothSpec& g = spec.grid;
+  double spacing = std::numeric_limits<double>::infinity();
+  if (g.nx > 1) spacing = std::min(spacing, g.size.x() / (g.nx - 1));
+  if (g.ny > 1) spacing = std::min(spacing, g.size.y() / (g.ny - 1));
+  return spacing;
+}
+
+void ClothReader::apply_material(MapReader& cloth) {
+  if (!cloth.has("material")) return;
+  const auto name = cloth.choice("material", material_names(), std::nullopt);
+  if (!name || !geometry_ok_) return;
+  const Material material = *find_material(*name);
+  ClothSpec& spec = scene_.cloth;
+  spec.material = *name;
+  const MaterialSprings springs = material_springs(material, particle_spacing());
+  spec.grid.stretch = springs.stretch;
+  spec.grid.shear = springs.shear;
+  spec.grid.bend = springs.bend;
+  spec.grid.areal_density = material.areal_density;
+  spec.grid.thickness = material.thickness;
+  spec.air_damping = material.air_damping;
+}
+
+void ClothReader::read_mass(MapReader& cloth) {
+  GridClothSpec& grid = scene_.cloth.grid;
+  const bool has_mass = cloth.has("mass"), has_density = cloth.has("areal_density");
+  if (has_mass && has_density) {
+    r_.error(cloth.get("areal_density"), "cloth.areal_density", "cannot be given together with cloth.mass; give one of them");
+  } else if (has_mass) {
+    grid.areal_density.reset();  // an explicit mass replaces a material's density
+    if (const auto mass = cloth.number("mass", Range::positive(), std::nullopt)) grid.mass = *mass;
+  } else if (has_density) {
+    if (const auto density = cloth.number("areal_density", Range::positive(), std::nullopt)) {
+      grid.areal_density = *density;
+      if (scene_.cloth.shape == "grid" && geometry_ok_ && (grid.nx == 1 || grid.ny == 1))
+        r_.error(cloth.get("areal_density"), "cloth.areal_density",
+                 "needs a two-dimensional cloth, but a chain has no area; give cloth.mass instead");
+    }
+  } else if (!grid.areal_density && !cloth.has("material")) {  // a bad material is reported already
+    cloth.missing("mass", "total kg (for example 0.25), or cloth.areal_density in kg/m^2, or a cloth.material");
+  }
+}
+
+void ClothReader::read_springs(const YAML::Node& node) {
+  MapReader springs(r_, node, "cloth.springs", {"stretch", "shear", "bend"});
+  if (!springs.valid()) return;
+  GridClothSpec& grid = scene_.cloth.grid;
+  // Stretch springs hold the cloth together, so their ks must be > 0; shear and bend may be off.
+  read_spring_kind(springs, "stretch", Range::positive(), grid.stretch);
+  read_spring_kind(springs, "shear", Range::non_negative(), grid.shear);
+  read_spring_kind(springs, "bend", Range::non_negative(), grid.bend);
+}
+
+void ClothReader::read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range,
+                                   SpringParams& out) {
+  if (!springs.has(kind)) return;
+  MapReader params(r_, springs.get(kind), springs.path_of(kind), {"ks", "kd"});
+  if (!params.valid()) return;
+  out.ks = params.number("ks", ks_range, out.ks).value_or(out.ks);
+  out.kd = params.number("kd", Range::non_negative(), out.kd).value_or(out.kd);
+}
+
+void ClothReader::read_pins(const YAML::Node& node) {
+  if (!node.IsSequence()) {
+    r_.error(node, "cloth.pins", "must be a list of pin selectors (a set name, [i, j], {index: k}, "
+                                  "{within: {center: [x, y, z], radius: r}}), got " + describe_scalar(node));
+    return;
+  }
+  record_item_lines(r_, node, "cloth.pins");
+  for (std::size_t k = 0; k < node.size(); ++k) {
+    const YAML::Node item = node[k];
+    const std::string path = "cloth.pins." + std::to_string(k);
+    std::optional<PinSelector> selector;
+    if (item.IsScalar()) {
+      if (const auto name = r_.choice(item, path, pin_set_names(scene_.cloth))) selector = PinNamed{*name};
+    } else if (item.IsSequence()) {
+      if (const auto ij = r_.integers(item, path, 2, Range::non_negative()))
+        selector = PinGridCoord{static_cast<int>((*ij)[0]), static_cast<int>((*ij)[1])};
+    } else if (item.IsMap()) {
+      selector = read_pin_map(item, path);
+    } else {
+      r_.error(item, path, "must be a pin selector (a set name, [i, j], {index: k} or {within: ...}), got nothing");
+    }
+    if (!selector) continue;
+    scene_.cloth.grid.pins.push_back(*selector);
+    pin_nodes_.push_back(item);
+    pin_paths_.push_back(path);
+  }
+}
+
+std::optional<PinSelector> ClothReader::read_pin_map(const YAML::Node& item, const std::string& path) {
+  MapReader pin(r_, item, path, {"index", "within"});
+  if (!pin.valid()) return std::nullopt;
+  if (pin.has("index") == pin.has("within")) {
+    r_.error(item, path, "must have exactly one of index or within");
+    return std::nullopt;
+  }
+  if (pin.has("index")) {
+    const auto index = pin.integer("index", Range::non_negative(), std::nullopt);
+    if (!index) return std::nullopt;
+    return PinIndex{static_cast<int>(*index)};
+  }
+  MapReader ball(r_, pin.get("within"), pin.path_of("within"), {"center", "radius"});
+  if (!ball.valid()) return std::nullopt;
+  const auto center = ball.numbers("center", 3, Range::any(), std::nullopt);
+  const auto radius = ball.number("radius", Range::positive(), std::nullopt);
+  if (!ball.has("center")) ball.missing("center", "the ball's centre [x, y, z] in m");
+  if (!ball.has("radius")) ball.missing("radius", "the ball's radius in m, > 0");
+  if (!center || !radius) return std::nullopt;
+  return PinWithin{*center, *radius};
+}
+
+void ClothReader::finish() {
+  ClothSpec& spec = scene_.cloth;
+  if (spec.shape == "disc" && scene_.drape_support) {
+    const double support = scene_.drape_support->disc.radius;
+    if (support > 0.0 && support < spec.disc.radius && spec.disc.rings >= 2) spec.disc.ring_at = support;
+  }
+  if (!geometry_ok_) return;
+  // Pins are checked only on a cloth that can be built (its selectors may be fine on a fixed one).
+  std::vector<PinSelector> kept;
+  for (std::size_t k = 0; k < spec.grid.pins.size(); ++k) {
+    std::string why;
+    if (select_cloth_pins(spec, spec.grid.pins[k], &why).empty())
+      r_.error(pin_nodes_[k], pin_paths_[k], "selects no particle: " + why);
+    else
+      kept.push_back(spec.grid.pins[k]);
+  }
+  spec.grid.pins = kept;
+}
+
+}  // namespace drapelab::scene

@@ -1,0 +1,44 @@
+// cloth: the shape (grid, disc or mesh), its geometry, mass, springs (a material preset first, then
+// the explicit keys), and the pin selectors. Pins are checked in finish(), once the drape support
+// (which places a disc's rings) is known.
+#pragma once
+
+#include <filesystem>
+
+#include "drapelab/scene/scene.hpp"
+#include "yaml_reader.hpp"
+
+namespace drapelab::scene {
+
+class ClothReader {
+ public:
+  // `folder`: where relative paths (the mesh file) are found, the scene file's folder.
+  ClothReader(SceneReader& reader, Scene& scene, std::filesystem::path folder);
+  void read(const YAML::Node& node);
+  // Gives a disc a ring at the drape support's radius, then checks every pin selector on the shape.
+  void finish();
+  // The geometry was read without error, so the cloth can be built.
+  bool geometry_ok() const { return geometry_ok_; }
+
+ private:
+  void read_shape(MapReader& cloth);
+  void read_grid(MapReader& cloth);
+  void read_disc(MapReader& cloth);
+  void read_mesh(MapReader& cloth);
+  void apply_material(MapReader& cloth);
+  void read_mass(MapReader& cloth);
+  void read_springs(const YAML::Node& node);
+  void read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range, SpringParams& out);
+  void read_pins(const YAML::Node& node);
+  std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path);
+  double particle_spacing() const;  // m, for material presets
+
+  SceneReader& r_;
+  Scene& scene_;
+  std::filesystem::path folder_;
+  bool geometry_ok_ = false;
+  std::vector<YAML::Node> pin_nodes_;     // one per selector in scene_.cloth.grid.pins, for messages
+  std::vector<std::string> pin_paths_;    // ... and its key path (cloth.pins.K)
+};
+
+}  // namespace drapelab::scene

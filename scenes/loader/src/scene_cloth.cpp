@@ -1,0 +1,109 @@
+// The scene's cloth of any shape: grid, disc or mesh, with pins resolved by selector.
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "drapelab/scene/scene.hpp"
+
+namespace drapelab::scene {
+namespace {
+
+TriangleMesh shape_mesh(const ClothSpec& cloth) {
+  if (cloth.shape == "disc") return make_disc_mesh(cloth.disc);
+  if (!cloth.mesh) throw std::invalid_argument("mesh cloth without a mesh");
+  return *cloth.mesh;
+}
+
+// Rim of a disc: its last ring.
+std::vector<int> disc_rim(const DiscSpec& disc) {
+  std::vector<int> rim;
+  const int start = disc_ring_start(disc, disc.rings);
+  for (int k = 0; k < disc_ring_count(disc, disc.rings); ++k) rim.push_back(start + k);
+  return rim;
+}
+
+int nearest_to(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& target) {
+  int best = 0;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+    const double d = (points.col(i) - target).squaredNorm();
+    if (d < best_distance - 1e-15) {
+      best_distance = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+std::vector<int> select_on_mesh(const ClothSpec& cloth, const TriangleMesh& mesh, const PinSelector& selector,
+                                std::string* error) {
+  const Eigen::Matrix3Xd& rest = mesh.vertices;
+  const int count = static_cast<int>(rest.cols());
+  if (const auto* named = std::get_if<PinNamed>(&selector)) {
+    if (named->name == "center")
+      return {cloth.shape == "disc" ? 0 : nearest_to(rest, rest.rowwise().mean())};
+    if (named->name == "rim" && cloth.shape == "disc") return disc_rim(cloth.disc);
+    if (error) {
+      *error = "unknown pin set '" + named->name + "' for " + cloth.shape + " cloth; expected one of:";
+      for (const auto& valid : pin_set_names(cloth)) *error += " " + valid;
+    }
+    return {};
+  }
+  if (std::holds_alternative<PinGridCoord>(selector)) {
+    if (error) *error = "grid coordinates [i, j] need shape: grid; use {index: k} or {within: ...}";
+    return {};
+  }
+  if (const auto* index = std::get_if<PinIndex>(&selector)) {
+    if (index->index < 0 || index->index >= count) {
+      if (error) *error = "particle index " + std::to_string(index->index) + " is outside 0.." + std::to_string(count - 1);
+      return {};
+    }
+    return {index->index};
+  }
+  const auto& ball = std::get<PinWithin>(selector);
+  std::vector<int> picked;
+  for (int i = 0; i < count; ++i)
+    if ((rest.col(i) - ball.center).norm() <= ball.radius) picked.push_back(i);
+  if (picked.empty() && error) *error = "no particle lies within the ball (rest positions)";
+  return picked;
+}
+
+}  // namespace
+
+std::vector<std::string> pin_set_names(const ClothSpec& cloth) {
+  if (cloth.shape == "disc") return {"center", "rim"};
+  if (cloth.shape == "mesh") return {"center"};
+  return drapelab::pin_set_names(cloth.grid.plane);
+}
+
+std::vector<int> select_cloth_pins(const ClothSpec& cloth, const PinSelector& selector, std::string* error) {
+  if (cloth.shape == "grid") return select_pins(cloth.grid, selector, error);
+  return select_on_mesh(cloth, shape_mesh(cloth), selector, error);
+}
+
+ClothModel build_scene_cloth(const Scene& scene) {
+  const ClothSpec& cloth = scene.cloth;
+  if (cloth.shape == "grid") return build_grid_cloth(cloth.grid);
+  MeshClothSpec spec;
+  spec.mesh = shape_mesh(cloth);
+  spec.mass = cloth.grid.mass;
+  spec.areal_density = cloth.grid.areal_density;
+  spec.thickness = cloth.grid.thickness;
+  spec.stretch = cloth.grid.stretch;
+  spec.shear = cloth.grid.shear;
+  spec.bend = cloth.grid.bend;
+  for (const auto& selector : cloth.grid.pins) {
+    std::string error;
+    const auto picked = select_on_mesh(cloth, spec.mesh, selector, &error);
+    if (picked.empty()) throw std::invalid_argument("pin selector: " + error);
+    spec.pinned.insert(spec.pinned.end(), picked.begin(), picked.end());
+  }
+  return build_mesh_cloth(spec);
+}
+
+ClothState initial_scene_state(const Scene& scene, const ClothModel& model) {
+  if (scene.cloth.shape == "grid") return initial_grid_state(model, scene.cloth.grid, scene.cloth.perturbation, scene.seed);
+  return initial_mesh_state(model, scene.cloth.perturbation, scene.seed);
+}
+
+}  // namespace drapelab::scene
