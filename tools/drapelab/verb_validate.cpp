@@ -32,7 +32,7 @@ int validate_verb(const ValidateArguments& arguments) {
     std::cout << scene::resolved_scene_yaml(s);
     return 0;
   }
-  const ClothModel model = build_grid_cloth(s.cloth.grid);
+  const ClothModel model = scene::build_scene_cloth(s);
   const double stable_step = symplectic_euler_stable_step(model, s.cloth.air_damping, s.contact_rates());  // s
   std::cout.precision(6);
   std::cout << arguments.scene << ": ok\n"

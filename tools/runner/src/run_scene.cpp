@@ -120,10 +120,11 @@ int run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream
     const double time = frame / scene.frame_rate;  // s
     for (auto& run : runs) {
       if (!run.running()) continue;
-      ClothMetrics metrics = compute_cloth_metrics(*model, run.solver->state(), scene.gravity);
+      ClothMetrics metrics = frame_metrics(setup, scene, run.solver->state());
       if (contacts) record_collisions(tables, run, *model, *contacts, frame, time, metrics);
       tables.add_metrics(run.spec->name, frame, time, metrics);
       run.last_metrics = metrics;
+      run.rest.add(time, metrics.kinetic_energy, metrics.gravity_energy, model->total_mass());
       ++run.frames_recorded;
       if (obj) write_obj(out / "meshes" / frame_file(run.spec->name, frame), *model, run.solver->state().x,
                          run.spec->name + " frame " + std::to_string(frame) + " t=" + format_number(time) + " s");

@@ -60,6 +60,10 @@ ordered_json solver_json(const SolverRun& run) {
     for (const auto& [counter, value] : counters) counts[counter] = value;
     j["integrator_statistics"] = counts;
   }
+  const auto settle = run.rest.settle_time();
+  const auto jitter = run.rest.rest_jitter();
+  j["settle_time"] = settle ? ordered_json(*settle) : ordered_json();
+  j["rest_jitter"] = jitter ? ordered_json(*jitter) : ordered_json();
   j["final"] = run.last_metrics ? metrics_json(*run.last_metrics) : ordered_json::object();
   return j;
 }

@@ -1,20 +1,37 @@
 #include "drapelab/runner/scene_setup.hpp"
 
-#include "drapelab/grid_cloth.hpp"
 #include "drapelab/scene/number_format.hpp"
 
 namespace drapelab::runner {
+namespace {
+
+// Up, against gravity (y without gravity): the drape shadow is cast along it.
+Eigen::Vector3d up_of(const scene::Scene& scene) {
+  return scene.gravity.squaredNorm() > 0.0 ? Eigen::Vector3d(-scene.gravity) : Eigen::Vector3d::UnitY();
+}
+
+}  // namespace
 
 SceneSetup build_scene_setup(const scene::Scene& scene) {
   SceneSetup setup;
-  setup.model = std::make_shared<const ClothModel>(build_grid_cloth(scene.cloth.grid));
-  setup.initial =
-      initial_grid_state(*setup.model, scene.cloth.grid, scene.cloth.perturbation, scene.seed);
+  setup.model = std::make_shared<const ClothModel>(scene::build_scene_cloth(scene));
+  setup.initial = scene::initial_scene_state(scene, *setup.model);
   if (!scene.colliders.empty())
     setup.contacts = std::make_shared<const ContactModel>(
         scene.colliders, ContactParameters{scene.contact.stiffness, scene.contact.damping},
         setup.model->thickness);
+  if (scene.drape_support) setup.drape = std::make_shared<const DrapeMeter>(*setup.model, scene.drape_support->disc, up_of(scene));
   return setup;
+}
+
+ClothMetrics frame_metrics(const SceneSetup& setup, const scene::Scene& scene, const ClothState& state) {
+  ClothMetrics metrics = compute_cloth_metrics(*setup.model, state, scene.gravity);
+  if (setup.drape) {
+    const DrapeMeasure drape = setup.drape->measure(*setup.model, state.x);
+    metrics.drape_coefficient = drape.coefficient;
+    metrics.drape_nodes = drape.nodes;
+  }
+  return metrics;
 }
 
 std::string describe_most_stretched_spring(const ClothModel& model, const ClothState& state) {

@@ -23,7 +23,7 @@ bool interrupted(const SimulationOptions& options) {
 // colliders.
 ClothMetrics measure(const scene::Scene& scene, const SceneSetup& setup, const ClothState& state,
                      double time) {
-  ClothMetrics metrics = compute_cloth_metrics(*setup.model, state, scene.gravity);
+  ClothMetrics metrics = frame_metrics(setup, scene, state);
   if (setup.contacts) {
     const CollisionMetrics collisions =
         compute_collision_metrics(*setup.model, state, *setup.contacts, time);

@@ -10,6 +10,7 @@
 #include "drapelab/runner/mesh_output.hpp"
 #include "drapelab/scene/scene.hpp"
 #include "drapelab/solver.hpp"
+#include "rest_measures.hpp"
 
 namespace drapelab::runner {
 
@@ -22,6 +23,7 @@ struct SolverRun {
   std::int64_t steps = 0;
   int frames_recorded = 0;                 // rows written, frame 0 included
   std::optional<ClothMetrics> last_metrics;
+  RestTracker rest;                        // settle time and rest jitter, from every recorded frame
   std::unique_ptr<Pc2Writer> point_cache;
 
   bool running() const { return status == SolverStatus::ok; }

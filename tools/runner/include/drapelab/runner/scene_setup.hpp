@@ -8,7 +8,9 @@
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
+#include "drapelab/cloth_metrics.hpp"
 #include "drapelab/contact_model.hpp"
+#include "drapelab/drape_metrics.hpp"
 #include "drapelab/scene/scene.hpp"
 
 namespace drapelab::runner {
@@ -17,11 +19,16 @@ struct SceneSetup {
   std::shared_ptr<const ClothModel> model;
   ClothState initial;                            // rest positions plus the seeded perturbation
   std::shared_ptr<const ContactModel> contacts;  // null when the scene has no colliders
+  std::shared_ptr<const DrapeMeter> drape;       // null without metrics.drape_support
 };
 
-// Builds the grid cloth, its initial state (scene.cloth.perturbation, scene.seed) and the contact
-// model (scene.contact, the cloth's thickness as the particles' radius).
+// Builds the cloth (any shape), its initial state (scene.cloth.perturbation, scene.seed), the contact
+// model (scene.contact, the cloth's thickness as the particles' radius) and the drape meter.
 SceneSetup build_scene_setup(const scene::Scene& scene);
+
+// The per-frame metrics of a state that need no colliders: ClothMetrics, plus the drape coefficient
+// and node count when the scene names a drape support.
+ClothMetrics frame_metrics(const SceneSetup& setup, const scene::Scene& scene, const ClothState& state);
 
 // "the stretch spring between particle a (grid i, j) and particle b (...) is stretched by s": the
 // most stretched stretch spring of `state` (strain |x_a - x_b| / L - 1), for unstable-run messages.
