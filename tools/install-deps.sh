@@ -12,6 +12,7 @@ packages=(
   libcli11-dev                                   # command line
   nlohmann-json3-dev                             # summary.json
   libgtest-dev libgmock-dev                      # tests
+  libbenchmark-dev                               # micro-benchmarks (bench/)
 )
 
 if [[ "${1:-}" == "--print" ]]; then

@@ -55,6 +55,7 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       force_(3, model_->particle_count()) {
   const int n = model_->particle_count();
   if (settings_.contacts) contact_totals_.resize(settings_.contacts->size());
+  if (settings_.fast_springs) spring_families_ = SpringFamilies::build(*model_);
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
     case Integrator::symplectic_euler: break;
@@ -96,7 +97,8 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
   }
   {
     PhaseTimer timer(stats_, StepPhase::springs);
-    add_spring_forces(*model_, x, v, force_);
+    if (spring_families_) spring_families_->add_forces(x, v, force_);
+    else add_spring_forces(*model_, x, v, force_);
   }
   {
     PhaseTimer timer(stats_, StepPhase::air);

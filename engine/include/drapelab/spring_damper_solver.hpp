@@ -19,6 +19,7 @@
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/solver.hpp"
+#include "drapelab/spring_families.hpp"
 
 namespace drapelab {
 
@@ -29,6 +30,7 @@ struct SpringDamperSettings {
   double max_speed = 1000.0;                 // m/s: a faster particle means the run has blown up
   std::shared_ptr<const ContactModel> contacts;  // colliders and penalty parameters; none when null
   ImplicitSolveSettings implicit;                // implicit_euler only: CG tolerance and iteration cap
+  bool fast_springs = true;  // the spring-family fast path when the springs allow (spring_families.hpp)
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
@@ -67,6 +69,8 @@ class SpringDamperSolver final : public Solver {
   const std::vector<ColliderContactTotals>& contact_totals() const { return contact_totals_; }
   // The implicit solve's statistics (null unless the integrator is implicit_euler).
   const ImplicitEulerSystem* implicit_system() const { return implicit_.get(); }
+  // Whether the spring phase runs the spring-family fast path.
+  bool uses_fast_springs() const { return spring_families_ != nullptr; }
 
  private:
   // One step of each scheme (explicit_schemes.cpp, except the Euler pair and implicit Euler here).
@@ -94,6 +98,7 @@ class SpringDamperSolver final : public Solver {
   Eigen::Matrix3Xd previous_x_;         // m: Verlet's x(n-1)
   double two_level_step_ = 0.0;         // s: the h Verlet/leapfrog history holds; 0 = start afresh
   std::unique_ptr<ImplicitEulerSystem> implicit_;
+  std::unique_ptr<SpringFamilies> spring_families_;  // null: the plain edge-list loop
   std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
   StepStats stats_;

@@ -1,0 +1,89 @@
+// The spring fast path (spring_families.hpp): the same forces as the plain edge loop to rounding on
+// every grid shape, whole runs identical to rounding, and bitwise-identical results for 1 and 2
+// threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "drapelab/disc_cloth.hpp"
+#include "drapelab/forces.hpp"
+#include "drapelab/grid_cloth.hpp"
+#include "drapelab/spring_damper_solver.hpp"
+#include "drapelab/spring_families.hpp"
+
+namespace drapelab {
+namespace {
+
+GridClothSpec grid(int nx, int ny) {
+  GridClothSpec spec;
+  spec.nx = nx;
+  spec.ny = ny;
+  spec.mass = 0.2;
+  spec.stretch = {800.0, 0.02};
+  spec.shear = {80.0, 0.01};
+  spec.bend = {8.0, 0.002};
+  spec.pins = {PinNamed{"top_corners"}};
+  return spec;
+}
+
+ClothState shaken(const ClothModel& model, const GridClothSpec& spec) {
+  ClothState state = initial_grid_state(model, spec, 0.01, 4);
+  // The same velocities every call (Eigen's Random would continue std::rand's sequence).
+  for (int i = 0; i < model.particle_count(); ++i)
+    state.v.col(i) = Eigen::Vector3d(std::sin(0.7 * i), std::cos(1.3 * i), std::sin(2.1 * i + 0.5));
+  return state;
+}
+
+TEST(SpringFamilies, ForcesEqualThePlainLoopToRoundingOnEveryGrid) {
+  for (auto [nx, ny] : {std::pair{2, 2}, {1, 7}, {7, 1}, {3, 9}, {33, 17}, {65, 65}}) {
+    SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny));
+    const GridClothSpec spec = grid(nx, ny);
+    const ClothModel model = build_grid_cloth(spec);
+    const ClothState state = shaken(model, spec);
+    auto families = SpringFamilies::build(model);
+    if (nx * ny < 8) continue;  // too few springs for runs worth a fast path; the plain loop runs
+    ASSERT_TRUE(families) << "a grid's springs come in families";
+    EXPECT_LE(families->family_count(), 6);
+    Eigen::Matrix3Xd plain = Eigen::Matrix3Xd::Constant(3, model.particle_count(), 0.25);
+    Eigen::Matrix3Xd fast = plain;
+    add_spring_forces(model, state.x, state.v, plain);
+    families->add_forces(state.x, state.v, fast);
+    EXPECT_LT((fast - plain).cwiseAbs().maxCoeff(), 1e-12 * plain.cwiseAbs().maxCoeff());
+  }
+}
+
+TEST(SpringFamilies, MeshesWithManyOffsetsKeepThePlainLoop) {
+  DiscSpec disc;
+  MeshClothSpec spec;
+  spec.mesh = make_disc_mesh(disc);
+  spec.mass = 0.01;
+  EXPECT_FALSE(SpringFamilies::build(build_mesh_cloth(spec)));
+}
+
+ClothState run(const std::shared_ptr<const ClothModel>& model, const GridClothSpec& spec, bool fast, int threads) {
+  kernels::set_thread_count(threads);
+  SpringDamperSettings settings;
+  settings.fast_springs = fast;
+  SpringDamperSolver solver("s", model, shaken(*model, spec), settings);
+  EXPECT_EQ(solver.uses_fast_springs(), fast);
+  for (int k = 0; k < 30; ++k) solver.step(2e-5);  // s, within the stable step of these springs
+  EXPECT_EQ(solver.status(), SolverStatus::ok) << solver.message();
+  kernels::set_thread_count(1);
+  return solver.state();
+}
+
+TEST(SpringFamilies, RunsMatchThePlainPathAndAreBitwiseIdenticalForOneAndTwoThreads) {
+  // Large enough that the loops really split among threads (families of >= 8192 springs).
+  const GridClothSpec spec = grid(97, 97);  // 97 x 96 = 9312 springs along x: above the threading threshold
+  const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  const ClothState plain = run(model, spec, false, 1);
+  const ClothState one = run(model, spec, true, 1);
+  const ClothState two = run(model, spec, true, 2);
+  EXPECT_LT((one.x - plain.x).cwiseAbs().maxCoeff(), 1e-12);  // m, rounding grown over 30 steps
+  EXPECT_TRUE((one.x.array() == two.x.array()).all()) << "thread count changed the positions";
+  EXPECT_TRUE((one.v.array() == two.v.array()).all()) << "thread count changed the velocities";
+}
+
+}  // namespace
+}  // namespace drapelab
