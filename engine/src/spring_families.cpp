@@ -46,31 +46,18 @@ std::unique_ptr<SpringFamilies> SpringFamilies::build(const ClothModel& model, i
   if (s.size() < 4 * runs) return nullptr;  // short runs: the gather path is as good
   std::size_t largest = 0;
   for (const auto& family : families->families_) largest = std::max(largest, family.rest.size());
-  const std::size_t n = static_cast<std::size_t>(model.particle_count());
-  for (int c = 0; c < 3; ++c) {
-    families->x_[c].resize(n);
-    families->v_[c].resize(n);
-    families->f_[c].resize(n);
-    families->t_[c].resize(largest);
-  }
+  for (int c = 0; c < 3; ++c) families->t_[c].resize(largest);
   return families;
 }
 
 void SpringFamilies::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force) {
-  const Eigen::Index n = x.cols();
-  for (int c = 0; c < 3; ++c) {
-    Eigen::Map<Eigen::RowVectorXd>(x_[c].data(), n) = x.row(c);
-    Eigen::Map<Eigen::RowVectorXd>(v_[c].data(), n) = v.row(c);
-    Eigen::Map<Eigen::RowVectorXd>(f_[c].data(), n) = force.row(c);
-  }
-  const kernels::SoaState state{{x_[0].data(), x_[1].data(), x_[2].data()}, {v_[0].data(), v_[1].data(), v_[2].data()}};
+  // Matrix3Xd stores x, y, z of each particle together: the packed layout the loops read.
+  const kernels::PackedState state{x.data(), v.data()};
   double* const t[3] = {t_[0].data(), t_[1].data(), t_[2].data()};
-  double* const f[3] = {f_[0].data(), f_[1].data(), f_[2].data()};
   for (const SpringFamily& family : families_) {
     kernels::family_forces(state, family, t);
-    kernels::family_scatter(family, t, f);
+    kernels::family_scatter(family, t, force.data());
   }
-  for (int c = 0; c < 3; ++c) force.row(c) = Eigen::Map<const Eigen::RowVectorXd>(f_[c].data(), n);
 }
 
 }  // namespace drapelab

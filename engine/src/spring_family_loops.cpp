@@ -34,9 +34,9 @@ int thread_count() {
 #endif
 }
 
-void family_forces(const SoaState& s, const SpringFamily& family, double* const t[3]) {
+void family_forces(const PackedState& s, const SpringFamily& family, double* const t[3]) {
   const std::int64_t runs = static_cast<std::int64_t>(family.run_start.size());
-  const std::int32_t offset = family.offset;
+  const std::int64_t offset = 3 * static_cast<std::int64_t>(family.offset);  // doubles between the ends
   const double* rest = family.rest.data();
   const double* ks = family.ks.data();
   const double* kd = family.kd.data();
@@ -45,19 +45,15 @@ void family_forces(const SoaState& s, const SpringFamily& family, double* const 
   double* tz = t[2];
 #pragma omp parallel for schedule(static) if (family.size() >= kParallelSprings)
   for (std::int64_t r = 0; r < runs; ++r) {
-    const std::int32_t first = family.run_start[r], length = family.run_length[r], slot = family.run_slot[r];
-    const double* x0 = s.x[0] + first;
-    const double* y0 = s.x[1] + first;
-    const double* z0 = s.x[2] + first;
-    const double* vx0 = s.v[0] + first;
-    const double* vy0 = s.v[1] + first;
-    const double* vz0 = s.v[2] + first;
+    const std::int32_t length = family.run_length[r], slot = family.run_slot[r];
+    const double* x = s.x + 3 * static_cast<std::int64_t>(family.run_start[r]);
+    const double* v = s.v + 3 * static_cast<std::int64_t>(family.run_start[r]);
 #pragma omp simd
     for (std::int32_t k = 0; k < length; ++k) {
-      const double dx = x0[k] - x0[k + offset], dy = y0[k] - y0[k + offset], dz = z0[k] - z0[k + offset];
-      const double dvx = vx0[k] - vx0[k + offset], dvy = vy0[k] - vy0[k + offset], dvz = vz0[k] - vz0[k + offset];
-      const double length_squared = dx * dx + dy * dy + dz * dz;
-      const double l = std::sqrt(length_squared);
+      const std::int64_t a = 3 * static_cast<std::int64_t>(k), b = a + offset;
+      const double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+      const double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
+      const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
       const double inverse = l > 0.0 ? 1.0 / l : 0.0;  // a zero-length spring has no direction: no force
       const std::int32_t e = slot + k;
       const double magnitude = ks[e] * (l - rest[e]) + kd[e] * (dvx * dx + dvy * dy + dvz * dz) * inverse;  // N
@@ -69,27 +65,36 @@ void family_forces(const SoaState& s, const SpringFamily& family, double* const 
   }
 }
 
-void family_scatter(const SpringFamily& family, double* const t[3], double* const f[3]) {
+void family_scatter(const SpringFamily& family, double* const t[3], double* f) {
   const std::int64_t runs = static_cast<std::int64_t>(family.run_start.size());
-  const std::int32_t offset = family.offset;
+  const std::int64_t offset = 3 * static_cast<std::int64_t>(family.offset);
   const bool parallel = family.size() >= kParallelSprings;
+  const double* tx = t[0];
+  const double* ty = t[1];
+  const double* tz = t[2];
 #pragma omp parallel for schedule(static) if (parallel)
-  for (std::int64_t r = 0; r < runs; ++r)
-    for (int c = 0; c < 3; ++c) {
-      double* out = f[c] + family.run_start[r];
-      const double* in = t[c] + family.run_slot[r];
+  for (std::int64_t r = 0; r < runs; ++r) {
+    double* out = f + 3 * static_cast<std::int64_t>(family.run_start[r]);
+    const std::int32_t slot = family.run_slot[r];
 #pragma omp simd
-      for (std::int32_t k = 0; k < family.run_length[r]; ++k) out[k] += in[k];
+    for (std::int32_t k = 0; k < family.run_length[r]; ++k) {
+      out[3 * k] += tx[slot + k];
+      out[3 * k + 1] += ty[slot + k];
+      out[3 * k + 2] += tz[slot + k];
     }
+  }
   // The second particles, in a pass of their own: k + offset may be another run's first particle.
 #pragma omp parallel for schedule(static) if (parallel)
-  for (std::int64_t r = 0; r < runs; ++r)
-    for (int c = 0; c < 3; ++c) {
-      double* out = f[c] + family.run_start[r] + offset;
-      const double* in = t[c] + family.run_slot[r];
+  for (std::int64_t r = 0; r < runs; ++r) {
+    double* out = f + 3 * static_cast<std::int64_t>(family.run_start[r]) + offset;
+    const std::int32_t slot = family.run_slot[r];
 #pragma omp simd
-      for (std::int32_t k = 0; k < family.run_length[r]; ++k) out[k] -= in[k];
+    for (std::int32_t k = 0; k < family.run_length[r]; ++k) {
+      out[3 * k] -= tx[slot + k];
+      out[3 * k + 1] -= ty[slot + k];
+      out[3 * k + 2] -= tz[slot + k];
     }
+  }
 }
 
 }  // namespace drapelab::kernels

@@ -36,9 +36,8 @@ class SpringFamilies {
 
  private:
   std::vector<SpringFamily> families_;
-  // Structure-of-arrays copies of the state and the force (per coordinate, N each), and the
-  // per-spring force of the family being applied (the largest family's size).
-  std::vector<double> x_[3], v_[3], f_[3], t_[3];
+  // The per-spring force of the family being applied, per coordinate (the largest family's size).
+  std::vector<double> t_[3];
 };
 
 }  // namespace drapelab

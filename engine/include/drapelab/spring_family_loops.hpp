@@ -20,16 +20,17 @@ struct SpringFamily {
 
 namespace kernels {
 
-// Positions and velocities as one array per coordinate (m, m/s).
-struct SoaState {
-  const double* x[3];
-  const double* v[3];
+// Positions and velocities as stored in ClothState: x, y, z of particle k at [3k], [3k+1], [3k+2]
+// (m, m/s).
+struct PackedState {
+  const double* x;
+  const double* v;
 };
 // t[c][slot] = the damped spring force on the first particle of every spring of the family (N):
 // -[ks (l - l0) + kd (dv . d) / l] d / l with d = x(k) - x(k + offset); zero for a zero length.
-void family_forces(const SoaState& s, const SpringFamily& family, double* const t[3]);
-// f[c][k] += t for the first particles, then f[c][k + offset] -= t for the second ones.
-void family_scatter(const SpringFamily& family, double* const t[3], double* const f[3]);
+void family_forces(const PackedState& s, const SpringFamily& family, double* const t[3]);
+// f[3k + c] += t[c] for the first particles, then f[3(k + offset) + c] -= t[c] for the second ones.
+void family_scatter(const SpringFamily& family, double* const t[3], double* f);
 // Threads the loops use (OpenMP); always 1 in a build without OpenMP.
 void set_thread_count(int threads);
 int thread_count();
