@@ -8,10 +8,14 @@
 #include <random>
 #include <stdexcept>
 
+#include "cloth_building.hpp"
 #include "drapelab/collider.hpp"
 
 namespace drapelab {
 namespace {
+
+using building::add_spring;
+using building::vertex_areas;
 
 int grid_index(int nx, int i, int j) { return j * nx + i; }
 
@@ -21,16 +25,6 @@ Eigen::Vector3d second_axis(GridPlane plane) {
 
 Eigen::Vector3d sheet_normal(GridPlane plane) {
   return plane == GridPlane::xz ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
-}
-
-void add_spring(SpringSet& springs, const Eigen::Matrix3Xd& rest, int a, int b, SpringKind kind,
-                const SpringParams& params) {
-  springs.v0.push_back(a);
-  springs.v1.push_back(b);
-  springs.rest_length.push_back((rest.col(a) - rest.col(b)).norm());
-  springs.ks.push_back(params.ks);
-  springs.kd.push_back(params.kd);
-  springs.kind.push_back(kind);
 }
 
 // Stretch springs join lattice neighbours, shear springs both diagonals of a cell, bend springs
@@ -82,18 +76,6 @@ Eigen::Matrix3Xi build_grid_triangles(const GridClothSpec& spec, const Eigen::Ma
       emit(k00, k11, k01);
     }
   return triangles;
-}
-
-Eigen::VectorXd vertex_areas(const Eigen::Matrix3Xd& rest, const Eigen::Matrix3Xi& triangles) {
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(rest.cols());
-  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    const int a = triangles(0, t), b = triangles(1, t), c = triangles(2, t);
-    const double third = 0.5 * (rest.col(b) - rest.col(a)).cross(rest.col(c) - rest.col(a)).norm() / 3.0;
-    area[a] += third;
-    area[b] += third;
-    area[c] += third;
-  }
-  return area;
 }
 
 std::vector<int> all_matching(const GridClothSpec& spec, auto&& predicate) {

@@ -9,8 +9,13 @@
 #include <stdexcept>
 #include <utility>
 
+#include "cloth_building.hpp"
+
 namespace drapelab {
 namespace {
+
+using building::add_spring;
+using building::vertex_areas;
 
 using Edge = std::pair<int, int>;  // (smaller index, larger index)
 Edge edge_of(int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; }
@@ -22,16 +27,6 @@ std::map<Edge, std::vector<int>> opposite_vertices(const Eigen::Matrix3Xi& trian
     for (int e = 0; e < 3; ++e)
       opposite[edge_of(triangles(e, t), triangles((e + 1) % 3, t))].push_back(triangles((e + 2) % 3, t));
   return opposite;
-}
-
-void add_spring(SpringSet& springs, const Eigen::Matrix3Xd& rest, int a, int b, SpringKind kind,
-                const SpringParams& params) {
-  springs.v0.push_back(a);
-  springs.v1.push_back(b);
-  springs.rest_length.push_back((rest.col(a) - rest.col(b)).norm());
-  springs.ks.push_back(params.ks);
-  springs.kd.push_back(params.kd);
-  springs.kind.push_back(kind);
 }
 
 // True when (a, b) is, within 1 %, the longest edge of the triangle (a, b, c).
@@ -52,18 +47,6 @@ SpringSet build_mesh_springs(const MeshClothSpec& spec, const Eigen::Matrix3Xd& 
     else add_spring(springs, rest, across[0], across[1], SpringKind::bend, spec.bend);
   }
   return springs;
-}
-
-Eigen::VectorXd vertex_areas(const Eigen::Matrix3Xd& rest, const Eigen::Matrix3Xi& triangles) {
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(rest.cols());
-  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    const int a = triangles(0, t), b = triangles(1, t), c = triangles(2, t);
-    const double third = 0.5 * (rest.col(b) - rest.col(a)).cross(rest.col(c) - rest.col(a)).norm() / 3.0;
-    area[a] += third;
-    area[b] += third;
-    area[c] += third;
-  }
-  return area;
 }
 
 // Planar UVs: the vertices projected on the two longest axes of their bounding box, scaled to [0, 1].

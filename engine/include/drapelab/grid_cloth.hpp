@@ -26,19 +26,23 @@ struct PinIndex { int index = 0; };             // particle index k = j * nx + i
 struct PinWithin { Eigen::Vector3d center = Eigen::Vector3d::Zero(); double radius = 0.0; };  // m
 using PinSelector = std::variant<PinNamed, PinGridCoord, PinIndex, PinWithin>;
 
-struct GridClothSpec {
-  Eigen::Vector2d size{1.0, 1.0};                  // m: width along x, depth along the second axis
-  int nx = 33;                                     // particles along x
-  int ny = 33;                                     // particles along the second axis
-  GridPlane plane = GridPlane::xz;
-  Eigen::Vector3d center{0.0, 1.0, 0.0};          // m
-  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // deg, Euler (x, y, z) about the centre
+// What every cloth shape has: its weight, contact thickness and spring constants per kind.
+struct ClothPhysicsSpec {
   std::optional<double> mass;                      // kg, total, split equally
   std::optional<double> areal_density;             // kg/m^2, times each vertex area
   double thickness = 0.005;                        // m
   SpringParams stretch{2000.0, 1.0};
   SpringParams shear{200.0, 0.5};
   SpringParams bend{20.0, 0.1};
+};
+
+struct GridClothSpec : ClothPhysicsSpec {
+  Eigen::Vector2d size{1.0, 1.0};                  // m: width along x, depth along the second axis
+  int nx = 33;                                     // particles along x
+  int ny = 33;                                     // particles along the second axis
+  GridPlane plane = GridPlane::xz;
+  Eigen::Vector3d center{0.0, 1.0, 0.0};          // m
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // deg, Euler (x, y, z) about the centre
   std::vector<PinSelector> pins;
 };
 

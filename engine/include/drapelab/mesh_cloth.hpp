@@ -30,15 +30,9 @@ struct TriangleMesh {
   Eigen::Matrix2Xd uvs;        // one per vertex in [0, 1], or empty (then planar)
 };
 
-struct MeshClothSpec {
+struct MeshClothSpec : ClothPhysicsSpec {
   TriangleMesh mesh;
-  std::optional<double> mass;           // kg, total, split equally
-  std::optional<double> areal_density;  // kg/m^2, times each vertex area
-  double thickness = 0.005;             // m
-  SpringParams stretch{2000.0, 1.0};
-  SpringParams shear{200.0, 0.5};
-  SpringParams bend{20.0, 0.1};
-  std::vector<int> pinned;              // particle indices held fixed
+  std::vector<int> pinned;  // particle indices held fixed
 };
 
 // Checks the mesh: indices in range, no degenerate (zero-area) triangle, no edge shared by more than

@@ -1,0 +1,30 @@
+// Pieces every cloth builder shares (cloth_building.hpp).
+#include "cloth_building.hpp"
+
+#include <Eigen/Geometry>
+
+namespace drapelab::building {
+
+void add_spring(SpringSet& springs, const Eigen::Matrix3Xd& rest, int a, int b, SpringKind kind,
+                const SpringParams& params) {
+  springs.v0.push_back(a);
+  springs.v1.push_back(b);
+  springs.rest_length.push_back((rest.col(a) - rest.col(b)).norm());
+  springs.ks.push_back(params.ks);
+  springs.kd.push_back(params.kd);
+  springs.kind.push_back(kind);
+}
+
+Eigen::VectorXd vertex_areas(const Eigen::Matrix3Xd& rest, const Eigen::Matrix3Xi& triangles) {
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(rest.cols());
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    const int a = triangles(0, t), b = triangles(1, t), c = triangles(2, t);
+    const double third = 0.5 * (rest.col(b) - rest.col(a)).cross(rest.col(c) - rest.col(a)).norm() / 3.0;
+    area[a] += third;
+    area[b] += third;
+    area[c] += third;
+  }
+  return area;
+}
+
+}  // namespace drapelab::building
