@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
       "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
       "  drapelab stability scenes/curtain.yaml\n"
       "  drapelab study scenes/curtain.yaml --duration 0.5 --factors 1,4\n"
+      "  drapelab report out/sphere_drape\n"
       "Run 'drapelab VERB --help' for a verb's options.");
 
   drapelab::cli::RunArguments run_arguments;
@@ -51,6 +52,10 @@ int main(int argc, char** argv) {
       "study", "Cost and accuracy of every integrator at several steps, against an RK4 reference");
   drapelab::cli::add_study_options(*study, study_arguments);
 
+  drapelab::cli::ReportArguments report_arguments;
+  CLI::App* report = app.add_subcommand("report", "Write one self-contained HTML page for a run or sweep folder");
+  drapelab::cli::add_report_options(*report, report_arguments);
+
   std::string command_line;
   for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
   try {
@@ -72,5 +77,6 @@ int main(int argc, char** argv) {
   if (*check) return drapelab::cli::check_verb(check_arguments, g_interrupted);
   if (*stability) return drapelab::cli::stability_verb(stability_arguments, g_interrupted);
   if (*study) return drapelab::cli::study_verb(study_arguments, command_line, g_interrupted);
+  if (*report) return drapelab::cli::report_verb(report_arguments);
   return drapelab::cli::validate_verb(validate_arguments);
 }

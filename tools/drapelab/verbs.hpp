@@ -67,4 +67,12 @@ struct StudyArguments {
 void add_study_options(CLI::App& verb, StudyArguments& arguments);
 int study_verb(const StudyArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
 
+// drapelab report: one self-contained HTML page for a run folder or a sweep folder.
+struct ReportArguments {
+  std::string folder;  // a run folder or a sweep folder
+  std::string out;     // the HTML file; default FOLDER/report.html
+};
+void add_report_options(CLI::App& verb, ReportArguments& arguments);
+int report_verb(const ReportArguments& arguments);
+
 }  // namespace drapelab::cli

@@ -1,0 +1,69 @@
+// drapelab report DIR [--out FILE]: one self-contained HTML page for a run folder or a sweep folder
+// (the kind is found from the files in it). The page needs no network and references only files
+// inside the folder.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "drapelab/report/report.hpp"
+#include "verbs.hpp"
+
+namespace drapelab::cli {
+
+namespace fs = std::filesystem;
+
+void add_report_options(CLI::App& verb, ReportArguments& arguments) {
+  verb.add_option("folder", arguments.folder, "A run folder (drapelab run) or a sweep folder (drapelab sweep)")
+      ->required();
+  verb.add_option("--out,-o", arguments.out, "The HTML file to write (default: FOLDER/report.html)");
+  verb.footer(
+      "Examples:\n"
+      "  drapelab report out/sphere_drape\n"
+      "  drapelab report out/stiffness-sweep --out stiffness.html\n"
+      "A run folder needs summary.json, metrics.csv and scene.yaml (compare.csv, contacts.csv and render/ "
+      "are used when present); a sweep folder needs sweep.csv (and uses sweep.json). Prints the report's "
+      "path. Exit codes: 0 written, 2 not a run or sweep folder (the message names what is missing), a "
+      "file that cannot be read, or a report that cannot be written.");
+}
+
+int report_verb(const ReportArguments& arguments) {
+  const fs::path folder = arguments.folder;
+  const report::FolderCheck check = report::inspect_folder(folder);
+  if (!check.kind) {
+    std::cerr << "error: " << check.problem << "\n";
+    return kExitBadInput;
+  }
+  const fs::path out = arguments.out.empty() ? folder / "report.html" : fs::path(arguments.out);
+  std::string html;
+  try {
+    html = *check.kind == report::FolderKind::run ? report::run_report_html(folder, out)
+                                                  : report::sweep_report_html(folder);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  // Write beside the target and rename, so a reader never sees half a page.
+  const fs::path partial = fs::path(out.string() + ".partial");
+  {
+    std::ofstream file(partial, std::ios::binary | std::ios::trunc);
+    file << html;
+    if (!file) {
+      std::cerr << "error: cannot write " << out.string() << " (does its folder exist?)\n";
+      std::error_code ec;
+      fs::remove(partial, ec);
+      return kExitBadInput;
+    }
+  }
+  std::error_code ec;
+  fs::rename(partial, out, ec);
+  if (ec) {
+    std::cerr << "error: cannot write " << out.string() << ": " << ec.message() << "\n";
+    fs::remove(partial, ec);
+    return kExitBadInput;
+  }
+  std::cout << out.string() << "\n";
+  return 0;
+}
+
+}  // namespace drapelab::cli
