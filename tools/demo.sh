@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Quickstart 1: install what is missing, build in Release, run the default scene, list the outputs.
+# Quickstart 1: install what is missing, build in Release, run the default scene, list the outputs,
+# render it (when this build has drapelab render) and write its HTML report, whose path comes last.
 # Usage: tools/demo.sh [SCENE] [OUT_DIR]   (default: scenes/sphere_drape.yaml into out/sphere_drape)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -10,6 +11,21 @@ out=${2:-out/$(basename "$scene" .yaml)}
 bash tools/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DDRAPELAB_BUILD_TESTS=OFF >/dev/null
 cmake --build build --target drapelab
-./build/tools/drapelab/drapelab run "$scene" --out "$out" --force
+drapelab=./build/tools/drapelab/drapelab
+# Render only when this build has the render verb (asked at run time); it draws from the run's
+# point caches, so the run then also writes meshes/.
+render=no
+meshes=()
+if "$drapelab" render --help >/dev/null 2>&1; then
+  render=yes
+  meshes=(--meshes pc2)
+fi
+"$drapelab" run "$scene" --out "$out" --force "${meshes[@]}"
+if [[ $render == yes ]]; then
+  # A failed render (no OpenGL, say) leaves the report without pictures, not without a report.
+  "$drapelab" render "$out" || echo "demo: drapelab render failed; the report will say how to render later" >&2
+fi
+report=$("$drapelab" report "$out")
 echo
 echo "drapelab is at build/tools/drapelab/drapelab; the run is in $out/ (see README.md, 'What a run writes')."
+echo "report: $report"

@@ -12,6 +12,8 @@ packages=(
   libcli11-dev                                   # command line
   nlohmann-json3-dev                             # summary.json
   libgtest-dev libgmock-dev                      # tests
+  libxml2-dev libpng-dev                         # tests: parse the HTML report, decode its screenshot
+  chromium                                       # tests: open the HTML report headless
   libbenchmark-dev                               # micro-benchmarks (bench/)
 )
 
