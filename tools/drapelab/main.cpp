@@ -1,4 +1,4 @@
-// drapelab: the command line. Verbs: run, validate, check, stability, study. Exit codes: 0 ok, 1 a solver became unstable or
+// drapelab: the command line. Verbs: run, validate, check, stability, study, sweep. Exit codes: 0 ok, 1 a solver became unstable or
 // failed, 2 bad input (nothing was run), 130 interrupted (files hold the frames recorded so far).
 #include <CLI/CLI.hpp>
 
@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
       "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
       "  drapelab stability scenes/curtain.yaml\n"
       "  drapelab study scenes/curtain.yaml --duration 0.5 --factors 1,4\n"
+      "  drapelab sweep scenes/curtain.yaml --vary cloth.springs.bend.ks=1,10,100 --out out/bend-sweep\n"
       "  drapelab report out/sphere_drape\n"
       "Run 'drapelab VERB --help' for a verb's options.");
 
@@ -51,6 +52,11 @@ int main(int argc, char** argv) {
   CLI::App* study = app.add_subcommand(
       "study", "Cost and accuracy of every integrator at several steps, against an RK4 reference");
   drapelab::cli::add_study_options(*study, study_arguments);
+
+  drapelab::cli::SweepArguments sweep_arguments;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "Run a scene for every combination of varied keys, in parallel child processes (sweep.csv)");
+  drapelab::cli::add_sweep_options(*sweep, sweep_arguments);
 
   drapelab::cli::ReportArguments report_arguments;
   CLI::App* report = app.add_subcommand("report", "Write one self-contained HTML page for a run or sweep folder");
@@ -77,6 +83,7 @@ int main(int argc, char** argv) {
   if (*check) return drapelab::cli::check_verb(check_arguments, g_interrupted);
   if (*stability) return drapelab::cli::stability_verb(stability_arguments, g_interrupted);
   if (*study) return drapelab::cli::study_verb(study_arguments, command_line, g_interrupted);
+  if (*sweep) return drapelab::cli::sweep_verb(sweep_arguments, command_line, g_interrupted);
   if (*report) return drapelab::cli::report_verb(report_arguments);
   return drapelab::cli::validate_verb(validate_arguments);
 }

@@ -67,6 +67,18 @@ struct StudyArguments {
 void add_study_options(CLI::App& verb, StudyArguments& arguments);
 int study_verb(const StudyArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
 
+// drapelab sweep: one `drapelab run` child process per combination of the varied keys' values.
+struct SweepArguments {
+  std::string scene;
+  std::vector<std::string> varies;     // --vary key.path=v1,v2,... (commas inside [] or {} stay)
+  std::string out;                     // the sweep folder: sweep.csv, sweep.json, runs/
+  int jobs = 0;                        // runs at a time; 0 = the number of cores
+  std::vector<std::string> overrides;  // --set key.path=value, in every run
+  bool force = false;                  // replace a sweep already in the folder
+};
+void add_sweep_options(CLI::App& verb, SweepArguments& arguments);
+int sweep_verb(const SweepArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
+
 // drapelab report: one self-contained HTML page for a run folder or a sweep folder.
 struct ReportArguments {
   std::string folder;  // a run folder or a sweep folder
