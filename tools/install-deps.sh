@@ -11,8 +11,10 @@ packages=(
   libyaml-cpp-dev                                # scene files
   libcli11-dev                                   # command line
   nlohmann-json3-dev                             # summary.json
+  libosmesa6-dev libgl-dev                       # drapelab render: offscreen OpenGL (Mesa; no display or GPU)
+  libfreetype-dev fonts-dejavu-core              # drapelab render: label text and its font
   libgtest-dev libgmock-dev                      # tests
-  libxml2-dev libpng-dev                         # tests: parse the HTML report, decode its screenshot
+  libxml2-dev libpng-dev                         # tests (HTML report, screenshot); PNG files of drapelab render
   chromium                                       # tests: open the HTML report headless
   libbenchmark-dev                               # micro-benchmarks (bench/)
 )
