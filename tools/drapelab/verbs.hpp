@@ -67,6 +67,18 @@ struct StudyArguments {
 void add_study_options(CLI::App& verb, StudyArguments& arguments);
 int study_verb(const StudyArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
 
+// drapelab render: PNG images of every recorded frame of a run (a panel per solver), and a video.
+struct RenderArguments {
+  std::string run_dir;   // a run folder with point caches or per-frame OBJ files
+  std::string out;       // default RUN_DIR/render
+  std::string size;      // WxH pixels, all panels; default 480 x 480 per solver
+  std::string camera;    // "eye=x,y,z;target=x,y,z;fov=deg", any subset
+  std::string texture;   // PNG for the cloth; default a checker
+  int every = 1;         // render frames 0, N, 2N, ...
+};
+void add_render_options(CLI::App& verb, RenderArguments& arguments);
+int render_verb(const RenderArguments& arguments, const std::atomic<bool>& interrupt);
+
 // drapelab sweep: one `drapelab run` child process per combination of the varied keys' values.
 struct SweepArguments {
   std::string scene;

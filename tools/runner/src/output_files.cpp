@@ -44,7 +44,8 @@ std::string read_file(const fs::path& path) {
 const std::vector<std::string>& run_output_names() {
   static const std::vector<std::string> names = {"scene.yaml",   "resolved.yaml", "metrics.csv",
                                                  "compare.csv",  "contacts.csv",  "summary.json",
-                                                 "summary.json.partial", "meshes"};
+                                                 "summary.json.partial", "meshes",
+                                                 "render"};  // drapelab render's default folder: stale after a re-run
   return names;
 }
 
