@@ -18,7 +18,9 @@ if [[ "${1:-}" != "--no-sanitizers" ]]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDRAPELAB_SANITIZE=ON >/dev/null
   cmake --build build-sanitize -j "$jobs"
+  # lsan-suppressions.txt: leaks inside system libraries (Mesa's OSMesa), each explained there.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    LSAN_OPTIONS=suppressions="$root/tools/lsan-suppressions.txt" \
     ctest --test-dir build-sanitize -j "$jobs" --output-on-failure
 fi
 echo "== all tests passed"
