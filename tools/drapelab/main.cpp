@@ -27,8 +27,8 @@ int main(int argc, char** argv) {
       "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
       "  drapelab stability scenes/curtain.yaml\n"
       "  drapelab study scenes/curtain.yaml --duration 0.5 --factors 1,4\n"
-      "  drapelab render out/sphere_drape --size 1280x480\n"
       "  drapelab sweep scenes/curtain.yaml --vary cloth.springs.bend.ks=1,10,100 --out out/bend-sweep\n"
+      "  drapelab render out/sphere_drape --size 1280x480\n"
       "  drapelab report out/sphere_drape\n"
       "Run 'drapelab VERB --help' for a verb's options.");
 
@@ -49,19 +49,23 @@ int main(int argc, char** argv) {
       app.add_subcommand("stability", "Find the largest stable step of one solver of a scene (bisection)");
   drapelab::cli::add_stability_options(*stability, stability_arguments);
 
+  drapelab::cli::BenchArguments bench_arguments;
+  CLI::App* bench = app.add_subcommand("bench", "Time every solver on fixed scenes and sizes (bench.csv, bench.md)");
+  drapelab::cli::add_bench_options(*bench, bench_arguments);
+
   drapelab::cli::StudyArguments study_arguments;
   CLI::App* study = app.add_subcommand(
       "study", "Cost and accuracy of every integrator at several steps, against an RK4 reference");
   drapelab::cli::add_study_options(*study, study_arguments);
 
-  drapelab::cli::RenderArguments render_arguments;
-  CLI::App* render = app.add_subcommand("render", "Render a run's frames as PNG images (a panel per solver) and a video");
-  drapelab::cli::add_render_options(*render, render_arguments);
-
   drapelab::cli::SweepArguments sweep_arguments;
   CLI::App* sweep = app.add_subcommand(
       "sweep", "Run a scene for every combination of varied keys, in parallel child processes (sweep.csv)");
   drapelab::cli::add_sweep_options(*sweep, sweep_arguments);
+
+  drapelab::cli::RenderArguments render_arguments;
+  CLI::App* render = app.add_subcommand("render", "Render a run's frames as PNG images (a panel per solver) and a video");
+  drapelab::cli::add_render_options(*render, render_arguments);
 
   drapelab::cli::ReportArguments report_arguments;
   CLI::App* report = app.add_subcommand("report", "Write one self-contained HTML page for a run or sweep folder");
@@ -87,9 +91,10 @@ int main(int argc, char** argv) {
   if (*run) return drapelab::cli::run_verb(run_arguments, command_line, g_interrupted);
   if (*check) return drapelab::cli::check_verb(check_arguments, g_interrupted);
   if (*stability) return drapelab::cli::stability_verb(stability_arguments, g_interrupted);
+  if (*bench) return drapelab::cli::bench_verb(bench_arguments, g_interrupted);
   if (*study) return drapelab::cli::study_verb(study_arguments, command_line, g_interrupted);
-  if (*render) return drapelab::cli::render_verb(render_arguments, g_interrupted);
   if (*sweep) return drapelab::cli::sweep_verb(sweep_arguments, command_line, g_interrupted);
+  if (*render) return drapelab::cli::render_verb(render_arguments, g_interrupted);
   if (*report) return drapelab::cli::report_verb(report_arguments);
   return drapelab::cli::validate_verb(validate_arguments);
 }

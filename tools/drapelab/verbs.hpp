@@ -67,18 +67,6 @@ struct StudyArguments {
 void add_study_options(CLI::App& verb, StudyArguments& arguments);
 int study_verb(const StudyArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
 
-// drapelab render: PNG images of every recorded frame of a run (a panel per solver), and a video.
-struct RenderArguments {
-  std::string run_dir;   // a run folder with point caches or per-frame OBJ files
-  std::string out;       // default RUN_DIR/render
-  std::string size;      // WxH pixels, all panels; default 480 x 480 per solver
-  std::string camera;    // "eye=x,y,z;target=x,y,z;fov=deg", any subset
-  std::string texture;   // PNG for the cloth; default a checker
-  int every = 1;         // render frames 0, N, 2N, ...
-};
-void add_render_options(CLI::App& verb, RenderArguments& arguments);
-int render_verb(const RenderArguments& arguments, const std::atomic<bool>& interrupt);
-
 // drapelab sweep: one `drapelab run` child process per combination of the varied keys' values.
 struct SweepArguments {
   std::string scene;
@@ -91,6 +79,18 @@ struct SweepArguments {
 void add_sweep_options(CLI::App& verb, SweepArguments& arguments);
 int sweep_verb(const SweepArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
 
+// drapelab render: PNG images of every recorded frame of a run (a panel per solver), and a video.
+struct RenderArguments {
+  std::string run_dir;   // a run folder with point caches or per-frame OBJ files
+  std::string out;       // default RUN_DIR/render
+  std::string size;      // WxH pixels, all panels; default 480 x 480 per solver
+  std::string camera;    // "eye=x,y,z;target=x,y,z;fov=deg", any subset
+  std::string texture;   // PNG for the cloth; default a checker
+  int every = 1;         // render frames 0, N, 2N, ...
+};
+void add_render_options(CLI::App& verb, RenderArguments& arguments);
+int render_verb(const RenderArguments& arguments, const std::atomic<bool>& interrupt);
+
 // drapelab report: one self-contained HTML page for a run folder or a sweep folder.
 struct ReportArguments {
   std::string folder;  // a run folder or a sweep folder
@@ -98,5 +98,17 @@ struct ReportArguments {
 };
 void add_report_options(CLI::App& verb, ReportArguments& arguments);
 int report_verb(const ReportArguments& arguments);
+
+// drapelab bench: every solver's cost on a fixed set of scenes and sizes, in one process run.
+struct BenchArguments {
+  bool quick = false;                  // 33 x 33 only, 0.1 s per run
+  std::string out;                     // folder for bench.csv and bench.md; default out/bench
+  std::vector<int> sizes;              // particles per side; default 33, 65, 129, 257
+  std::vector<std::string> scenes;     // scene files; default sphere_drape, table_drape, curtain
+  double duration = 0.0;               // s per run; 0 = 0.5 (0.1 with --quick)
+  int threads = 0;                     // threads for our spring loops; 0 = every core
+};
+void add_bench_options(CLI::App& verb, BenchArguments& arguments);
+int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt);
 
 }  // namespace drapelab::cli

@@ -1,0 +1,52 @@
+// drapelab bench --quick as a smoke test: every scene and solver gets a row, our solver's ratio is 1,
+// the others' ratios are their cost over ours, and bad sizes are refused. Timings are never checked.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "cli_harness.hpp"
+
+namespace drapelab::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BenchCli : public TempDirTest {};
+
+TEST_F(BenchCli, QuickRunWritesARowPerSceneAndSolver) {
+  const fs::path out = dir() / "bench";
+  const fs::path source(DRAPELAB_SOURCE_DIR);
+  const std::string scenes = (source / "scenes/curtain.yaml").string() + "," + (source / "scenes/sphere_drape.yaml").string();
+  const CommandResult result = run_drapelab({"bench", "--quick", "--scenes", scenes, "--out", out.string()});
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const auto lines = split_lines(read_text(out / "bench.csv"));
+  ASSERT_EQ(lines.size(), 1u + 2 * 3) << "a header and 3 solvers for each of 2 scenes";
+  const auto header = split_csv(lines[0]);
+  ASSERT_EQ(header.back(), "cost_ratio_to_ours");
+  double ours_cost = 0.0;
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    const auto cells = split_csv(lines[k]);
+    ASSERT_EQ(cells.size(), header.size()) << lines[k];
+    EXPECT_EQ(cells[1], "33");
+    EXPECT_EQ(cells[8], "ok") << lines[k];
+    const double cost = std::stod(cells[9]), ratio = std::stod(cells[13]);
+    EXPECT_GT(cost, 0.0);
+    if (cells[4] == "ours") {
+      ours_cost = cost;
+      EXPECT_DOUBLE_EQ(ratio, 1.0);
+    } else {
+      EXPECT_NEAR(ratio, cost / ours_cost, 1e-4 * ratio) << lines[k];
+    }
+  }
+  EXPECT_NE(read_text(out / "bench.md").find("| curtain | 33 x 33 | bullet_classic |"), std::string::npos);
+}
+
+TEST_F(BenchCli, BadSizeIsRefused) {
+  const CommandResult result = run_drapelab({"bench", "--sizes", "1", "--out", (dir() / "b").string()});
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("--sizes: 1 particles per side is outside 2..2000"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace drapelab::testing

@@ -1,0 +1,70 @@
+// drapelab bench's outputs (bench_table.hpp).
+#include "bench_table.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "drapelab/runner/output_files.hpp"
+
+namespace drapelab::cli {
+namespace {
+
+std::string number(double value, const char* format = "%.4g") {
+  char text[32];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+bool measured(const BenchRow& row) { return row.status != "skipped"; }
+
+}  // namespace
+
+std::string format_row(const BenchRow& row) {
+  std::ostringstream line;
+  line << row.scene << " " << row.size << "x" << row.size << " " << row.solver << ": " << row.status;
+  if (measured(row))
+    line << ", " << number(row.wall_per_simulated) << " wall s per simulated s, " << number(row.ms_per_step)
+         << " ms per step, x" << number(row.cost_ratio, "%.3g") << " ours";
+  return line.str();
+}
+
+std::string markdown(const BenchTable& table) {
+  std::ostringstream md;
+  md << "Machine: " << table.machine << "\n\n"
+     << "| scene | particles | solver | setting | dt (s) | status | wall s / sim s | ms / step | max stretch | "
+        "max penetration (m) | cost / ours |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const BenchRow& r : table.rows) {
+    md << "| " << r.scene << " | " << r.size << " x " << r.size << " | " << r.solver << " | " << r.setting << " | ";
+    if (!measured(r)) {
+      md << " | " << r.status << " | | | | | |\n";
+      continue;
+    }
+    md << number(r.dt) << " | " << r.status << " | " << number(r.wall_per_simulated) << " | " << number(r.ms_per_step)
+       << " | " << number(r.max_stretch, "%.3g") << " | " << number(r.max_penetration, "%.3g") << " | "
+       << number(r.cost_ratio, "%.3g") << " |\n";
+  }
+  return md.str();
+}
+
+void write_bench_files(const std::filesystem::path& folder, const BenchTable& table) {
+  std::filesystem::create_directories(folder);
+  std::ostringstream csv;
+  csv << "scene,size,particles,springs,solver,type,setting,dt,status,wall_seconds_per_simulated_second,"
+         "ms_per_step,max_stretch,max_penetration,cost_ratio_to_ours\n";
+  for (const BenchRow& r : table.rows) {
+    csv << r.scene << "," << r.size << "," << r.particles << "," << r.springs << "," << r.solver << "," << r.type
+        << ",\"" << r.setting << "\"," << (measured(r) ? number(r.dt, "%.9g") : "") << "," << r.status << ",";
+    if (measured(r))
+      csv << number(r.wall_per_simulated, "%.6g") << "," << number(r.ms_per_step, "%.6g") << ","
+          << number(r.max_stretch, "%.6g") << "," << number(r.max_penetration, "%.6g") << ","
+          << number(r.cost_ratio, "%.6g");
+    else
+      csv << ",,,,";
+    csv << "\n";
+  }
+  runner::write_file_atomically(folder / "bench.csv", csv.str());
+  runner::write_file_atomically(folder / "bench.md", markdown(table));
+}
+
+}  // namespace drapelab::cli

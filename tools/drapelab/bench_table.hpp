@@ -1,0 +1,36 @@
+// drapelab bench's table: rows, CSV and markdown.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace drapelab::cli {
+
+struct BenchRow {
+  std::string scene;
+  int size = 0;                 // particles per side
+  int particles = 0;
+  long long springs = 0;
+  std::string solver, type;
+  std::string setting;          // integrator, iterations, or why it was skipped
+  double dt = 0.0;              // s
+  std::string status;           // ok | unstable | error | skipped
+  double wall_per_simulated = 0.0;  // wall s per simulated s
+  double ms_per_step = 0.0;
+  double max_stretch = 0.0;      // over every frame
+  double max_penetration = 0.0;  // m, over every frame
+  double cost_ratio = 0.0;       // wall_per_simulated / ours (same scene and size)
+};
+
+struct BenchTable {
+  std::string machine;
+  std::vector<BenchRow> rows;
+};
+
+std::string format_row(const BenchRow& row);  // one line for the console
+std::string markdown(const BenchTable& table);
+// bench.csv and bench.md in `folder`, each written atomically.
+void write_bench_files(const std::filesystem::path& folder, const BenchTable& table);
+
+}  // namespace drapelab::cli

@@ -1,0 +1,154 @@
+// drapelab bench: the cost of every solver on a fixed set of scenes and resolutions, measured in one
+// process run so the ratios compare like with like. Our solver runs at its best setting (symplectic
+// Euler at 0.9 of its stable step, the spring fast path, OpenMP threads); Bullet's classic cloth at
+// its cheapest stable setting (a 240 Hz step with 4 iterations, halved until it holds); Bullet's
+// deformable world at its own stable step (skipped above 65 x 65 particles: it costs minutes there).
+// Writes bench.csv and bench.md; the numbers are measurements, never checked against targets.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "bench_table.hpp"
+#include "drapelab/runner/output_files.hpp"
+#include "drapelab/runner/run_scene.hpp"
+#include "drapelab/runner/simulate_solver.hpp"
+#include "drapelab/scene/number_format.hpp"
+#include "drapelab/spring_family_loops.hpp"
+#include "trial_scene.hpp"
+#include "verbs.hpp"
+
+namespace drapelab::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The solvers every bench scene runs, replacing the scene's own list.
+const std::string kSolvers =
+    "solvers=[{name: ours, type: spring_damper, integrator: symplectic_euler, host: none},"
+    " {name: bullet_classic, type: bullet_softbody, iterations: 4, dt: 0.004166666666666667},"
+    " {name: bullet_deformable, type: bullet_deformable}]";
+constexpr int kLargestDeformable = 65;  // particles per side
+constexpr int kClassicHalvings = 3;     // 240 Hz, then 480, 960, 1920 Hz
+
+struct Measured {
+  runner::SimulationResult result;
+  double max_penetration = 0.0;  // m, over every recorded frame
+  double max_stretch = 0.0;      // over every recorded frame
+};
+
+Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec, const runner::SceneSetup& setup,
+                 const std::atomic<bool>& interrupt) {
+  Measured m;
+  runner::SimulationOptions options;
+  options.interrupt = &interrupt;
+  options.stretch_limit = 1.0;  // the stability verb's rule: twice the rest length has blown up
+  options.on_frame = [&](int, const ClothState&, const ClothMetrics& metrics) {
+    m.max_stretch = std::max(m.max_stretch, metrics.max_stretch);
+    if (metrics.max_penetration) m.max_penetration = std::max(m.max_penetration, *metrics.max_penetration);
+  };
+  m.result = runner::simulate_solver(scene, spec, setup, options);
+  return m;
+}
+
+std::string cpu_name() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+}  // namespace
+
+void add_bench_options(CLI::App& verb, BenchArguments& arguments) {
+  verb.add_flag("--quick", arguments.quick, "33 x 33 particles only, 0.1 s per run (a smoke test)");
+  verb.add_option("--out", arguments.out, "Folder for bench.csv and bench.md (default out/bench)");
+  verb.add_option("--sizes", arguments.sizes, "Particles per side (default 33,65,129,257)")->delimiter(',');
+  verb.add_option("--scenes", arguments.scenes,
+                  "Scene files (default scenes/sphere_drape.yaml, scenes/table_drape.yaml, scenes/curtain.yaml)")
+      ->delimiter(',');
+  verb.add_option("--duration", arguments.duration, "Simulated seconds per run (default 0.5; 0.1 with --quick)");
+  verb.add_option("--threads", arguments.threads, "Threads for our spring loops (default: every core)");
+}
+
+int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt) {
+  std::vector<int> sizes = arguments.sizes;
+  if (sizes.empty()) sizes = arguments.quick ? std::vector<int>{33} : std::vector<int>{33, 65, 129, 257};
+  std::vector<std::string> scenes = arguments.scenes;
+  if (scenes.empty()) scenes = {"scenes/sphere_drape.yaml", "scenes/table_drape.yaml", "scenes/curtain.yaml"};
+  const double duration = arguments.duration > 0.0 ? arguments.duration : (arguments.quick ? 0.1 : 0.5);
+  const fs::path out = arguments.out.empty() ? fs::path("out/bench") : fs::path(arguments.out);
+  const int threads = arguments.threads > 0 ? arguments.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  for (int n : sizes)
+    if (n < 2 || n > 2000) {
+      std::cerr << "error: --sizes: " << n << " particles per side is outside 2..2000\n";
+      return kExitBadInput;
+    }
+  kernels::set_thread_count(threads);
+
+  BenchTable table;
+  table.machine = cpu_name() + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, " +
+                  std::to_string(kernels::thread_count()) + " threads for our spring loops";
+  for (const std::string& file : scenes)
+    for (int n : sizes) {
+      const std::string resolution = "cloth.resolution=[" + std::to_string(n) + ", " + std::to_string(n) + "]";
+      const auto scene = load_trial_scene(file, {resolution, kSolvers}, duration);
+      if (!scene) return kExitBadInput;  // the loader printed why
+      const runner::SceneSetup setup = runner::build_scene_setup(*scene);
+      double ours_cost = 0.0;  // wall s per simulated s
+      for (const auto& spec : scene->solvers) {
+        BenchRow row;
+        row.scene = scene->name;
+        row.size = n;
+        row.particles = setup.model->particle_count();
+        row.springs = static_cast<long long>(setup.model->springs.size());
+        row.solver = spec.name;
+        row.type = spec.type;
+        if (spec.type == "bullet_deformable" && n > kLargestDeformable) {
+          row.status = "skipped";
+          row.setting = "over " + std::to_string(kLargestDeformable) + " x " + std::to_string(kLargestDeformable) +
+                        ": minutes per run";
+          table.rows.push_back(row);
+          continue;
+        }
+        scene::SolverSpec trial = spec;
+        Measured m = measure(*scene, trial, setup, interrupt);
+        // Bullet's classic cloth: halve the step until it holds (its cheapest stable setting).
+        for (int halving = 0; spec.type == "bullet_softbody" && halving < kClassicHalvings &&
+                              m.result.status != SolverStatus::ok && !m.result.interrupted();
+             ++halving) {
+          trial = with_steps_per_frame(trial, scene->frame_period(), 2 * trial.steps_per_frame);
+          m = measure(*scene, trial, setup, interrupt);
+        }
+        if (m.result.interrupted()) {
+          std::cerr << "interrupted; " << (out / "bench.csv").string() << " holds the rows measured so far\n";
+          return runner::kExitInterrupted;
+        }
+        row.setting = spec.type == "spring_damper"      ? std::string(integrator_name(trial.integrator))
+                      : spec.type == "bullet_softbody" ? std::to_string(trial.iterations) + " iterations"
+                                                        : "its stable step";
+        row.dt = trial.dt;
+        row.status = solver_status_name(m.result.status);
+        row.wall_per_simulated = m.result.wall_seconds_per_simulated_second();
+        row.ms_per_step = m.result.ms_per_step();
+        row.max_stretch = m.max_stretch;
+        row.max_penetration = m.max_penetration;
+        if (spec.type == "spring_damper") ours_cost = row.wall_per_simulated;
+        row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
+        table.rows.push_back(row);
+        std::cout << format_row(row) << std::endl;
+        write_bench_files(out, table);  // after every row, so an interrupted bench keeps what it measured
+      }
+    }
+  write_bench_files(out, table);
+  std::cout << "\n" << markdown(table) << "\nwrote " << (out / "bench.csv").string() << " and "
+            << (out / "bench.md").string() << "\n";
+  return 0;
+}
+
+}  // namespace drapelab::cli
