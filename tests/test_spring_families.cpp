@@ -53,6 +53,30 @@ TEST(SpringFamilies, ForcesEqualThePlainLoopToRoundingOnEveryGrid) {
   }
 }
 
+TEST(SpringFamilies, FamiliesWithVaryingSpringsReadPerSpringValuesAndStillEqualThePlainLoop) {
+  // A grid's families are uniform (one rest length, ks and kd each); varying one spring of every kind
+  // sends those families through the per-slot arrays instead.
+  const GridClothSpec spec = grid(33, 17);
+  ClothModel model = build_grid_cloth(spec);
+  for (std::size_t e = 0; e < model.springs.size(); e += 97) {
+    model.springs.ks[e] *= 1.5;
+    model.springs.rest_length[e] *= 0.9;
+  }
+  const ClothState state = shaken(model, spec);
+  auto families = SpringFamilies::build(model);
+  ASSERT_TRUE(families);
+  Eigen::Matrix3Xd plain = Eigen::Matrix3Xd::Constant(3, model.particle_count(), -0.5);
+  Eigen::Matrix3Xd fast = plain;
+  add_spring_forces(model, state.x, state.v, plain);
+  families->add_forces(state.x, state.v, fast);
+  EXPECT_LT((fast - plain).cwiseAbs().maxCoeff(), 1e-12 * plain.cwiseAbs().maxCoeff());
+  // The varied springs really change the force (the test would pass vacuously otherwise).
+  const ClothModel uniform = build_grid_cloth(spec);
+  Eigen::Matrix3Xd unvaried = Eigen::Matrix3Xd::Constant(3, model.particle_count(), -0.5);
+  add_spring_forces(uniform, state.x, state.v, unvaried);
+  EXPECT_GT((unvaried - plain).cwiseAbs().maxCoeff(), 1e-3);
+}
+
 TEST(SpringFamilies, MeshesWithManyOffsetsKeepThePlainLoop) {
   DiscSpec disc;
   MeshClothSpec spec;

@@ -6,58 +6,76 @@
 
 namespace drapelab {
 
+namespace {
+
+// A family whose springs all share rest length, ks and kd keeps those three numbers and the list of
+// its empty slots (spring_family_loops.hpp). An empty slot has rest = ks = kd = 0.
+void mark_if_uniform(SpringFamily& family) {
+  const std::size_t n = family.rest.size();
+  std::size_t first = 0;
+  while (first < n && family.rest[first] == 0.0 && family.ks[first] == 0.0 && family.kd[first] == 0.0) ++first;
+  if (first == n) return;
+  const double rest = family.rest[first], ks = family.ks[first], kd = family.kd[first];
+  std::vector<std::int32_t> empty;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool is_empty = family.rest[i] == 0.0 && family.ks[i] == 0.0 && family.kd[i] == 0.0;
+    if (is_empty) empty.push_back(static_cast<std::int32_t>(i));
+    else if (family.rest[i] != rest || family.ks[i] != ks || family.kd[i] != kd) return;
+  }
+  family.uniform = true;
+  family.uniform_rest = rest;
+  family.uniform_ks = ks;
+  family.uniform_kd = kd;
+  family.empty_slots = std::move(empty);
+}
+
+}  // namespace
+
 std::unique_ptr<SpringFamilies> SpringFamilies::build(const ClothModel& model, int max_families) {
   const SpringSet& s = model.springs;
+  const std::int64_t n = model.particle_count();
   if (s.size() == 0) return nullptr;
-  // offset -> (first particle, spring index), first particle the smaller index.
-  std::map<std::int32_t, std::vector<std::pair<std::int32_t, std::size_t>>> by_offset;
+  // offset -> family, first particle the smaller index.
+  std::map<std::int32_t, SpringFamily> by_offset;
   for (std::size_t e = 0; e < s.size(); ++e) {
     const std::int32_t a = std::min(s.v0[e], s.v1[e]), b = std::max(s.v0[e], s.v1[e]);
     if (a == b) return nullptr;  // a spring on one particle has no offset
-    by_offset[b - a].emplace_back(a, e);
-    if (static_cast<int>(by_offset.size()) > max_families) return nullptr;
+    auto [entry, added] = by_offset.try_emplace(b - a);
+    SpringFamily& family = entry->second;
+    if (added) {
+      if (static_cast<int>(by_offset.size()) > max_families) return nullptr;
+      family.offset = b - a;
+      family.rest.assign(static_cast<std::size_t>(n), 0.0);
+      family.ks.assign(static_cast<std::size_t>(n), 0.0);
+      family.kd.assign(static_cast<std::size_t>(n), 0.0);
+    }
+    // A slot with ks = kd = 0 is empty: a zero-stiffness spring may share it with nothing else either.
+    if (family.rest[a] != 0.0 || family.ks[a] != 0.0 || family.kd[a] != 0.0)
+      return nullptr;  // two springs start at one particle: not a family
+    // The force formula is symmetric in the two ends, up to the sign the gather applies: the first
+    // particle here may be the model's v1, which receives -f from add_spring_forces, and receives here
+    // +f(x_first - x_second), the same vector.
+    family.rest[a] = s.rest_length[e];
+    family.ks[a] = s.ks[e];
+    family.kd[a] = s.kd[e];
+    ++family.springs;
   }
   auto families = std::make_unique<SpringFamilies>();
-  std::size_t runs = 0;
-  for (auto& [offset, members] : by_offset) {
-    std::sort(members.begin(), members.end());
-    SpringFamily family;
-    family.offset = offset;
-    for (std::size_t m = 0; m < members.size(); ++m) {
-      const auto [first, e] = members[m];
-      if (m > 0 && members[m - 1].first == first) return nullptr;  // two springs on one pair: not a family
-      const bool continues = m > 0 && members[m - 1].first + 1 == first;
-      if (!continues) {
-        family.run_start.push_back(first);
-        family.run_length.push_back(0);
-        family.run_slot.push_back(static_cast<std::int32_t>(m));
-      }
-      ++family.run_length.back();
-      // The force formula is symmetric in the two ends, up to the sign the scatter applies: the
-      // first particle here may be the model's v1, which receives -f from add_spring_forces, and
-      // receives here +f(x_first - x_second), the same vector.
-      family.rest.push_back(s.rest_length[e]);
-      family.ks.push_back(s.ks[e]);
-      family.kd.push_back(s.kd[e]);
-    }
-    runs += family.run_start.size();
+  std::int32_t max_offset = 0;
+  for (auto& [offset, family] : by_offset) {
+    max_offset = std::max(max_offset, offset);
+    mark_if_uniform(family);
     families->families_.push_back(std::move(family));
   }
-  if (s.size() < 4 * runs) return nullptr;  // short runs: the gather path is as good
-  std::size_t largest = 0;
-  for (const auto& family : families->families_) largest = std::max(largest, family.rest.size());
-  for (int c = 0; c < 3; ++c) families->t_[c].resize(largest);
+  const std::int64_t slots = n * static_cast<std::int64_t>(families->families_.size());
+  if (2 * static_cast<std::int64_t>(s.size()) < slots) return nullptr;  // sparse: the edge list is as good
+  families->scratch_.resize(n, static_cast<std::int64_t>(families->families_.size()), max_offset);
   return families;
 }
 
 void SpringFamilies::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force) {
   // Matrix3Xd stores x, y, z of each particle together: the packed layout the loops read.
-  const kernels::PackedState state{x.data(), v.data()};
-  double* const t[3] = {t_[0].data(), t_[1].data(), t_[2].data()};
-  for (const SpringFamily& family : families_) {
-    kernels::family_forces(state, family, t);
-    kernels::family_scatter(family, t, force.data());
-  }
+  kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data());
 }
 
 }  // namespace drapelab

@@ -1,8 +1,10 @@
-// Vectorised, threaded loops of the spring fast path (spring_family_loops.hpp). Runs are independent
-// (no two springs of a family share a first particle, nor a second one), so they are split among
-// threads with a static schedule; no sum depends on the thread count.
+// Vectorised, threaded loops of the spring fast path (spring_family_loops.hpp). One parallel region
+// per call: split the state into unit-stride arrays, compute every family's slot forces, then gather
+// each particle's forces; each loop is split among threads with a static schedule, and every value is
+// computed by the same expression whichever thread computes it, so no sum depends on the thread count.
 #include "drapelab/spring_family_loops.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #ifdef _OPENMP
@@ -12,11 +14,20 @@
 namespace drapelab::kernels {
 namespace {
 
-// Below this many springs in a family, starting threads costs more than it saves (a parallel
-// region costs a few microseconds; a spring about a nanosecond).
-constexpr std::int64_t kParallelSprings = 8192;
+// Below this many slots in all, starting threads costs more than it saves (a parallel region costs a
+// few microseconds; a slot about a nanosecond).
+constexpr std::int64_t kParallelSlots = 16384;
+// Particles per block of the gather, so a block's accumulators and force rows stay in L1.
+constexpr std::int64_t kGatherBlock = 512;
 
 }  // namespace
+
+void FamilyScratch::resize(std::int64_t particle_count, std::int64_t families, std::int64_t max_offset) {
+  particles = particle_count;
+  padding = max_offset;
+  state.assign(static_cast<std::size_t>(6 * (particles + padding)), 0.0);
+  forces.assign(static_cast<std::size_t>(3 * families * (padding + particles)), 0.0);
+}
 
 void set_thread_count(int threads) {
 #ifdef _OPENMP
@@ -34,65 +45,86 @@ int thread_count() {
 #endif
 }
 
-void family_forces(const PackedState& s, const SpringFamily& family, double* const t[3]) {
-  const std::int64_t runs = static_cast<std::int64_t>(family.run_start.size());
-  const std::int64_t offset = 3 * static_cast<std::int64_t>(family.offset);  // doubles between the ends
-  const double* rest = family.rest.data();
-  const double* ks = family.ks.data();
-  const double* kd = family.kd.data();
-  double* tx = t[0];
-  double* ty = t[1];
-  double* tz = t[2];
-#pragma omp parallel for schedule(static) if (family.size() >= kParallelSprings)
-  for (std::int64_t r = 0; r < runs; ++r) {
-    const std::int32_t length = family.run_length[r], slot = family.run_slot[r];
-    const double* x = s.x + 3 * static_cast<std::int64_t>(family.run_start[r]);
-    const double* v = s.v + 3 * static_cast<std::int64_t>(family.run_start[r]);
-#pragma omp simd
-    for (std::int32_t k = 0; k < length; ++k) {
-      const std::int64_t a = 3 * static_cast<std::int64_t>(k), b = a + offset;
-      const double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
-      const double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
-      const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
-      const double inverse = l > 0.0 ? 1.0 / l : 0.0;  // a zero-length spring has no direction: no force
-      const std::int32_t e = slot + k;
-      const double magnitude = ks[e] * (l - rest[e]) + kd[e] * (dvx * dx + dvy * dy + dvz * dz) * inverse;  // N
-      const double scale = -magnitude * inverse;
-      tx[e] = scale * dx;
-      ty[e] = scale * dy;
-      tz[e] = scale * dz;
+void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
+                       FamilyScratch& scratch, double* f) {
+  const std::int64_t n = scratch.particles;
+  const std::int64_t family_count = static_cast<std::int64_t>(families.size());
+  double* const px = scratch.state_row(0);
+  double* const py = scratch.state_row(1);
+  double* const pz = scratch.state_row(2);
+  double* const vx = scratch.state_row(3);
+  double* const vy = scratch.state_row(4);
+  double* const vz = scratch.state_row(5);
+  const std::int64_t blocks = (n + kGatherBlock - 1) / kGatherBlock;
+#pragma omp parallel if (n * family_count >= kParallelSlots)
+  {
+    // 1. The packed state into six unit-stride arrays (their padding stays zero).
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      px[i] = x[3 * i];
+      py[i] = x[3 * i + 1];
+      pz[i] = x[3 * i + 2];
+      vx[i] = v[3 * i];
+      vy[i] = v[3 * i + 1];
+      vz[i] = v[3 * i + 2];
     }
-  }
-}
-
-void family_scatter(const SpringFamily& family, double* const t[3], double* f) {
-  const std::int64_t runs = static_cast<std::int64_t>(family.run_start.size());
-  const std::int64_t offset = 3 * static_cast<std::int64_t>(family.offset);
-  const bool parallel = family.size() >= kParallelSprings;
-  const double* tx = t[0];
-  const double* ty = t[1];
-  const double* tz = t[2];
-#pragma omp parallel for schedule(static) if (parallel)
-  for (std::int64_t r = 0; r < runs; ++r) {
-    double* out = f + 3 * static_cast<std::int64_t>(family.run_start[r]);
-    const std::int32_t slot = family.run_slot[r];
-#pragma omp simd
-    for (std::int32_t k = 0; k < family.run_length[r]; ++k) {
-      out[3 * k] += tx[slot + k];
-      out[3 * k + 1] += ty[slot + k];
-      out[3 * k + 2] += tz[slot + k];
+    // 2. Every slot's force on its first particle (families write disjoint rows: no barrier between).
+    for (std::int64_t family = 0; family < family_count; ++family) {
+      const SpringFamily& fam = families[static_cast<std::size_t>(family)];
+      const std::int64_t o = fam.offset;
+      double* tx = scratch.force_row(family, 0);
+      double* ty = scratch.force_row(family, 1);
+      double* tz = scratch.force_row(family, 2);
+      // The same expression for both layouts, so a slot's force does not depend on which one ran.
+      const auto slot_force = [&](std::int64_t i, double rest, double ks, double kd) {
+        const double dx = px[i] - px[i + o], dy = py[i] - py[i + o], dz = pz[i] - pz[i + o];
+        const double dvx = vx[i] - vx[i + o], dvy = vy[i] - vy[i + o], dvz = vz[i] - vz[i + o];
+        const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
+        const double inverse = l > 0.0 ? 1.0 / l : 0.0;  // a zero-length spring has no direction: no force
+        const double magnitude = ks * (l - rest) + kd * (dvx * dx + dvy * dy + dvz * dz) * inverse;  // N
+        const double scale = -magnitude * inverse;
+        tx[i] = scale * dx;
+        ty[i] = scale * dy;
+        tz[i] = scale * dz;
+      };
+      if (fam.uniform) {
+        const double rest = fam.uniform_rest, ks = fam.uniform_ks, kd = fam.uniform_kd;
+#pragma omp for simd schedule(simd:static)
+        for (std::int64_t i = 0; i < n; ++i) slot_force(i, rest, ks, kd);
+        // The slots without a spring computed a force towards a non-neighbour (or the padding).
+        const std::int64_t empty = static_cast<std::int64_t>(fam.empty_slots.size());
+#pragma omp for schedule(static) nowait
+        for (std::int64_t e = 0; e < empty; ++e) {
+          const std::int32_t i = fam.empty_slots[static_cast<std::size_t>(e)];
+          tx[i] = ty[i] = tz[i] = 0.0;
+        }
+      } else {
+        const double* rest = fam.rest.data();
+        const double* ks = fam.ks.data();
+        const double* kd = fam.kd.data();
+#pragma omp for simd schedule(simd:static) nowait
+        for (std::int64_t i = 0; i < n; ++i) slot_force(i, rest[i], ks[i], kd[i]);
+      }
     }
-  }
-  // The second particles, in a pass of their own: k + offset may be another run's first particle.
-#pragma omp parallel for schedule(static) if (parallel)
-  for (std::int64_t r = 0; r < runs; ++r) {
-    double* out = f + 3 * static_cast<std::int64_t>(family.run_start[r]) + offset;
-    const std::int32_t slot = family.run_slot[r];
+#pragma omp barrier
+    // 3. Each particle gathers +t of the slots it starts and -t of the slots it ends, family by family.
+#pragma omp for schedule(static)
+    for (std::int64_t block = 0; block < blocks; ++block) {
+      const std::int64_t begin = block * kGatherBlock, end = std::min(n, begin + kGatherBlock);
+      double sum[3][kGatherBlock];
+      for (std::int64_t i = begin; i < end; ++i)
+        for (int c = 0; c < 3; ++c) sum[c][i - begin] = f[3 * i + c];
+      for (std::int64_t family = 0; family < family_count; ++family) {
+        const std::int64_t o = families[static_cast<std::size_t>(family)].offset;
+        for (int c = 0; c < 3; ++c) {
+          const double* t = scratch.force_row(family, c) + begin;  // t[j - o] may read the leading zeros
+          double* s = sum[c];
 #pragma omp simd
-    for (std::int32_t k = 0; k < family.run_length[r]; ++k) {
-      out[3 * k] -= tx[slot + k];
-      out[3 * k + 1] -= ty[slot + k];
-      out[3 * k + 2] -= tz[slot + k];
+          for (std::int64_t j = 0; j < end - begin; ++j) s[j] = (s[j] + t[j]) - t[j - o];
+        }
+      }
+      for (std::int64_t i = begin; i < end; ++i)
+        for (int c = 0; c < 3; ++c) f[3 * i + c] = sum[c][i - begin];
     }
   }
 }

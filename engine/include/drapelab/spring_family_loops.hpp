@@ -8,29 +8,46 @@
 
 namespace drapelab {
 
-// Springs (k, k + offset) for k in runs of consecutive first particles.
+// The springs (i, i + offset) of one family, stored densely by first particle: slot i of every array
+// describes the spring whose first particle is i, and holds zeros where there is none (a grid row's
+// last particle has no +1 neighbour), so the loops run over every slot without branches.
+// When every spring of the family has the same rest length, ks and kd (a regular grid), the loops
+// read those three numbers instead of three arrays and then clear the empty slots.
 struct SpringFamily {
   std::int32_t offset = 0;
-  std::vector<std::int32_t> run_start;   // first particle of each run
-  std::vector<std::int32_t> run_length;  // springs in the run
-  std::vector<std::int32_t> run_slot;    // index of the run's first spring in the arrays below
-  std::vector<double> rest, ks, kd;      // per spring: m, N/m, N*s/m
-  std::int64_t size() const { return static_cast<std::int64_t>(rest.size()); }
+  std::int64_t springs = 0;              // slots holding a real spring
+  std::vector<double> rest, ks, kd;      // per slot: m, N/m, N*s/m (0, 0, 0 for no spring)
+  bool uniform = false;                  // every spring has uniform_rest, uniform_ks, uniform_kd
+  double uniform_rest = 0.0, uniform_ks = 0.0, uniform_kd = 0.0;  // m, N/m, N*s/m
+  std::vector<std::int32_t> empty_slots; // uniform only: the slots holding no spring
 };
 
 namespace kernels {
 
-// Positions and velocities as stored in ClothState: x, y, z of particle k at [3k], [3k+1], [3k+2]
-// (m, m/s).
-struct PackedState {
-  const double* x;
-  const double* v;
+// Scratch of the loops, sized once for a cloth of `particles` and `families` families whose largest
+// offset is `max_offset`: the state split into six arrays of x, y, z, vx, vy, vz (each padded by
+// max_offset zeros, so that slot i may read particle i + offset), and per family the three force
+// components of every slot (each preceded by max_offset zeros, so that particle i may read slot
+// i - offset).
+struct FamilyScratch {
+  std::int64_t particles = 0;
+  std::int64_t padding = 0;
+  std::vector<double> state;   // 6 x (particles + padding)
+  std::vector<double> forces;  // families x 3 x (padding + particles)
+  void resize(std::int64_t particles, std::int64_t families, std::int64_t max_offset);
+  double* state_row(int row) { return state.data() + row * (particles + padding); }
+  double* force_row(std::int64_t family, int component) {
+    return forces.data() + (3 * family + component) * (padding + particles) + padding;
+  }
 };
-// t[c][slot] = the damped spring force on the first particle of every spring of the family (N):
-// -[ks (l - l0) + kd (dv . d) / l] d / l with d = x(k) - x(k + offset); zero for a zero length.
-void family_forces(const PackedState& s, const SpringFamily& family, double* const t[3]);
-// f[3k + c] += t[c] for the first particles, then f[3(k + offset) + c] -= t[c] for the second ones.
-void family_scatter(const SpringFamily& family, double* const t[3], double* f);
+
+// f[3i + c] += (sum over families, in order) t_f[c][i] - t_f[c][i - offset_f], where t_f[c][i] is the
+// damped force on the first particle of the spring in slot i,
+//   -[ks (l - l0) + kd (dv . d) / l] d / l,   d = x(i) - x(i + offset),   zero for a zero length (N).
+// x, v, f: 3 x particles, packed as in ClothState (m, m/s, N). Every particle's terms are summed in
+// the same order whatever the thread count, so the result is bitwise identical for any thread count.
+void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
+                       FamilyScratch& scratch, double* f);
 // Threads the loops use (OpenMP); always 1 in a build without OpenMP.
 void set_thread_count(int threads);
 int thread_count();
