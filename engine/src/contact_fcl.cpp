@@ -50,8 +50,7 @@ FclCollider make_fcl_collider(const Collider& c) {
 
 ParticleContactQuery::ParticleContactQuery(double radius)
     : radius_(radius),
-      sphere_(std::make_shared<fcl::Sphere<double>>(radius)),
-      contacts_(std::make_unique<std::vector<fcl::ContactPoint<double>>>()) {
+      sphere_(std::make_shared<fcl::Sphere<double>>(radius)) {
   sphere_->computeLocalAABB();
 }
 
@@ -65,7 +64,8 @@ std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& 
   // The same closed forms fcl::collide dispatches to for these pairs (bullet-notes section 3).
   const auto& particle = static_cast<const fcl::Sphere<double>&>(*sphere_);
   const fcl::CollisionGeometry<double>& shape = *collider.geometry;
-  std::vector<fcl::ContactPoint<double>>& contacts = *contacts_;
+  // One scratch list per thread (the contact phase queries from several), cleared, capacity kept.
+  thread_local std::vector<fcl::ContactPoint<double>> contacts;
   contacts.clear();
   bool touching = false;
   switch (shape.getNodeType()) {

@@ -1,49 +1,50 @@
 // The contact phase of our step: broad phase by bounding box, exact FCL narrow phase, penalty normal
-// force and velocity-level Coulomb friction relative to the collider's moving surface.
+// force and velocity-level Coulomb friction relative to the collider's moving surface. Particles are
+// handled in fixed blocks spread over the threads; each block keeps its own totals and contact list,
+// and the blocks are then summed in block order, so no result depends on the thread count.
 #include "drapelab/contact_model.hpp"
+#include "drapelab/particle_loops.hpp"
 #include "drapelab/penalty_contact.hpp"
 
 #include <fcl/geometry/shape/halfspace.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace drapelab {
 namespace {
 
-// Broad phase for one posed collider: a few multiplications tell that a particle cannot touch it.
-// A plane compares the particle's height above it; other shapes test the bounding box and the
-// bounding sphere (the box alone is loose for a rotated or round shape).
-class NearTest {
- public:
-  NearTest(const FclCollider& collider, const Eigen::Isometry3d& pose, double radius) : radius_(radius) {
-    plane_ = collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE;
-    if (plane_) {
-      const auto& halfspace = static_cast<const fcl::Halfspace<double>&>(*collider.geometry);
-      normal_ = pose.linear() * halfspace.n;
-      offset_ = halfspace.d + normal_.dot(pose.translation());
-      return;
-    }
-    box_ = collider_bounds(collider, pose, radius);
-    const fcl::AABBd& local = collider.geometry->aabb_local;
-    center_ = pose * local.center();
-    reach_ = 0.5 * (local.max_ - local.min_).norm() + radius;
-  }
+// Particles per block: large enough that a block's bookkeeping is noise, small enough that the blocks
+// holding a contact patch are shared out between the threads. Fixed, never derived from the thread
+// count, so every sum runs in the same order on any machine.
+constexpr int kContactBlock = 1024;
+// Below this many particles, starting threads costs more than the phase.
+constexpr int kParallelContactParticles = 4096;
 
-  bool may_touch(const Eigen::Vector3d& x) const {
-    if (plane_) return normal_.dot(x) - offset_ < radius_;
-    return box_.contains(x) && (x - center_).squaredNorm() < reach_ * reach_;
+// The broad phase of one posed collider: a plane compares the particle's height above it; other
+// shapes test the bounding box and the bounding sphere (the box alone is loose for a rotated or round
+// shape).
+kernels::NearCollider near_test(const FclCollider& collider, const Eigen::Isometry3d& shape_pose, double radius) {
+  kernels::NearCollider near;
+  near.plane = collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE;
+  if (near.plane) {
+    const auto& halfspace = static_cast<const fcl::Halfspace<double>&>(*collider.geometry);
+    const Eigen::Vector3d normal = shape_pose.linear() * halfspace.n;
+    Eigen::Map<Eigen::Vector3d>(near.normal) = normal;
+    near.offset = halfspace.d + normal.dot(shape_pose.translation());
+    near.radius = radius;
+    return near;
   }
-
- private:
-  double radius_;
-  bool plane_ = false;
-  Eigen::Vector3d normal_ = Eigen::Vector3d::Zero();  // plane: world normal
-  double offset_ = 0.0;                               // plane: n . p on the plane (m)
-  Eigen::AlignedBox3d box_;
-  Eigen::Vector3d center_ = Eigen::Vector3d::Zero();  // bounding sphere centre (m)
-  double reach_ = 0.0;                                // bounding sphere radius + particle radius (m)
-};
+  const Eigen::AlignedBox3d box = collider_bounds(collider, shape_pose, radius);
+  Eigen::Map<Eigen::Vector3d>(near.low) = box.min();
+  Eigen::Map<Eigen::Vector3d>(near.high) = box.max();
+  const fcl::AABBd& local = collider.geometry->aabb_local;
+  Eigen::Map<Eigen::Vector3d>(near.center) = shape_pose * local.center();
+  const double reach = 0.5 * (local.max_ - local.min_).norm() + radius;
+  near.reach_squared = reach * reach;
+  return near;
+}
 
 }  // namespace
 
@@ -68,45 +69,88 @@ Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
 void ContactModel::add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
                                       const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
                                       std::vector<ColliderContactTotals>& totals,
-                                      std::vector<ActiveContact>* active) const {
-  if (active) active->clear();
-  totals.assign(colliders_.size(), ColliderContactTotals{});  // capacity kept after the first step
-  for (std::size_t c = 0; c < colliders_.size(); ++c) {
-    const Collider& collider = colliders_[c];
-    // Posed and moving as the host world has it when there is a pose table, else by the collider's
-    // own motion (the bare solver: every expression below as it was before hosts existed).
+                                      std::vector<ActiveContact>* active, ContactWorkspace* workspace) const {
+  ContactWorkspace temporary;
+  ContactWorkspace& work = workspace ? *workspace : temporary;
+  const std::size_t collider_count = colliders_.size();
+  const int n = model.particle_count();
+  const std::int64_t blocks = (n + kContactBlock - 1) / kContactBlock;
+
+  // Pose every collider once: as the host world has it when there is a pose table, else by the
+  // collider's own motion (the bare solver).
+  work.posed.resize(collider_count);
+  for (std::size_t c = 0; c < collider_count; ++c) {
     const ColliderKinematics hosted = poses_ ? poses_->at(c, t) : ColliderKinematics{};
-    const Eigen::Isometry3d pose =
-        (poses_ ? hosted.pose : collider_pose(collider, t)) * fcl_colliders_[c].shape_in_collider;
-    const NearTest near(fcl_colliders_[c], pose, query_.radius());
-    const bool moving = poses_ ? hosted.moving() : !collider.motion.is_static();
-    ColliderContactTotals& total = totals[c];
-    for (int i = 0; i < model.particle_count(); ++i) {
-      if (model.is_pinned(i) || !near.may_touch(x.col(i))) continue;  // broad phase
-      const auto touching = query_.contact(fcl_colliders_[c], pose, x.col(i));
-      if (!touching) continue;
-      const Eigen::Vector3d& n = touching->normal;
-      const Eigen::Vector3d surface_velocity =
-          !moving  ? Eigen::Vector3d::Zero()
-          : poses_ ? hosted.point_velocity(x.col(i))
-                   : collider_point_velocity(collider, t, x.col(i));
-      const Eigen::Vector3d relative_velocity = v.col(i) - surface_velocity;
-      const double fn = penalty_normal_force(touching->depth, relative_velocity.dot(n), parameters_.stiffness,
-                                             parameters_.damping);
-      force.col(i) += fn * n;
-      if (active && fn > 0.0) active->push_back({i, n});
-      Eigen::Vector3d friction = Eigen::Vector3d::Zero();
-      if (fn > 0.0 && collider.static_friction > 0.0) {
-        const double mass = model.mass[i];
-        const Eigen::Vector3d trial = relative_velocity + (h / mass) * force.col(i);
-        friction = coulomb_friction_force(trial - trial.dot(n) * n, mass, h, fn, collider.static_friction,
-                                          collider.friction);
-        force.col(i) += friction;
+    const Eigen::Isometry3d pose = poses_ ? hosted.pose : collider_pose(colliders_[c], t);
+    work.posed[c].shape_pose = pose * fcl_colliders_[c].shape_in_collider;
+    work.posed[c].near = near_test(fcl_colliders_[c], work.posed[c].shape_pose, query_.radius());
+    work.posed[c].hosted = hosted;
+    work.posed[c].moving = poses_ ? hosted.moving() : !colliders_[c].motion.is_static();
+  }
+  work.block_totals.assign(static_cast<std::size_t>(blocks) * collider_count, ColliderContactTotals{});
+  if (work.block_active.size() < static_cast<std::size_t>(blocks)) {
+    work.block_active.resize(static_cast<std::size_t>(blocks));
+    work.block_near.resize(static_cast<std::size_t>(blocks), std::vector<int>(kContactBlock));
+  }
+
+  // A block visits the colliders in order for each of its particles' forces, as a serial loop would:
+  // friction sees the normal forces of the colliders before it.
+  const auto contact_block = [&](std::int64_t block) {
+    const int begin = static_cast<int>(block * kContactBlock), end = std::min(n, begin + kContactBlock);
+    std::vector<ActiveContact>& block_active = work.block_active[static_cast<std::size_t>(block)];
+    block_active.clear();
+    int* near = work.block_near[static_cast<std::size_t>(block)].data();
+    for (std::size_t c = 0; c < collider_count; ++c) {
+      const Collider& collider = colliders_[c];
+      const PosedCollider& posed = work.posed[c];
+      ColliderContactTotals& total = work.block_totals[static_cast<std::size_t>(block) * collider_count + c];
+      const int near_count = kernels::near_particles(posed.near, x.data(), begin, end, near);  // broad phase
+      for (int k = 0; k < near_count; ++k) {
+        const int i = near[k];
+        if (model.is_pinned(i)) continue;
+        const auto touching = query_.contact(fcl_colliders_[c], posed.shape_pose, x.col(i));
+        if (!touching) continue;
+        const Eigen::Vector3d& normal = touching->normal;
+        const Eigen::Vector3d surface_velocity =
+            !posed.moving ? Eigen::Vector3d::Zero()
+            : poses_      ? posed.hosted.point_velocity(x.col(i))
+                          : collider_point_velocity(collider, t, x.col(i));
+        const Eigen::Vector3d relative_velocity = v.col(i) - surface_velocity;
+        const double fn = penalty_normal_force(touching->depth, relative_velocity.dot(normal),
+                                               parameters_.stiffness, parameters_.damping);
+        force.col(i) += fn * normal;
+        if (active && fn > 0.0) block_active.push_back({i, normal});
+        Eigen::Vector3d friction = Eigen::Vector3d::Zero();
+        if (fn > 0.0 && collider.static_friction > 0.0) {
+          const double mass = model.mass[i];
+          const Eigen::Vector3d trial = relative_velocity + (h / mass) * force.col(i);
+          friction = coulomb_friction_force(trial - trial.dot(normal) * normal, mass, h, fn,
+                                            collider.static_friction, collider.friction);
+          force.col(i) += friction;
+        }
+        ++total.contact_count;
+        total.normal_force += fn;
+        total.friction_force += friction.norm();
+        total.max_depth = std::max(total.max_depth, touching->depth);
       }
-      ++total.contact_count;
-      total.normal_force += fn;
-      total.friction_force += friction.norm();
-      total.max_depth = std::max(total.max_depth, touching->depth);
+    }
+  };
+  kernels::for_each_block(blocks, n >= kParallelContactParticles, contact_block);
+
+  // The blocks' results in block order.
+  totals.assign(collider_count, ColliderContactTotals{});  // capacity kept after the first step
+  if (active) active->clear();
+  for (std::int64_t block = 0; block < blocks; ++block) {
+    for (std::size_t c = 0; c < collider_count; ++c) {
+      const ColliderContactTotals& part = work.block_totals[static_cast<std::size_t>(block) * collider_count + c];
+      totals[c].contact_count += part.contact_count;
+      totals[c].normal_force += part.normal_force;
+      totals[c].friction_force += part.friction_force;
+      totals[c].max_depth = std::max(totals[c].max_depth, part.max_depth);
+    }
+    if (active) {
+      const auto& part = work.block_active[static_cast<std::size_t>(block)];
+      active->insert(active->end(), part.begin(), part.end());
     }
   }
 }

@@ -1,14 +1,9 @@
-// Force phases of a step. Each adds into `force` (N, 3 x N) and allocates nothing.
+// The plain spring phase: adds into `force` (N, 3 x N) and allocates nothing.
 #include "drapelab/forces.hpp"
 
 #include "drapelab/spring_force.hpp"
 
 namespace drapelab {
-
-void add_gravity_forces(const ClothModel& model, const Eigen::Vector3d& gravity,
-                        Eigen::Matrix3Xd& force) {
-  force.noalias() += gravity * model.mass.transpose();
-}
 
 void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                        Eigen::Matrix3Xd& force) {
@@ -21,12 +16,6 @@ void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x, const
     force.col(a) += f;
     force.col(b) -= f;
   }
-}
-
-void add_air_damping_forces(const ClothModel& model, double air_damping, const Eigen::Matrix3Xd& v,
-                            Eigen::Matrix3Xd& force) {
-  if (air_damping == 0.0) return;
-  force.noalias() -= air_damping * (v * model.mass.asDiagonal());
 }
 
 }  // namespace drapelab

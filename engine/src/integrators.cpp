@@ -1,6 +1,5 @@
-// Integrator names, properties and the single-evaluation updates. Acceleration a = f / m with the
-// model's inverse masses; a pinned particle (inverse mass 0) gets a = 0 and, starting at rest, never
-// moves.
+// Integrator names and properties. The Euler pair's updates are passes of particle_loops.hpp; the
+// other schemes are in explicit_schemes.cpp and implicit_euler.cpp.
 #include "drapelab/integrators.hpp"
 
 #include <cmath>
@@ -65,18 +64,6 @@ double undamped_stability_limit(Integrator integrator) {
     case Integrator::implicit_euler: return std::numeric_limits<double>::infinity();
     default: return 0.0;
   }
-}
-
-void explicit_euler_update(const Eigen::VectorXd& inverse_mass, const Eigen::Matrix3Xd& force,
-                           double h, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) {
-  x.noalias() += h * v;                                  // x(n+1) = x(n) + v(n) h
-  v.noalias() += h * (force * inverse_mass.asDiagonal());  // v(n+1) = v(n) + a(n) h
-}
-
-void symplectic_euler_update(const Eigen::VectorXd& inverse_mass, const Eigen::Matrix3Xd& force,
-                             double h, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) {
-  v.noalias() += h * (force * inverse_mass.asDiagonal());  // v(n+1) = v(n) + a(n) h
-  x.noalias() += h * v;                                  // x(n+1) = x(n) + v(n+1) h
 }
 
 }  // namespace drapelab

@@ -2,10 +2,12 @@
 #include "drapelab/spring_damper_solver.hpp"
 
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <sstream>
 
 #include "drapelab/forces.hpp"
+#include "drapelab/particle_loops.hpp"
 #include "drapelab/stability.hpp"
 
 namespace drapelab {
@@ -34,10 +36,8 @@ class PhaseTimer {
 
 const char* step_phase_name(StepPhase phase) {
   switch (phase) {
-    case StepPhase::clear_forces: return "clear_forces";
-    case StepPhase::gravity: return "gravity";
+    case StepPhase::body_forces: return "body_forces";
     case StepPhase::springs: return "springs";
-    case StepPhase::air: return "air";
     case StepPhase::contacts: return "contacts";
     case StepPhase::integrate: return "integrate";
     case StepPhase::health_check: return "health_check";
@@ -54,6 +54,9 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       state_(std::move(initial)),
       force_(3, model_->particle_count()) {
   const int n = model_->particle_count();
+  coordinate_mass_ = model_->mass.transpose().replicate(3, 1);
+  coordinate_inverse_mass_ = model_->inverse_mass.transpose().replicate(3, 1);
+  weight_ = settings_.gravity * model_->mass.transpose();
   if (settings_.contacts) contact_totals_.resize(settings_.contacts->size());
   if (settings_.fast_springs) spring_families_ = SpringFamilies::build(*model_);
   switch (settings_.integrator) {
@@ -88,26 +91,20 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
 const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3Xd& x,
                                                             const Eigen::Matrix3Xd& v, double t, double h) {
   {
-    PhaseTimer timer(stats_, StepPhase::clear_forces);
-    force_.setZero();
-  }
-  {
-    PhaseTimer timer(stats_, StepPhase::gravity);
-    add_gravity_forces(*model_, settings_.gravity, force_);
+    // Gravity and air drag in one pass that overwrites the buffer (clearing the last evaluation).
+    PhaseTimer timer(stats_, StepPhase::body_forces);
+    kernels::set_body_forces(model_->particle_count(), weight_.data(), coordinate_mass_.data(),
+                             settings_.air_damping, v.data(), force_.data());
   }
   {
     PhaseTimer timer(stats_, StepPhase::springs);
     if (spring_families_) spring_families_->add_forces(x, v, force_);
     else add_spring_forces(*model_, x, v, force_);
   }
-  {
-    PhaseTimer timer(stats_, StepPhase::air);
-    add_air_damping_forces(*model_, settings_.air_damping, v, force_);
-  }
   if (settings_.contacts) {
     PhaseTimer timer(stats_, StepPhase::contacts);
     settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
-                                           implicit_ ? &active_contacts_ : nullptr);
+                                           implicit_ ? &active_contacts_ : nullptr, &contact_workspace_);
   }
   return force_;
 }
@@ -141,8 +138,7 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const
 
 double SpringDamperSolver::force_phase_seconds() const {
   double total = 0.0;
-  for (StepPhase phase : {StepPhase::clear_forces, StepPhase::gravity, StepPhase::springs, StepPhase::air,
-                          StepPhase::contacts})
+  for (StepPhase phase : {StepPhase::body_forces, StepPhase::springs, StepPhase::contacts})
     total += stats_.seconds[static_cast<int>(phase)];
   return total;
 }
@@ -177,10 +173,10 @@ void SpringDamperSolver::step(double h) {
 
 void SpringDamperSolver::euler_step(double h) {
   evaluate_forces(state_.x, state_.v, state_.time, h);
-  if (settings_.integrator == Integrator::explicit_euler)
-    explicit_euler_update(model_->inverse_mass, force_, h, state_.x, state_.v);
-  else
-    symplectic_euler_update(model_->inverse_mass, force_, h, state_.x, state_.v);
+  const auto pass =
+      settings_.integrator == Integrator::explicit_euler ? kernels::explicit_euler_pass : kernels::symplectic_euler_pass;
+  unhealthy_from_update_ = pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h,
+                               state_.x.data(), state_.v.data(), settings_.max_speed * settings_.max_speed);
 }
 
 // Backward Euler, linearised at the start of the step (implicit_euler.hpp).
@@ -193,14 +189,20 @@ void SpringDamperSolver::implicit_euler_step(double h) {
   state_.x.noalias() += h * state_.v;  // x(n+1) = x(n) + h v(n+1)
 }
 
-// Stops the solver on a non-finite or runaway particle, naming it, the step, and what to try. Runs
-// every step over particles only (O(N)); the message is built only on failure.
+// Stops the solver on a non-finite or runaway particle, naming the first one, the step, and what to
+// try. Runs every step over particles only (O(N)); the message is built only on failure.
 void SpringDamperSolver::check_health(double h) {
   const double max_speed_squared = settings_.max_speed * settings_.max_speed;
-  for (int i = 0; i < model_->particle_count(); ++i) {
+  // The Euler passes scanned the new state as they wrote it; other schemes scan it here.
+  const std::int64_t first =
+      unhealthy_from_update_ ? *unhealthy_from_update_
+                             : kernels::first_unhealthy_particle(model_->particle_count(), state_.x.data(),
+                                                                 state_.v.data(), max_speed_squared);
+  unhealthy_from_update_.reset();
+  if (first >= 0) {
+    const int i = static_cast<int>(first);
     const bool finite = state_.x.col(i).allFinite() && state_.v.col(i).allFinite();
     const double speed_squared = finite ? state_.v.col(i).squaredNorm() : 0.0;
-    if (finite && speed_squared <= max_speed_squared) continue;
 
     std::ostringstream text;
     text.precision(4);

@@ -40,6 +40,7 @@ struct ParticleContact {
 // Calls FCL's closed-form sphere-shape routines directly with a reused contact buffer, so a query
 // allocates nothing after the first contact (fcl::collide builds a new buffer on every call); one
 // query object therefore serves one thread at a time.
+// Safe to query from several threads at once.
 class ParticleContactQuery {
  public:
   explicit ParticleContactQuery(double radius);  // m, the particle sphere's radius
@@ -59,7 +60,6 @@ class ParticleContactQuery {
  private:
   double radius_;
   std::shared_ptr<fcl::CollisionGeometry<double>> sphere_;
-  std::unique_ptr<std::vector<fcl::ContactPoint<double>>> contacts_;  // reused: cleared, capacity kept
 };
 
 // World-space bounding box of a posed collider, grown by `margin` (m). Unbounded for a plane.

@@ -11,6 +11,7 @@
 #include "drapelab/collider.hpp"
 #include "drapelab/collider_pose_table.hpp"
 #include "drapelab/contact_fcl.hpp"
+#include "drapelab/particle_loops.hpp"
 
 namespace drapelab {
 
@@ -33,6 +34,24 @@ struct ColliderContactTotals {
 struct ActiveContact {
   int particle = 0;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // outward, unit
+};
+
+// One collider posed for a force evaluation, with its broad phase (particle_loops.hpp).
+struct PosedCollider {
+  Eigen::Isometry3d shape_pose = Eigen::Isometry3d::Identity();  // FCL shape frame -> world
+  ColliderKinematics hosted;  // the host's pose and velocities (with a pose table only)
+  bool moving = false;        // the surface moves: friction is relative to it
+  kernels::NearCollider near;
+};
+
+// What the contact phase keeps between calls: per block of particles and per collider, the totals and
+// pushing contacts found there, so that blocks can run on any thread and still be summed in one fixed
+// order (results independent of the thread count). Owned by the caller; grows once.
+struct ContactWorkspace {
+  std::vector<PosedCollider> posed;                  // per collider, at the evaluation's time
+  std::vector<ColliderContactTotals> block_totals;   // blocks x colliders, block-major
+  std::vector<std::vector<ActiveContact>> block_active;  // per block, in particle order
+  std::vector<std::vector<int>> block_near;  // per block: the broad phase's particles for one collider
 };
 
 class ContactModel {
@@ -60,11 +79,15 @@ class ContactModel {
   // Adds penalty and friction forces (N) to `force` for the state (x, v) at time t, for a step of h.
   // Friction uses the force already accumulated, so call it after every other force phase.
   // `totals` (one per collider) is overwritten. Pinned particles are skipped. When `active` is given,
-  // it is cleared and receives every pushing contact. Allocates nothing once `active` has grown.
+  // it is cleared and receives every pushing contact (in a fixed order: by block of particles, then
+  // collider, then particle). Particles are processed in
+  // fixed blocks spread over the threads (particle_loops.hpp); `workspace` keeps the blocks' results
+  // between calls (a temporary one when null), and with it the call allocates nothing once grown.
   void add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
                           const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
                           std::vector<ColliderContactTotals>& totals,
-                          std::vector<ActiveContact>* active = nullptr) const;
+                          std::vector<ActiveContact>* active = nullptr,
+                          ContactWorkspace* workspace = nullptr) const;
 
  private:
   std::vector<Collider> colliders_;

@@ -1,7 +1,8 @@
 // Time integrators for the particle system M x'' = f(x, v). Pinned particles (inverse mass 0) keep
 // their position and a zero velocity under every scheme.
 //
-// Single-evaluation updates (both Euler schemes) are free functions here; the multi-stage schemes
+// The single-evaluation updates (both Euler schemes) are per-particle passes (particle_loops.hpp); the
+// multi-stage schemes
 // (midpoint, RK4), the two-level schemes (Verlet, leapfrog) and implicit Euler need the solver's force
 // evaluation and live in spring_damper_solver / explicit_schemes.cpp / implicit_euler.hpp. Each
 // scheme's update, its order, its force evaluations per step and its stability on x'' = -w^2 x:
@@ -16,7 +17,6 @@
 //   implicit_euler   (M - h D - h^2 K) dv = h (f0 + h K v0)            order 1, 1 eval + CG, unconditionally
 #pragma once
 
-#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -47,11 +47,5 @@ int order_of_accuracy(Integrator integrator);
 // 2 for symplectic Euler, Verlet and leapfrog, 2 sqrt(2) for RK4, 0 for explicit Euler and midpoint
 // (their stability regions miss the imaginary axis), infinity for implicit Euler.
 double undamped_stability_limit(Integrator integrator);
-
-// One step of each scheme from the force at the start of the step (N, 3 x N).
-void explicit_euler_update(const Eigen::VectorXd& inverse_mass, const Eigen::Matrix3Xd& force,
-                           double h, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v);
-void symplectic_euler_update(const Eigen::VectorXd& inverse_mass, const Eigen::Matrix3Xd& force,
-                             double h, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v);
 
 }  // namespace drapelab

@@ -1,7 +1,7 @@
 // Our spring-damper cloth: forces from gravity, damped springs, air damping and penalty contact with
 // friction, advanced by any integrator of integrators.hpp. A step is a visible list of phases, each
 // timed into StepStats:
-//   clear forces -> gravity -> springs -> air -> contacts -> integrate (pins held) -> health check.
+//   body forces (gravity and air drag) -> springs -> contacts -> integrate (pins held) -> health check.
 // Multi-stage schemes run the force phases once per stage; "integrate" is the rest of the step (stage
 // arithmetic, and for implicit Euler the assembly and conjugate-gradient solve).
 // The explicit step allocates nothing: every buffer is sized when the solver is built.
@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "drapelab/cloth_model.hpp"
@@ -34,7 +35,7 @@ struct SpringDamperSettings {
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
-enum class StepPhase { clear_forces, gravity, springs, air, contacts, integrate, health_check, count };
+enum class StepPhase { body_forces, springs, contacts, integrate, health_check, count };
 const char* step_phase_name(StepPhase phase);
 struct StepStats {
   std::array<double, static_cast<int>(StepPhase::count)> seconds{};
@@ -91,6 +92,10 @@ class SpringDamperSolver final : public Solver {
   SpringDamperSettings settings_;
   ClothState state_;
   Eigen::Matrix3Xd force_;  // N, the step's scratch buffer
+  // Per coordinate, packed like force_, so the per-particle passes run over unit-stride arrays:
+  Eigen::Matrix3Xd coordinate_mass_;          // kg: m_i in each of particle i's three rows
+  Eigen::Matrix3Xd coordinate_inverse_mass_;  // 1/kg: 1/m_i, 0 for a pinned particle
+  Eigen::Matrix3Xd weight_;                   // N: m_i g
   // Stage buffers of the multi-stage and two-level schemes (3 x N; empty when the scheme needs none):
   Eigen::Matrix3Xd stage_x_, stage_v_;  // m, m/s: the state a stage evaluates the force at
   Eigen::Matrix3Xd sum_x_, sum_v_;      // RK4's weighted sums of stage slopes (m/s, m/s^2)
@@ -101,6 +106,8 @@ class SpringDamperSolver final : public Solver {
   std::unique_ptr<SpringFamilies> spring_families_;  // null: the plain edge-list loop
   std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
+  ContactWorkspace contact_workspace_;  // the contact phase's per-block results
+  std::optional<std::int64_t> unhealthy_from_update_;  // the Euler pass's health scan, used once
   StepStats stats_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;
