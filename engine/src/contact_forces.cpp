@@ -15,10 +15,10 @@
 namespace drapelab {
 namespace {
 
-// Particles per block: large enough that a block's bookkeeping is noise, small enough that the blocks
-// holding a contact patch are shared out between the threads. Fixed, never derived from the thread
-// count, so every sum runs in the same order on any machine.
-constexpr int kContactBlock = 1024;
+// Particles per block: large enough that a block's bookkeeping is noise, small enough that the two
+// threads' runs of blocks split the cloth near its middle. Fixed, never derived from the thread count,
+// so every sum runs in the same order on any machine.
+constexpr int kContactBlock = 512;
 // Below this many particles, starting threads costs more than the phase.
 constexpr int kParallelContactParticles = 4096;
 

@@ -127,7 +127,7 @@ int near_particles(const NearCollider& collider, const double* x, int begin, int
 
 void for_each_block(std::int64_t blocks, bool parallel, void (*body)(const void* context, std::int64_t block),
                     const void* context) {
-#pragma omp parallel for schedule(static, 1) if (parallel)
+#pragma omp parallel for schedule(static) if (parallel)
   for (std::int64_t block = 0; block < blocks; ++block) body(context, block);
 }
 

@@ -45,10 +45,70 @@ int thread_count() {
 #endif
 }
 
+namespace {
+
+// The force on the first particle of every spring slot in [begin, end) of one family (N), into the
+// family's three slot rows: -[ks (l - l0) + kd (dv . d) / l] d / l with d = x(i) - x(i + offset).
+// A uniform family then clears its empty slots in the range (they computed a force towards a
+// non-neighbour or the padding).
+void family_slot_forces(const SpringFamily& fam, const double* px, const double* py, const double* pz,
+                        const double* vx, const double* vy, const double* vz, double* tx, double* ty, double* tz,
+                        std::int64_t begin, std::int64_t end) {
+  const std::int64_t o = fam.offset;
+  // The same expression for both layouts, so a slot's force does not depend on which one ran.
+  const auto slot_force = [&](std::int64_t i, double rest, double ks, double kd) {
+    const double dx = px[i] - px[i + o], dy = py[i] - py[i + o], dz = pz[i] - pz[i + o];
+    const double dvx = vx[i] - vx[i + o], dvy = vy[i] - vy[i + o], dvz = vz[i] - vz[i + o];
+    const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double inverse = l > 0.0 ? 1.0 / l : 0.0;  // a zero-length spring has no direction: no force
+    const double magnitude = ks * (l - rest) + kd * (dvx * dx + dvy * dy + dvz * dz) * inverse;  // N
+    const double scale = -magnitude * inverse;
+    tx[i] = scale * dx;
+    ty[i] = scale * dy;
+    tz[i] = scale * dz;
+  };
+  if (fam.uniform) {
+    const double rest = fam.uniform_rest, ks = fam.uniform_ks, kd = fam.uniform_kd;
+#pragma omp simd
+    for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest, ks, kd);
+    const auto first = std::lower_bound(fam.empty_slots.begin(), fam.empty_slots.end(), begin);
+    for (auto e = first; e != fam.empty_slots.end() && *e < end; ++e) tx[*e] = ty[*e] = tz[*e] = 0.0;
+  } else {
+    const double* rest = fam.rest.data();
+    const double* ks = fam.ks.data();
+    const double* kd = fam.kd.data();
+#pragma omp simd
+    for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest[i], ks[i], kd[i]);
+  }
+}
+
+// Particle i of [begin, end) gathers f(i) + sum over families, in order, of t(i) - t(i - offset).
+void gather(const std::vector<SpringFamily>& families, FamilyScratch& scratch, double* f, std::int64_t begin,
+            std::int64_t end) {
+  double sum[3][kGatherBlock];
+  for (std::int64_t i = begin; i < end; ++i)
+    for (int c = 0; c < 3; ++c) sum[c][i - begin] = f[3 * i + c];
+  const std::int64_t family_count = static_cast<std::int64_t>(families.size());
+  for (std::int64_t family = 0; family < family_count; ++family) {
+    const std::int64_t o = families[static_cast<std::size_t>(family)].offset;
+    for (int c = 0; c < 3; ++c) {
+      const double* t = scratch.force_row(family, c) + begin;  // t[j - o] may read the leading zeros
+      double* s = sum[c];
+#pragma omp simd
+      for (std::int64_t j = 0; j < end - begin; ++j) s[j] = (s[j] + t[j]) - t[j - o];
+    }
+  }
+  for (std::int64_t i = begin; i < end; ++i)
+    for (int c = 0; c < 3; ++c) f[3 * i + c] = sum[c][i - begin];
+}
+
+}  // namespace
+
 void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
                        FamilyScratch& scratch, double* f) {
   const std::int64_t n = scratch.particles;
   const std::int64_t family_count = static_cast<std::int64_t>(families.size());
+  const std::int64_t max_offset = scratch.padding;
   double* const px = scratch.state_row(0);
   double* const py = scratch.state_row(1);
   double* const pz = scratch.state_row(2);
@@ -68,64 +128,32 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
       vy[i] = v[3 * i + 1];
       vz[i] = v[3 * i + 2];
     }
-    // 2. Every slot's force on its first particle (families write disjoint rows: no barrier between).
-    for (std::int64_t family = 0; family < family_count; ++family) {
-      const SpringFamily& fam = families[static_cast<std::size_t>(family)];
-      const std::int64_t o = fam.offset;
-      double* tx = scratch.force_row(family, 0);
-      double* ty = scratch.force_row(family, 1);
-      double* tz = scratch.force_row(family, 2);
-      // The same expression for both layouts, so a slot's force does not depend on which one ran.
-      const auto slot_force = [&](std::int64_t i, double rest, double ks, double kd) {
-        const double dx = px[i] - px[i + o], dy = py[i] - py[i + o], dz = pz[i] - pz[i + o];
-        const double dvx = vx[i] - vx[i + o], dvy = vy[i] - vy[i + o], dvz = vz[i] - vz[i + o];
-        const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double inverse = l > 0.0 ? 1.0 / l : 0.0;  // a zero-length spring has no direction: no force
-        const double magnitude = ks * (l - rest) + kd * (dvx * dx + dvy * dy + dvz * dz) * inverse;  // N
-        const double scale = -magnitude * inverse;
-        tx[i] = scale * dx;
-        ty[i] = scale * dy;
-        tz[i] = scale * dz;
-      };
-      if (fam.uniform) {
-        const double rest = fam.uniform_rest, ks = fam.uniform_ks, kd = fam.uniform_kd;
-#pragma omp for simd schedule(simd:static)
-        for (std::int64_t i = 0; i < n; ++i) slot_force(i, rest, ks, kd);
-        // The slots without a spring computed a force towards a non-neighbour (or the padding).
-        const std::int64_t empty = static_cast<std::int64_t>(fam.empty_slots.size());
-#pragma omp for schedule(static) nowait
-        for (std::int64_t e = 0; e < empty; ++e) {
-          const std::int32_t i = fam.empty_slots[static_cast<std::size_t>(e)];
-          tx[i] = ty[i] = tz[i] = 0.0;
-        }
-      } else {
-        const double* rest = fam.rest.data();
-        const double* ks = fam.ks.data();
-        const double* kd = fam.kd.data();
-#pragma omp for simd schedule(simd:static) nowait
-        for (std::int64_t i = 0; i < n; ++i) slot_force(i, rest[i], ks[i], kd[i]);
-      }
+    // 2. Each thread walks its own run of blocks in order: a block's slot forces of every family,
+    // then the gather of its particles, while those slots are still in cache. Particle i reads slots
+    // i and i - offset, computed by this block or an earlier one; only the first max_offset particles
+    // of a thread's run read slots of the thread before, so their gather waits for the barrier.
+    int thread = 0, threads = 1;
+#ifdef _OPENMP
+    thread = omp_get_thread_num();
+    threads = omp_get_num_threads();
+#endif
+    const std::int64_t first_block = blocks * thread / threads, end_block = blocks * (thread + 1) / threads;
+    const std::int64_t run_begin = std::min(n, first_block * kGatherBlock);
+    const std::int64_t run_end = std::min(n, end_block * kGatherBlock);
+    const std::int64_t deferred_end = thread == 0 ? run_begin : std::min(run_end, run_begin + max_offset);
+    for (std::int64_t block = first_block; block < end_block; ++block) {
+      const std::int64_t begin = block * kGatherBlock, end = std::min(n, begin + kGatherBlock);
+      for (std::int64_t family = 0; family < family_count; ++family)
+        family_slot_forces(families[static_cast<std::size_t>(family)], px, py, pz, vx, vy, vz,
+                           scratch.force_row(family, 0), scratch.force_row(family, 1), scratch.force_row(family, 2),
+                           begin, end);
+      const std::int64_t gather_begin = std::max(begin, deferred_end);
+      if (gather_begin < end) gather(families, scratch, f, gather_begin, end);
     }
 #pragma omp barrier
-    // 3. Each particle gathers +t of the slots it starts and -t of the slots it ends, family by family.
-#pragma omp for schedule(static)
-    for (std::int64_t block = 0; block < blocks; ++block) {
-      const std::int64_t begin = block * kGatherBlock, end = std::min(n, begin + kGatherBlock);
-      double sum[3][kGatherBlock];
-      for (std::int64_t i = begin; i < end; ++i)
-        for (int c = 0; c < 3; ++c) sum[c][i - begin] = f[3 * i + c];
-      for (std::int64_t family = 0; family < family_count; ++family) {
-        const std::int64_t o = families[static_cast<std::size_t>(family)].offset;
-        for (int c = 0; c < 3; ++c) {
-          const double* t = scratch.force_row(family, c) + begin;  // t[j - o] may read the leading zeros
-          double* s = sum[c];
-#pragma omp simd
-          for (std::int64_t j = 0; j < end - begin; ++j) s[j] = (s[j] + t[j]) - t[j - o];
-        }
-      }
-      for (std::int64_t i = begin; i < end; ++i)
-        for (int c = 0; c < 3; ++c) f[3 * i + c] = sum[c][i - begin];
-    }
+    // 3. The deferred particles at the start of each run (none for the first thread).
+    for (std::int64_t begin = run_begin; begin < deferred_end; begin += kGatherBlock)
+      gather(families, scratch, f, begin, std::min(deferred_end, begin + kGatherBlock));
   }
 }
 
