@@ -77,6 +77,27 @@ TEST(SpringFamilies, FamiliesWithVaryingSpringsReadPerSpringValuesAndStillEqualT
   EXPECT_GT((unvaried - plain).cwiseAbs().maxCoeff(), 1e-3);
 }
 
+TEST(SpringFamilies, PerturbedRestLengthsReadOnlyTheRestArrayAndStillEqualThePlainLoop) {
+  // A sheet built from perturbed positions: every rest length differs, ks and kd do not.
+  const GridClothSpec spec = grid(33, 17);
+  ClothModel model = build_grid_cloth(spec);
+  for (std::size_t e = 0; e < model.springs.size(); ++e)
+    model.springs.rest_length[e] *= 1.0 + 0.01 * std::sin(0.37 * static_cast<double>(e));
+  const ClothState state = shaken(model, spec);
+  auto families = SpringFamilies::build(model);
+  ASSERT_TRUE(families);
+  for (const SpringFamily& family : families->families()) {
+    EXPECT_TRUE(family.uniform_stiffness) << "offset " << family.offset;
+    EXPECT_FALSE(family.uniform) << "offset " << family.offset;
+    EXPECT_FALSE(family.empty_slots.empty()) << "offset " << family.offset;  // row ends: cleared slots
+  }
+  Eigen::Matrix3Xd plain = Eigen::Matrix3Xd::Constant(3, model.particle_count(), 0.25);
+  Eigen::Matrix3Xd fast = plain;
+  add_spring_forces(model, state.x, state.v, plain);
+  families->add_forces(state.x, state.v, fast);
+  EXPECT_LT((fast - plain).cwiseAbs().maxCoeff(), 1e-12 * plain.cwiseAbs().maxCoeff());
+}
+
 TEST(SpringFamilies, MeshesWithManyOffsetsKeepThePlainLoop) {
   DiscSpec disc;
   MeshClothSpec spec;

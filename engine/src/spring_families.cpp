@@ -9,21 +9,27 @@ namespace drapelab {
 namespace {
 
 // A family whose springs all share rest length, ks and kd keeps those three numbers and the list of
-// its empty slots (spring_family_loops.hpp). An empty slot has rest = ks = kd = 0.
+// its empty slots (spring_family_loops.hpp); one whose springs share ks and kd only keeps those two
+// and the list. An empty slot has rest = ks = kd = 0.
 void mark_if_uniform(SpringFamily& family) {
   const std::size_t n = family.rest.size();
+  const auto is_empty = [&](std::size_t i) {
+    return family.rest[i] == 0.0 && family.ks[i] == 0.0 && family.kd[i] == 0.0;
+  };
   std::size_t first = 0;
-  while (first < n && family.rest[first] == 0.0 && family.ks[first] == 0.0 && family.kd[first] == 0.0) ++first;
+  while (first < n && is_empty(first)) ++first;
   if (first == n) return;
   const double rest = family.rest[first], ks = family.ks[first], kd = family.kd[first];
+  bool same_rest = true;
   std::vector<std::int32_t> empty;
   for (std::size_t i = 0; i < n; ++i) {
-    const bool is_empty = family.rest[i] == 0.0 && family.ks[i] == 0.0 && family.kd[i] == 0.0;
-    if (is_empty) empty.push_back(static_cast<std::int32_t>(i));
-    else if (family.rest[i] != rest || family.ks[i] != ks || family.kd[i] != kd) return;
+    if (is_empty(i)) empty.push_back(static_cast<std::int32_t>(i));
+    else if (family.ks[i] != ks || family.kd[i] != kd) return;
+    else same_rest = same_rest && family.rest[i] == rest;
   }
-  family.uniform = true;
-  family.uniform_rest = rest;
+  family.uniform = same_rest;
+  family.uniform_stiffness = !same_rest;
+  family.uniform_rest = same_rest ? rest : 0.0;
   family.uniform_ks = ks;
   family.uniform_kd = kd;
   family.empty_slots = std::move(empty);

@@ -49,8 +49,8 @@ namespace {
 
 // The force on the first particle of every spring slot in [begin, end) of one family (N), into the
 // family's three slot rows: -[ks (l - l0) + kd (dv . d) / l] d / l with d = x(i) - x(i + offset).
-// A uniform family then clears its empty slots in the range (they computed a force towards a
-// non-neighbour or the padding).
+// A family with shared stiffness then clears its empty slots in the range (they computed a force
+// towards a non-neighbour or the padding).
 void family_slot_forces(const SpringFamily& fam, const double* px, const double* py, const double* pz,
                         const double* vx, const double* vy, const double* vz, double* tx, double* ty, double* tz,
                         std::int64_t begin, std::int64_t end) {
@@ -67,10 +67,17 @@ void family_slot_forces(const SpringFamily& fam, const double* px, const double*
     ty[i] = scale * dy;
     tz[i] = scale * dz;
   };
-  if (fam.uniform) {
-    const double rest = fam.uniform_rest, ks = fam.uniform_ks, kd = fam.uniform_kd;
+  if (fam.uniform || fam.uniform_stiffness) {
+    const double ks = fam.uniform_ks, kd = fam.uniform_kd;
+    if (fam.uniform) {
+      const double rest = fam.uniform_rest;
 #pragma omp simd
-    for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest, ks, kd);
+      for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest, ks, kd);
+    } else {
+      const double* rest = fam.rest.data();
+#pragma omp simd
+      for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest[i], ks, kd);
+    }
     const auto first = std::lower_bound(fam.empty_slots.begin(), fam.empty_slots.end(), begin);
     for (auto e = first; e != fam.empty_slots.end() && *e < end; ++e) tx[*e] = ty[*e] = tz[*e] = 0.0;
   } else {

@@ -31,6 +31,7 @@ class SpringFamilies {
   void add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
 
   int family_count() const { return static_cast<int>(families_.size()); }
+  const std::vector<SpringFamily>& families() const { return families_; }
 
  private:
   std::vector<SpringFamily> families_;

@@ -12,14 +12,18 @@ namespace drapelab {
 // describes the spring whose first particle is i, and holds zeros where there is none (a grid row's
 // last particle has no +1 neighbour), so the loops run over every slot without branches.
 // When every spring of the family has the same rest length, ks and kd (a regular grid), the loops
-// read those three numbers instead of three arrays and then clear the empty slots.
+// read those three numbers instead of three arrays and then clear the empty slots; when only ks and
+// kd are shared, they read the rest lengths alone.
 struct SpringFamily {
   std::int32_t offset = 0;
   std::int64_t springs = 0;              // slots holding a real spring
   std::vector<double> rest, ks, kd;      // per slot: m, N/m, N*s/m (0, 0, 0 for no spring)
   bool uniform = false;                  // every spring has uniform_rest, uniform_ks, uniform_kd
+  // Every spring has uniform_ks and uniform_kd but rest lengths vary (a sheet built from perturbed
+  // positions): the loops read the rest array only.
+  bool uniform_stiffness = false;
   double uniform_rest = 0.0, uniform_ks = 0.0, uniform_kd = 0.0;  // m, N/m, N*s/m
-  std::vector<std::int32_t> empty_slots; // uniform only: the slots holding no spring
+  std::vector<std::int32_t> empty_slots; // uniform or uniform_stiffness: the slots holding no spring
 };
 
 namespace kernels {
