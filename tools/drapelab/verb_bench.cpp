@@ -1,6 +1,6 @@
 // drapelab bench: the cost of every solver on a fixed set of scenes and resolutions, measured in one
 // process run so the ratios compare like with like. Our solver runs at its best setting (symplectic
-// Euler at 0.9 of its stable step, the spring fast path, OpenMP threads); Bullet's classic cloth at
+// Euler at 0.9 of its stable step, the spring fast path, OpenMP threads in every phase); Bullet's classic cloth at
 // its cheapest stable setting (a 240 Hz step with 4 iterations, halved until it holds); Bullet's
 // deformable world at its own stable step (skipped above 65 x 65 particles: it costs minutes there).
 // Writes bench.csv and bench.md; the numbers are measurements, never checked against targets.
@@ -73,7 +73,7 @@ void add_bench_options(CLI::App& verb, BenchArguments& arguments) {
                   "Scene files (default scenes/sphere_drape.yaml, scenes/table_drape.yaml, scenes/curtain.yaml)")
       ->delimiter(',');
   verb.add_option("--duration", arguments.duration, "Simulated seconds per run (default 0.5; 0.1 with --quick)");
-  verb.add_option("--threads", arguments.threads, "Threads for our spring loops (default: every core)");
+  verb.add_option("--threads", arguments.threads, "Threads for our solver's loops (default: every core)");
 }
 
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt) {
@@ -93,7 +93,7 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
 
   BenchTable table;
   table.machine = cpu_name() + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, " +
-                  std::to_string(kernels::thread_count()) + " threads for our spring loops";
+                  std::to_string(kernels::thread_count()) + " threads for our solver's loops";
   for (const std::string& file : scenes)
     for (int n : sizes) {
       const std::string resolution = "cloth.resolution=[" + std::to_string(n) + ", " + std::to_string(n) + "]";
