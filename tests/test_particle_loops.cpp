@@ -76,11 +76,17 @@ TEST(ParticleLoops, HealthScanNamesTheFirstBadParticleWhateverTheThreadCount) {
   const int n = 10000;  // above the threading threshold
   const double limit = 100.0;  // m/s
   Particles p(n);
-  // Healthy although each passes the quick per-coordinate test only on the second look:
+  // Healthy: particle 10 at 0.999 of the limit along the diagonal passes the quick per-coordinate
+  // test; particle 20, with one coordinate at 0.99 of the limit, fails it and is cleared by the exact
+  // per-particle test.
   const double diagonal = 0.999 * limit / std::sqrt(3.0);
-  p.v[3 * 10] = p.v[3 * 10 + 1] = p.v[3 * 10 + 2] = diagonal;  // speed 0.999 of the limit
-  p.v[3 * 20 + 1] = 0.99 * limit;                               // one coordinate near the limit
+  p.v[3 * 10] = p.v[3 * 10 + 1] = p.v[3 * 10 + 2] = diagonal;
+  p.v[3 * 20 + 1] = 0.99 * limit;
+  p.v[3 * 30 + 2] = limit;  // exactly at the limit: still healthy
   for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), -1) << threads;
+
+  p.v[3 * 9500] = std::nextafter(limit, 2.0 * limit);  // one step of rounding above the limit
+  for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), 9500) << threads;
 
   p.v[3 * 9000] = p.v[3 * 9000 + 1] = p.v[3 * 9000 + 2] = 1.001 * limit / std::sqrt(3.0);  // just too fast
   for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), 9000) << threads;
@@ -92,12 +98,25 @@ TEST(ParticleLoops, HealthScanNamesTheFirstBadParticleWhateverTheThreadCount) {
   for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), 5) << threads;
 }
 
-TEST(ParticleLoops, EulerPassReportsTheParticleItMadeUnhealthy) {
+TEST(ParticleLoops, HealthScanCatchesAnInfiniteVelocityUnderAnEnormousLimit) {
+  Particles p(5000);
+  p.v[3 * 4000] = std::numeric_limits<double>::infinity();
+  const double limit = 1e200;  // m/s: its square overflows to infinity
+  for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), 4000) << threads;
+}
+
+TEST(ParticleLoops, EulerPassesReportTheParticleTheyMadeUnhealthy) {
   const int n = 6000;
-  Particles p(n);
   std::vector<double> inverse_mass(3 * n, 1.0), f(3 * n, 0.0);
   f[3 * 4321 + 1] = 2.0e7;  // N on 1 kg for 1e-5 s: 200 m/s, twice the limit
-  EXPECT_EQ(kernels::symplectic_euler_pass(n, inverse_mass.data(), f.data(), 1e-5, p.x.data(), p.v.data(), 1e4), 4321);
+  Particles symplectic(n), forward(n);
+  EXPECT_EQ(kernels::symplectic_euler_pass(n, inverse_mass.data(), f.data(), 1e-5, symplectic.x.data(),
+                                           symplectic.v.data(), 1e4),
+            4321);
+  // Forward Euler moves x with the old velocity, but the scan checks the new one.
+  EXPECT_EQ(kernels::explicit_euler_pass(n, inverse_mass.data(), f.data(), 1e-5, forward.x.data(), forward.v.data(), 1e4),
+            4321);
+  EXPECT_EQ(forward.x[3 * 4321 + 1], 1.0);
 }
 
 TEST(ParticleLoops, BroadPhaseKeepsExactlyTheParticlesOfTheDirectTest) {

@@ -88,10 +88,9 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
     work.posed[c].moving = poses_ ? hosted.moving() : !colliders_[c].motion.is_static();
   }
   work.block_totals.assign(static_cast<std::size_t>(blocks) * collider_count, ColliderContactTotals{});
-  if (work.block_active.size() < static_cast<std::size_t>(blocks)) {
-    work.block_active.resize(static_cast<std::size_t>(blocks));
+  if (work.block_active.size() < static_cast<std::size_t>(blocks)) work.block_active.resize(static_cast<std::size_t>(blocks));
+  if (work.block_near.size() < static_cast<std::size_t>(blocks))
     work.block_near.resize(static_cast<std::size_t>(blocks), std::vector<int>(kContactBlock));
-  }
 
   // A block visits the colliders in order for each of its particles' forces, as a serial loop would:
   // friction sees the normal forces of the colliders before it.

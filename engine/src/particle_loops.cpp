@@ -1,7 +1,8 @@
 // Per-particle passes of an explicit step (particle_loops.hpp). Each is one static-schedule loop:
 // memory-bound work (a few flops per 24-byte column), so two cores mostly double the bandwidth from
-// their own caches. Built without contraction into fused multiply-adds, so every pass gives the same
-// bits as the Eigen expressions it replaced.
+// their own caches. Built without contraction into fused multiply-adds, so each pass gives the same
+// bits on every CPU and the update the same bits as the Eigen expression it replaced (the body forces
+// sum weight and drag before the springs, a different order from the old gravity, springs, drag).
 #include "drapelab/particle_loops.hpp"
 
 #include <algorithm>
@@ -42,7 +43,9 @@ constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
 std::int64_t first_unhealthy_in(std::int64_t begin, std::int64_t end, const double* x, const double* v,
                                 double max_speed_squared) {
   const double big = std::numeric_limits<double>::max();
-  const double component_limit = std::sqrt(max_speed_squared / 3.0) * (1.0 - 1e-12);  // margin for rounding
+  // Margin for rounding; never above the largest double, so an infinite velocity fails even when the
+  // limit is so large that its square overflows.
+  const double component_limit = std::min(big, std::sqrt(max_speed_squared / 3.0) * (1.0 - 1e-12));
   int outside = 0;
 #pragma omp simd reduction(| : outside)
   for (std::int64_t k = 3 * begin; k < 3 * end; ++k)

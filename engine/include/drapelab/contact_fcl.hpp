@@ -37,10 +37,9 @@ struct ParticleContact {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit, out of the collider (push direction)
 };
 
-// Calls FCL's closed-form sphere-shape routines directly with a reused contact buffer, so a query
-// allocates nothing after the first contact (fcl::collide builds a new buffer on every call); one
-// query object therefore serves one thread at a time.
-// Safe to query from several threads at once.
+// Calls FCL's closed-form sphere-shape routines directly with a reused contact buffer, one per
+// thread, so a query allocates nothing after a thread's first contact (fcl::collide builds a new
+// buffer on every call). Safe to query from several threads at once.
 class ParticleContactQuery {
  public:
   explicit ParticleContactQuery(double radius);  // m, the particle sphere's radius

@@ -4,7 +4,8 @@
 //   body forces (gravity and air drag) -> springs -> contacts -> integrate (pins held) -> health check.
 // Multi-stage schemes run the force phases once per stage; "integrate" is the rest of the step (stage
 // arithmetic, and for implicit Euler the assembly and conjugate-gradient solve).
-// The explicit step allocates nothing: every buffer is sized when the solver is built.
+// The explicit step allocates nothing after the first: every buffer is sized when the solver is built,
+// except the contact phase's per-block lists and each thread's FCL buffer, sized by the first step.
 #pragma once
 
 #include <Eigen/Core>
@@ -61,8 +62,8 @@ class SpringDamperSolver final : public Solver {
   const SpringDamperSettings& settings() const { return settings_; }
   const StepStats& stats() const { return stats_; }
 
-  // Total force on every particle (N, 3 x N) at (x, v) and time t (s): gravity + springs + air +
-  // contacts, with friction sized for a step of h (s). Public so tests can check it; writes only the
+  // Total force on every particle (N, 3 x N) at (x, v) and time t (s): gravity and air drag, then
+  // springs, then contacts, with friction sized for a step of h (s). Public so tests can check it; writes only the
   // solver's own buffers.
   const Eigen::Matrix3Xd& evaluate_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
                                           double h);
