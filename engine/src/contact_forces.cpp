@@ -19,8 +19,6 @@ namespace {
 // threads' runs of blocks split the cloth near its middle. Fixed, never derived from the thread count,
 // so every sum runs in the same order on any machine.
 constexpr int kContactBlock = 512;
-// Below this many particles, starting threads costs more than the phase.
-constexpr int kParallelContactParticles = 4096;
 
 // The broad phase of one posed collider: a plane compares the particle's height above it; other
 // shapes test the bounding box and the bounding sphere (the box alone is loose for a rotated or round
@@ -134,7 +132,7 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
       }
     }
   };
-  kernels::for_each_block(blocks, n >= kParallelContactParticles, contact_block);
+  kernels::for_each_block(blocks, n >= kernels::kParallelParticles, contact_block);
 
   // The blocks' results in block order.
   totals.assign(collider_count, ColliderContactTotals{});  // capacity kept after the first step

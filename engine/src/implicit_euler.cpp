@@ -18,6 +18,16 @@ void add_block_triplets(std::vector<Eigen::Triplet<double>>& triplets, int row, 
 
 }  // namespace
 
+void record_solve(ImplicitSolveStats& stats, int iterations, double relative_residual, bool converged) {
+  ++stats.solves;
+  stats.iterations_total += iterations;
+  stats.iterations_max = std::max(stats.iterations_max, iterations);
+  stats.iterations_last = iterations;
+  stats.residual_last = relative_residual;
+  stats.residual_max = std::max(stats.residual_max, relative_residual);
+  if (!converged) ++stats.unconverged;
+}
+
 ImplicitEulerSystem::ImplicitEulerSystem(const ClothModel& model, ImplicitSolveSettings settings)
     : settings_(settings) {
   const int n = model.particle_count();
@@ -110,14 +120,7 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
 
   cg_.compute(matrix_);
   solution_ = cg_.solveWithGuess(rhs_, solution_);
-  const int iterations = static_cast<int>(cg_.iterations());
-  ++stats_.solves;
-  stats_.iterations_total += iterations;
-  stats_.iterations_max = std::max(stats_.iterations_max, iterations);
-  stats_.iterations_last = iterations;
-  stats_.residual_last = cg_.error();
-  stats_.residual_max = std::max(stats_.residual_max, cg_.error());
-  if (cg_.info() != Eigen::Success) ++stats_.unconverged;
+  record_solve(stats_, static_cast<int>(cg_.iterations()), cg_.error(), cg_.info() == Eigen::Success);
   dv = Eigen::Map<const Eigen::Matrix3Xd>(solution_.data(), 3, n);
 }
 

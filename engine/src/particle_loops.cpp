@@ -10,12 +10,6 @@
 #include <limits>
 
 namespace drapelab::kernels {
-namespace {
-
-// Below this many particles a pass costs less than starting the threads (a few microseconds).
-constexpr std::int64_t kParallelParticles = 4096;
-
-}  // namespace
 
 void set_body_forces(std::int64_t n, const double* weight, const double* mass, double air, const double* v,
                      double* f) {

@@ -79,7 +79,10 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       acceleration_.resize(3, n);
       break;
     case Integrator::implicit_euler:
-      implicit_ = std::make_unique<ImplicitEulerSystem>(*model_, settings_.implicit);
+      if (spring_families_)
+        family_implicit_ = std::make_unique<FamilyImplicitSystem>(*model_, *spring_families_, settings_.implicit);
+      else
+        implicit_ = std::make_unique<ImplicitEulerSystem>(*model_, settings_.implicit);
       stage_v_.resize(3, n);  // dv
       active_contacts_.reserve(static_cast<std::size_t>(n));
       break;
@@ -104,7 +107,7 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
   if (settings_.contacts) {
     PhaseTimer timer(stats_, StepPhase::contacts);
     settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
-                                           implicit_ ? &active_contacts_ : nullptr, &contact_workspace_);
+                                           implicit_stats() ? &active_contacts_ : nullptr, &contact_workspace_);
   }
   return force_;
 }
@@ -122,9 +125,15 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() 
   return phases;
 }
 
+const ImplicitSolveStats* SpringDamperSolver::implicit_stats() const {
+  if (implicit_) return &implicit_->stats();
+  if (family_implicit_) return &family_implicit_->stats();
+  return nullptr;
+}
+
 std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const {
-  if (!implicit_) return {};
-  const ImplicitSolveStats& cg = implicit_->stats();
+  if (!implicit_stats()) return {};
+  const ImplicitSolveStats& cg = *implicit_stats();
   const double mean = cg.solves > 0 ? static_cast<double>(cg.iterations_total) / static_cast<double>(cg.solves) : 0.0;
   return {{"cg_solves", static_cast<double>(cg.solves)},
           {"cg_iterations_total", static_cast<double>(cg.iterations_total)},
@@ -183,8 +192,12 @@ void SpringDamperSolver::euler_step(double h) {
 void SpringDamperSolver::implicit_euler_step(double h) {
   evaluate_forces(state_.x, state_.v, state_.time, h);
   const ContactParameters contact = settings_.contacts ? settings_.contacts->parameters() : ContactParameters{};
-  implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact, active_contacts_,
-                   stage_v_);
+  if (family_implicit_)
+    family_implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact,
+                            active_contacts_, stage_v_);
+  else
+    implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact, active_contacts_,
+                     stage_v_);
   state_.v += stage_v_;         // v(n+1) = v(n) + dv
   state_.x.noalias() += h * state_.v;  // x(n+1) = x(n) + h v(n+1)
 }
@@ -224,7 +237,7 @@ void SpringDamperSolver::check_health(double h) {
     if (settings_.integrator == Integrator::implicit_euler)
       text << "a smaller dt or a larger implicit max_iterations (the conjugate gradient reached a relative "
               "residual of "
-           << implicit_->stats().residual_last << " in " << implicit_->stats().iterations_last
+           << implicit_stats()->residual_last << " in " << implicit_stats()->iterations_last
            << " iterations; a collider moving faster than its contact can push back also needs a smaller dt), ";
     else if (stable_step > 0.0 && std::isfinite(stable_step) && stable_step < h)
       text << "a smaller dt (the Gershgorin bound of these springs, dampers and contacts gives a stable "

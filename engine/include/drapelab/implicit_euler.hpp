@@ -40,6 +40,9 @@ struct ImplicitSolveStats {
   std::int64_t unconverged = 0;   // steps that hit max_iterations above the tolerance
 };
 
+// Adds one solve's outcome to the statistics.
+void record_solve(ImplicitSolveStats& stats, int iterations, double relative_residual, bool converged);
+
 class ImplicitEulerSystem {
  public:
   ImplicitEulerSystem(const ClothModel& model, ImplicitSolveSettings settings);

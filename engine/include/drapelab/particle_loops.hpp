@@ -9,6 +9,10 @@
 
 namespace drapelab::kernels {
 
+// Below this many particles a per-particle pass costs less than starting the threads (a parallel
+// region costs a few microseconds): every threaded particle phase runs on one thread below it.
+inline constexpr std::int64_t kParallelParticles = 4096;
+
 // x, v, f and every per-coordinate array below are 3 x n, packed as in ClothState: the passes run
 // over the 3n coordinates as one unit-stride array, so a per-particle quantity comes repeated for each
 // of its three coordinates.

@@ -18,6 +18,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/contact_model.hpp"
+#include "drapelab/family_implicit.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/solver.hpp"
@@ -69,8 +70,12 @@ class SpringDamperSolver final : public Solver {
                                           double h);
   // What each collider did in the last force evaluation (empty without colliders).
   const std::vector<ColliderContactTotals>& contact_totals() const { return contact_totals_; }
-  // The implicit solve's statistics (null unless the integrator is implicit_euler).
+  // The implicit solve: the assembled sparse system (a cloth without spring families, or fast_springs
+  // off) or the matrix-free one on spring families; both null unless the integrator is implicit_euler.
   const ImplicitEulerSystem* implicit_system() const { return implicit_.get(); }
+  const FamilyImplicitSystem* family_implicit_system() const { return family_implicit_.get(); }
+  // The statistics of whichever implicit solve runs (null unless the integrator is implicit_euler).
+  const ImplicitSolveStats* implicit_stats() const;
   // Whether the spring phase runs the spring-family fast path.
   bool uses_fast_springs() const { return spring_families_ != nullptr; }
 
@@ -104,6 +109,7 @@ class SpringDamperSolver final : public Solver {
   Eigen::Matrix3Xd previous_x_;         // m: Verlet's x(n-1)
   double two_level_step_ = 0.0;         // s: the h Verlet/leapfrog history holds; 0 = start afresh
   std::unique_ptr<ImplicitEulerSystem> implicit_;
+  std::unique_ptr<FamilyImplicitSystem> family_implicit_;
   std::unique_ptr<SpringFamilies> spring_families_;  // null: the plain edge-list loop
   std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
