@@ -161,9 +161,10 @@ void SpringDamperSolver::step(double h) {
   if (status_ != SolverStatus::ok) return;
   const auto start = Clock::now();
   const double force_seconds_before = force_phase_seconds();
+  std::optional<std::int64_t> scanned;  // the Euler passes scan the new state as they write it
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
-    case Integrator::symplectic_euler: euler_step(h); break;
+    case Integrator::symplectic_euler: scanned = euler_step(h); break;
     case Integrator::midpoint: midpoint_step(h); break;
     case Integrator::rk4: rk4_step(h); break;
     case Integrator::verlet: verlet_step(h); break;
@@ -177,14 +178,14 @@ void SpringDamperSolver::step(double h) {
   ++state_.step_count;
   ++stats_.steps;
   PhaseTimer timer(stats_, StepPhase::health_check);
-  check_health(h);
+  check_health(h, scanned);
 }
 
-void SpringDamperSolver::euler_step(double h) {
+std::int64_t SpringDamperSolver::euler_step(double h) {
   evaluate_forces(state_.x, state_.v, state_.time, h);
   const auto pass =
       settings_.integrator == Integrator::explicit_euler ? kernels::explicit_euler_pass : kernels::symplectic_euler_pass;
-  unhealthy_from_update_ = pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h,
+  return pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h,
                                state_.x.data(), state_.v.data(), settings_.max_speed * settings_.max_speed);
 }
 
@@ -204,62 +205,59 @@ void SpringDamperSolver::implicit_euler_step(double h) {
 
 // Stops the solver on a non-finite or runaway particle, naming the first one, the step, and what to
 // try. Runs every step over particles only (O(N)); the message is built only on failure.
-void SpringDamperSolver::check_health(double h) {
+void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scanned) {
   const double max_speed_squared = settings_.max_speed * settings_.max_speed;
   // The Euler passes scanned the new state as they wrote it; other schemes scan it here.
   const std::int64_t first =
-      unhealthy_from_update_ ? *unhealthy_from_update_
-                             : kernels::first_unhealthy_particle(model_->particle_count(), state_.x.data(),
-                                                                 state_.v.data(), max_speed_squared);
-  unhealthy_from_update_.reset();
-  if (first >= 0) {
-    const int i = static_cast<int>(first);
-    const bool finite = state_.x.col(i).allFinite() && state_.v.col(i).allFinite();
-    const double speed_squared = finite ? state_.v.col(i).squaredNorm() : 0.0;
+      scanned ? *scanned
+              : kernels::first_unhealthy_particle(model_->particle_count(), state_.x.data(), state_.v.data(),
+                                                  max_speed_squared);
+  if (first < 0) return;
+  const int i = static_cast<int>(first);
+  const bool finite = state_.x.col(i).allFinite() && state_.v.col(i).allFinite();
+  const double speed_squared = finite ? state_.v.col(i).squaredNorm() : 0.0;
 
-    std::ostringstream text;
-    text.precision(4);
-    text << model_->describe_particle(i);
-    if (!finite)
-      text << " has a non-finite position or velocity";
-    else
-      text << " moves at " << std::sqrt(speed_squared) << " m/s, above the runaway limit of "
-           << settings_.max_speed << " m/s";
-    text << " after step " << state_.step_count << " (t = " << state_.time << " s, dt = " << h
-         << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
-    ContactRates contact;
-    if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
-    const double stable_step = stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
-    const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping, contact);
-    if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
-      text << "integrator symplectic_euler, leapfrog or implicit_euler (" << integrator_name(settings_.integrator)
-           << " gains energy on every undamped spring and is stable only while damping outweighs it), ";
-    if (settings_.integrator == Integrator::implicit_euler)
-      text << "a smaller dt or a larger implicit max_iterations (the conjugate gradient reached a relative "
-              "residual of "
-           << implicit_stats()->residual_last << " in " << implicit_stats()->iterations_last
-           << " iterations; a collider moving faster than its contact can push back also needs a smaller dt), ";
-    else if (stable_step > 0.0 && std::isfinite(stable_step) && stable_step < h)
-      text << "a smaller dt (the Gershgorin bound of these springs, dampers and contacts gives a stable "
-           << integrator_name(settings_.integrator) << " step below about " << stable_step << " s), ";
-    else if (std::isfinite(stable_step) && stable_step >= h)
-      text << "a smaller dt (dt is inside the springs' stable step of about " << stable_step
-           << " s, so a contact or a fast collider is the likely cause: try half the dt, or a softer contact), ";
-    // In h^2 K + 2 h C < 4, the larger term says whether springs or dampers limit the step.
-    if (settings_.integrator == Integrator::implicit_euler)
-      text << "or a softer contact (lower contact.stiffness).";
-    else if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
-      text << "or more damping for the stiffness (this scheme is stable only for dt below about kd / ks of "
-              "the springs).";
-    else if (2.0 * rates.damping > h * rates.stiffness)
-      text << "or less damping (lower kd, air_damping or contact.damping: here the dampers, not the springs, "
-              "limit the step; they act per spring or particle, so light particles need small values).";
-    else
-      text << "or softer springs (lower ks or contact.stiffness).";
-    status_ = SolverStatus::unstable;
-    message_ = text.str();
-    return;
-  }
+  std::ostringstream text;
+  text.precision(4);
+  text << model_->describe_particle(i);
+  if (!finite)
+    text << " has a non-finite position or velocity";
+  else
+    text << " moves at " << std::sqrt(speed_squared) << " m/s, above the runaway limit of "
+         << settings_.max_speed << " m/s";
+  text << " after step " << state_.step_count << " (t = " << state_.time << " s, dt = " << h
+       << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
+  ContactRates contact;
+  if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
+  const double stable_step = stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
+  const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping, contact);
+  if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
+    text << "integrator symplectic_euler, leapfrog or implicit_euler (" << integrator_name(settings_.integrator)
+         << " gains energy on every undamped spring and is stable only while damping outweighs it), ";
+  if (settings_.integrator == Integrator::implicit_euler)
+    text << "a smaller dt or a larger implicit max_iterations (the conjugate gradient reached a relative "
+            "residual of "
+         << implicit_stats()->residual_last << " in " << implicit_stats()->iterations_last
+         << " iterations; a collider moving faster than its contact can push back also needs a smaller dt), ";
+  else if (stable_step > 0.0 && std::isfinite(stable_step) && stable_step < h)
+    text << "a smaller dt (the Gershgorin bound of these springs, dampers and contacts gives a stable "
+         << integrator_name(settings_.integrator) << " step below about " << stable_step << " s), ";
+  else if (std::isfinite(stable_step) && stable_step >= h)
+    text << "a smaller dt (dt is inside the springs' stable step of about " << stable_step
+         << " s, so a contact or a fast collider is the likely cause: try half the dt, or a softer contact), ";
+  // In h^2 K + 2 h C < 4, the larger term says whether springs or dampers limit the step.
+  if (settings_.integrator == Integrator::implicit_euler)
+    text << "or a softer contact (lower contact.stiffness).";
+  else if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
+    text << "or more damping for the stiffness (this scheme is stable only for dt below about kd / ks of "
+            "the springs).";
+  else if (2.0 * rates.damping > h * rates.stiffness)
+    text << "or less damping (lower kd, air_damping or contact.damping: here the dampers, not the springs, "
+            "limit the step; they act per spring or particle, so light particles need small values).";
+  else
+    text << "or softer springs (lower ks or contact.stiffness).";
+  status_ = SolverStatus::unstable;
+  message_ = text.str();
 }
 
 }  // namespace drapelab

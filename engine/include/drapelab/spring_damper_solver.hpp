@@ -81,7 +81,8 @@ class SpringDamperSolver final : public Solver {
 
  private:
   // One step of each scheme (explicit_schemes.cpp, except the Euler pair and implicit Euler here).
-  void euler_step(double h);
+  // The Euler pair returns the health scan of the new state (first_unhealthy_particle).
+  std::int64_t euler_step(double h);
   void midpoint_step(double h);
   void rk4_step(double h);
   void verlet_step(double h);
@@ -90,7 +91,8 @@ class SpringDamperSolver final : public Solver {
   // a = f / m for the force just evaluated (zero on pinned particles).
   const Eigen::Matrix3Xd& acceleration_of_force(Eigen::Matrix3Xd& into) const;
   double force_phase_seconds() const;
-  void check_health(double h);
+  // `scanned`: the step's own scan of the new state, if it made one.
+  void check_health(double h, std::optional<std::int64_t> scanned);
 
   std::string name_;
   std::string type_ = "spring_damper";
@@ -114,7 +116,6 @@ class SpringDamperSolver final : public Solver {
   std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
   ContactWorkspace contact_workspace_;  // the contact phase's per-block results
-  std::optional<std::int64_t> unhealthy_from_update_;  // the Euler pass's health scan, used once
   StepStats stats_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;
