@@ -23,20 +23,29 @@ TEST_F(BenchCli, QuickRunWritesARowPerSceneAndSolver) {
   const auto lines = split_lines(read_text(out / "bench.csv"));
   ASSERT_EQ(lines.size(), 1u + 2 * 3) << "a header and 3 solvers for each of 2 scenes";
   const auto header = split_csv(lines[0]);
-  ASSERT_EQ(header.back(), "cost_ratio_to_ours");
-  double ours_cost = 0.0;
+  ASSERT_EQ(header[13], "cost_ratio_to_ours");
+  ASSERT_EQ(header[14], "second_half_wall_seconds_per_simulated_second");
+  ASSERT_EQ(header[15], "second_half_cost_ratio_to_ours");
+  double ours_cost = 0.0, ours_second_half = 0.0;
   for (std::size_t k = 1; k < lines.size(); ++k) {
     const auto cells = split_csv(lines[k]);
     ASSERT_EQ(cells.size(), header.size()) << lines[k];
     EXPECT_EQ(cells[1], "33");
     EXPECT_EQ(cells[8], "ok") << lines[k];
     const double cost = std::stod(cells[9]), ratio = std::stod(cells[13]);
+    const double second_half = std::stod(cells[14]), second_half_ratio = std::stod(cells[15]);
     EXPECT_GT(cost, 0.0);
+    EXPECT_GT(second_half, 0.0);
+    // Half the run's steps cost half its time give or take: the second half is a part of the whole.
+    EXPECT_LT(second_half, 2.5 * cost) << lines[k];
     if (cells[4] == "ours") {
       ours_cost = cost;
+      ours_second_half = second_half;
       EXPECT_DOUBLE_EQ(ratio, 1.0);
+      EXPECT_DOUBLE_EQ(second_half_ratio, 1.0);
     } else {
       EXPECT_NEAR(ratio, cost / ours_cost, 1e-4 * ratio) << lines[k];
+      EXPECT_NEAR(second_half_ratio, second_half / ours_second_half, 1e-4 * second_half_ratio) << lines[k];
     }
   }
   EXPECT_NE(read_text(out / "bench.md").find("| curtain | 33 x 33 | bullet_classic |"), std::string::npos);

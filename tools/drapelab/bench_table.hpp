@@ -21,6 +21,10 @@ struct BenchRow {
   double max_stretch = 0.0;      // over every frame
   double max_penetration = 0.0;  // m, over every frame
   double cost_ratio = 0.0;       // wall_per_simulated / ours (same scene and size)
+  // The same two over the run's second half (SimulationResult::second_half_...): the steady cost,
+  // once the sheet has landed and Bullet's classic cloth has built most of its distance cache.
+  double second_half_wall_per_simulated = 0.0;
+  double second_half_cost_ratio = 0.0;
 };
 
 struct BenchTable {

@@ -100,7 +100,7 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       const auto scene = load_trial_scene(file, {resolution, kSolvers}, duration);
       if (!scene) return kExitBadInput;  // the loader printed why
       const runner::SceneSetup setup = runner::build_scene_setup(*scene);
-      double ours_cost = 0.0;  // wall s per simulated s
+      double ours_cost = 0.0, ours_second_half_cost = 0.0;  // wall s per simulated s
       for (const auto& spec : scene->solvers) {
         BenchRow row;
         row.scene = scene->name;
@@ -138,8 +138,15 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
         row.ms_per_step = m.result.ms_per_step();
         row.max_stretch = m.max_stretch;
         row.max_penetration = m.max_penetration;
-        if (spec.type == "spring_damper") ours_cost = row.wall_per_simulated;
+        row.second_half_wall_per_simulated =
+            m.result.second_half_wall_seconds_per_simulated_second(scene->frame_period());
+        if (spec.type == "spring_damper") {
+          ours_cost = row.wall_per_simulated;
+          ours_second_half_cost = row.second_half_wall_per_simulated;
+        }
         row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
+        row.second_half_cost_ratio =
+            ours_second_half_cost > 0.0 ? row.second_half_wall_per_simulated / ours_second_half_cost : 0.0;
         table.rows.push_back(row);
         std::cout << format_row(row) << std::endl;
         write_bench_files(out, table);  // after every row, so an interrupted bench keeps what it measured

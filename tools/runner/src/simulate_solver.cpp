@@ -44,6 +44,13 @@ StopCause stretch_check(const scene::SolverSpec& spec, const ClothMetrics& metri
 
 }  // namespace
 
+double SimulationResult::second_half_wall_seconds_per_simulated_second(double frame_period) const {
+  const int last = static_cast<int>(stepping_seconds_at_frame.size()) - 1;
+  if (last < 2) return 0.0;
+  const int middle = last / 2;
+  return (stepping_seconds_at_frame[last] - stepping_seconds_at_frame[middle]) / ((last - middle) * frame_period);
+}
+
 SimulationResult simulate_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
                                  const SceneSetup& setup, const SimulationOptions& options) {
   SimulationResult result;
@@ -93,6 +100,7 @@ SimulationResult simulate_solver(const scene::Scene& scene, const scene::SolverS
       break;
     }
     ++result.frames_recorded;
+    result.stepping_seconds_at_frame.push_back(result.wall_seconds);
     if (options.on_frame) options.on_frame(frame, solver->state(), result.final_metrics);
   }
   result.final_state = solver->state();
