@@ -1,6 +1,7 @@
 // Google Benchmark micro-benchmarks of the step's kernels: the spring phase (plain edge list and the
-// spring-family fast path, per spring), the contact phase (per particle) and one conjugate-gradient
-// solve of implicit Euler (per iteration). They measure; nothing here asserts a time.
+// spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, and a step of
+// implicit Euler with the assembled or the matrix-free solve (with its CG iterations). They measure;
+// nothing here asserts a time.
 // Run: build/bench/bench_kernels [--benchmark_filter=Springs]
 #include <benchmark/benchmark.h>
 
@@ -106,9 +107,10 @@ void StepWithContacts(benchmark::State& bench) {
 }
 BENCHMARK(StepWithContacts)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2})->Args({257, 1})->Args({257, 2});
 
-// A step of implicit Euler at h = 1/240 s and its conjugate-gradient iterations: args are the
-// particles per side, the threads, and 1 for the matrix-free solve on spring families or 0 for the
-// assembled sparse matrix (Eigen's CG). time / cg_iterations_per_step is the cost of one iteration.
+// A step of implicit Euler at h = 1/240 s on a free sheet (no collider) and its conjugate-gradient
+// iterations: args are the particles per side, the threads, and 1 for the matrix-free solve on spring
+// families (with the spring fast path) or 0 for the assembled sparse matrix (Eigen's CG, plain edge
+// list). time / cg_iterations_per_step is the step's cost per iteration, force and assembly included.
 void ImplicitStep(benchmark::State& bench) {
   Sheet sheet(static_cast<int>(bench.range(0)));
   kernels::set_thread_count(static_cast<int>(bench.range(1)));

@@ -36,8 +36,6 @@ TEST_F(BenchCli, QuickRunWritesARowPerSceneAndSolver) {
     const double second_half = std::stod(cells[14]), second_half_ratio = std::stod(cells[15]);
     EXPECT_GT(cost, 0.0);
     EXPECT_GT(second_half, 0.0);
-    // Half the run's steps cost half its time give or take: the second half is a part of the whole.
-    EXPECT_LT(second_half, 2.5 * cost) << lines[k];
     if (cells[4] == "ours") {
       ours_cost = cost;
       ours_second_half = second_half;

@@ -9,9 +9,6 @@
 
 #include "drapelab/particle_loops.hpp"
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace drapelab::kernels {
 namespace {
@@ -20,7 +17,8 @@ namespace {
 constexpr std::int64_t kBlock = 512;
 
 // The CG's vectors (FamilySystem::vector_row): solution, residual, preconditioned residual, search
-// direction and its product with A; a sixth and seventh hold the unpacked velocity and right-hand side.
+// direction and its product with A; the sixth holds the unpacked velocity during the assembly and the
+// right-hand side at the start of the solve.
 enum Vector : int { kSolution = 0, kResidual, kPreconditioned, kDirection, kProduct, kScratch, kCount };
 
 // Three rows of one vector.
@@ -120,25 +118,17 @@ double product(FamilySystem& s, int p_index, int y_index) {
   const std::int64_t blocks = block_count(s);
 #pragma omp parallel if (threaded(s))
   {
-    int thread = 0, threads = 1;
-#ifdef _OPENMP
-    thread = omp_get_thread_num();
-    threads = omp_get_num_threads();
-#endif
-    const std::int64_t first_block = blocks * thread / threads, end_block = blocks * (thread + 1) / threads;
-    const std::int64_t run_begin = std::min(s.particles, first_block * kBlock);
-    const std::int64_t run_end = std::min(s.particles, end_block * kBlock);
-    const std::int64_t deferred_end = thread == 0 ? run_begin : std::min(run_end, run_begin + s.padding);
-    for (std::int64_t block = first_block; block < end_block; ++block) {
+    const ThreadRun run = thread_run(blocks, kBlock, s.particles, s.padding);
+    for (std::int64_t block = run.first_block; block < run.end_block; ++block) {
       const BlockRange range = block_range(s, block);
       slot_terms(s, p, range);
-      const std::int64_t begin = std::max(range.begin, deferred_end);
+      const std::int64_t begin = std::max(range.begin, run.deferred_end);
       if (begin < range.end) finish_product(s, p, y, {begin, range.end});
     }
 #pragma omp barrier
-    for (std::int64_t begin = run_begin; begin < deferred_end; begin += kBlock)
-      finish_product(s, p, y, {begin, std::min(deferred_end, begin + kBlock)});
-    for (std::int64_t block = first_block; block < end_block; ++block)
+    for (std::int64_t begin = run.begin; begin < run.deferred_end; begin += kBlock)
+      finish_product(s, p, y, {begin, std::min(run.deferred_end, begin + kBlock)});
+    for (std::int64_t block = run.first_block; block < run.end_block; ++block)
       s.partials[2 * block] = dot(p, y, block_range(s, block));
   }
   return sum_partials(s, 0);

@@ -185,8 +185,8 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
   evaluate_forces(state_.x, state_.v, state_.time, h);
   const auto pass =
       settings_.integrator == Integrator::explicit_euler ? kernels::explicit_euler_pass : kernels::symplectic_euler_pass;
-  return pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h,
-                               state_.x.data(), state_.v.data(), settings_.max_speed * settings_.max_speed);
+  return pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h, state_.x.data(),
+              state_.v.data(), settings_.max_speed * settings_.max_speed);
 }
 
 // Backward Euler, linearised at the start of the step (implicit_euler.hpp).

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drapelab/particle_loops.hpp"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -139,28 +141,20 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
     // then the gather of its particles, while those slots are still in cache. Particle i reads slots
     // i and i - offset, computed by this block or an earlier one; only the first max_offset particles
     // of a thread's run read slots of the thread before, so their gather waits for the barrier.
-    int thread = 0, threads = 1;
-#ifdef _OPENMP
-    thread = omp_get_thread_num();
-    threads = omp_get_num_threads();
-#endif
-    const std::int64_t first_block = blocks * thread / threads, end_block = blocks * (thread + 1) / threads;
-    const std::int64_t run_begin = std::min(n, first_block * kGatherBlock);
-    const std::int64_t run_end = std::min(n, end_block * kGatherBlock);
-    const std::int64_t deferred_end = thread == 0 ? run_begin : std::min(run_end, run_begin + max_offset);
-    for (std::int64_t block = first_block; block < end_block; ++block) {
+    const ThreadRun run = thread_run(blocks, kGatherBlock, n, max_offset);
+    for (std::int64_t block = run.first_block; block < run.end_block; ++block) {
       const std::int64_t begin = block * kGatherBlock, end = std::min(n, begin + kGatherBlock);
       for (std::int64_t family = 0; family < family_count; ++family)
         family_slot_forces(families[static_cast<std::size_t>(family)], px, py, pz, vx, vy, vz,
                            scratch.force_row(family, 0), scratch.force_row(family, 1), scratch.force_row(family, 2),
                            begin, end);
-      const std::int64_t gather_begin = std::max(begin, deferred_end);
+      const std::int64_t gather_begin = std::max(begin, run.deferred_end);
       if (gather_begin < end) gather(families, scratch, f, gather_begin, end);
     }
 #pragma omp barrier
     // 3. The deferred particles at the start of each run (none for the first thread).
-    for (std::int64_t begin = run_begin; begin < deferred_end; begin += kGatherBlock)
-      gather(families, scratch, f, begin, std::min(deferred_end, begin + kGatherBlock));
+    for (std::int64_t begin = run.begin; begin < run.deferred_end; begin += kGatherBlock)
+      gather(families, scratch, f, begin, std::min(run.deferred_end, begin + kGatherBlock));
   }
 }
 

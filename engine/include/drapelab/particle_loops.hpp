@@ -61,6 +61,18 @@ int near_particles(const NearCollider& collider, const double* x, int begin, int
 void for_each_block(std::int64_t blocks, bool parallel, void (*body)(const void* context, std::int64_t block),
                     const void* context);
 
+// Inside an OpenMP parallel region (or outside one, as the only thread): the calling thread's share of
+// `blocks` blocks of `block_size` particles out of n, one contiguous run per thread, and how far its
+// first particles must wait for a barrier when particle i reads slots i and i - offset (offset up to
+// max_offset) computed block by block: the first max_offset particles of every run but the first
+// read slots of the previous thread's run.
+struct ThreadRun {
+  std::int64_t first_block = 0, end_block = 0;  // blocks [first_block, end_block)
+  std::int64_t begin = 0, end = 0;              // particles [begin, end)
+  std::int64_t deferred_end = 0;                // particles [begin, deferred_end) wait for the barrier
+};
+ThreadRun thread_run(std::int64_t blocks, std::int64_t block_size, std::int64_t n, std::int64_t max_offset);
+
 // The same for any callable body(block).
 template <typename Body>
 void for_each_block(std::int64_t blocks, bool parallel, const Body& body) {
