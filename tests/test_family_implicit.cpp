@@ -15,24 +15,10 @@
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/spring_families.hpp"
 #include "drapelab/spring_family_loops.hpp"
+#include "stiff_sheet.hpp"
 
 namespace drapelab {
 namespace {
-
-// A stiff sheet held at its top corners (pins), n x m particles, upright in the xy plane.
-GridClothSpec pinned_sheet(int nx, int ny) {
-  GridClothSpec spec;
-  spec.nx = nx;
-  spec.ny = ny;
-  spec.plane = GridPlane::xy;
-  spec.center = {0, 1, 0};
-  spec.mass = 0.1;                // kg
-  spec.stretch = {2.0e4, 0.05};   // N/m, N*s/m
-  spec.shear = {2.0e3, 0.01};
-  spec.bend = {50.0, 0.002};
-  spec.pins = {PinNamed{"top_corners"}};
-  return spec;
-}
 
 Eigen::Matrix3Xd random_field(int n, double scale, unsigned seed) {
   std::mt19937_64 random(seed);
@@ -48,7 +34,7 @@ double max_abs(const Eigen::Matrix3Xd& m) { return m.cwiseAbs().maxCoeff(); }
 struct BothSystems {
   // 11 x 8 by default: offsets 11 + 1 and 2 x 11, rows shorter than the columns.
   explicit BothSystems(int nx = 11, int ny = 8) {
-    spec = pinned_sheet(nx, ny);
+    spec = stiff_sheet(nx, ny);
     model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
     families = SpringFamilies::build(*model);
     const int n = model->particle_count();
@@ -172,7 +158,7 @@ TEST(FamilyImplicit, StopsAtItsToleranceAndCountsLikeEigen) {
 // The solver picks the matrix-free solve on a grid and the assembled one without the fast path; both
 // runs of a stiff sheet swinging from its pins at 1/60 s agree to the CG tolerance.
 TEST(FamilyImplicit, SolverRunsAgreeWithTheAssembledPath) {
-  GridClothSpec spec = pinned_sheet(15, 15);
+  GridClothSpec spec = stiff_sheet(15, 15);
   spec.plane = GridPlane::xz;  // horizontal, held at two corners: it swings down like a pendulum
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   auto run = [&](bool fast) {

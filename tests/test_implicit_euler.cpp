@@ -12,6 +12,7 @@
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/spring_force.hpp"
 #include "drapelab/spring_jacobian.hpp"
+#include "stiff_sheet.hpp"
 
 namespace drapelab {
 namespace {
@@ -70,19 +71,6 @@ TEST(SpringJacobian, SolveFormIsTheElasticPartWhenStretchedAndSemidefiniteWhenCo
   EXPECT_LT((compressed.dforce_dx - compressed.dforce_dx.transpose()).norm(), 1e-12);
 }
 
-GridClothSpec stiff_sheet(int n) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.plane = GridPlane::xy;
-  spec.center = {0, 1, 0};
-  spec.mass = 0.1;                 // kg: 0.44 g per particle at 15 x 15
-  spec.stretch = {2.0e4, 0.05};    // N/m: stiff; the explicit bound is about 1e-4 s
-  spec.shear = {2.0e3, 0.01};
-  spec.bend = {50.0, 0.002};
-  spec.pins = {PinNamed{"top_corners"}};
-  return spec;
-}
-
 double max_strain(const ClothModel& model, const ClothState& state) {
   double worst = 0.0;
   const SpringSet& s = model.springs;
@@ -93,7 +81,7 @@ double max_strain(const ClothModel& model, const ClothState& state) {
 }
 
 TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
-  GridClothSpec spec = stiff_sheet(15);
+  GridClothSpec spec = stiff_sheet(15, 15);
   spec.plane = GridPlane::xz;  // horizontal, held at two corners: it swings down like a pendulum
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const double h = 1.0 / 60.0;
@@ -127,7 +115,7 @@ TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
 }
 
 TEST(ImplicitEuler, ConjugateGradientReachesItsToleranceOnTheAssembledSystem) {
-  const GridClothSpec spec = stiff_sheet(9);
+  const GridClothSpec spec = stiff_sheet(9, 9);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   for (double tolerance : {1e-4, 1e-8}) {
     SpringDamperSettings settings;
@@ -156,7 +144,7 @@ TEST(ImplicitEuler, ConjugateGradientReachesItsToleranceOnTheAssembledSystem) {
 }
 
 TEST(ImplicitEuler, PinnedParticlesAreFilteredOutOfTheSystem) {
-  const GridClothSpec spec = stiff_sheet(5);
+  const GridClothSpec spec = stiff_sheet(5, 5);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   SpringDamperSettings settings;
   settings.integrator = Integrator::implicit_euler;
