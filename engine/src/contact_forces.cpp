@@ -67,7 +67,8 @@ Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
 void ContactModel::add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
                                       const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
                                       std::vector<ColliderContactTotals>& totals,
-                                      std::vector<ActiveContact>* active, ContactWorkspace* workspace) const {
+                                      std::vector<ActiveContact>* active, ContactWorkspace* workspace,
+                                      ContactNormalScheme normal_scheme) const {
   ContactWorkspace temporary;
   ContactWorkspace& work = workspace ? *workspace : temporary;
   const std::size_t collider_count = colliders_.size();
@@ -113,8 +114,12 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
             : poses_      ? posed.hosted.point_velocity(x.col(i))
                           : collider_point_velocity(collider, t, x.col(i));
         const Eigen::Vector3d relative_velocity = v.col(i) - surface_velocity;
-        const double fn = penalty_normal_force(touching->depth, relative_velocity.dot(normal),
-                                               parameters_.stiffness, parameters_.damping);
+        const double normal_velocity = relative_velocity.dot(normal);  // m/s, > 0 separating
+        const double fn =
+            normal_scheme == ContactNormalScheme::linearly_implicit
+                ? linearly_implicit_normal_force(touching->depth, normal_velocity, force.col(i).dot(normal),
+                                                 model.mass[i], h, parameters_.stiffness, parameters_.damping)
+                : penalty_normal_force(touching->depth, normal_velocity, parameters_.stiffness, parameters_.damping);
         force.col(i) += fn * normal;
         if (active && fn > 0.0) block_active.push_back({i, normal});
         Eigen::Vector3d friction = Eigen::Vector3d::Zero();

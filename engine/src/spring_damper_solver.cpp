@@ -106,8 +106,14 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
   }
   if (settings_.contacts) {
     PhaseTimer timer(stats_, StepPhase::contacts);
+    // Symplectic Euler takes the normal force its step's end state implies, so contacts do not
+    // bound its step (penalty_contact.hpp); every other scheme evaluates forces at its own stages.
+    const ContactNormalScheme normal = settings_.integrator == Integrator::symplectic_euler
+                                           ? ContactNormalScheme::linearly_implicit
+                                           : ContactNormalScheme::explicit_penalty;
     settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
-                                           implicit_stats() ? &active_contacts_ : nullptr, &contact_workspace_);
+                                           implicit_stats() ? &active_contacts_ : nullptr, &contact_workspace_,
+                                           normal);
   }
   return force_;
 }

@@ -54,6 +54,12 @@ struct ContactWorkspace {
   std::vector<std::vector<int>> block_near;  // per block: the broad phase's particles for one collider
 };
 
+// How the penalty normal force is timed within a step (penalty_contact.hpp).
+enum class ContactNormalScheme {
+  explicit_penalty,   // k depth - c u at the state given: any integrator
+  linearly_implicit,  // at the end of a symplectic Euler step of h: stable at any h
+};
+
 class ContactModel {
  public:
   // `radius`: the particles' contact radius, the cloth's thickness (m). Without `poses` the colliders
@@ -78,6 +84,8 @@ class ContactModel {
 
   // Adds penalty and friction forces (N) to `force` for the state (x, v) at time t, for a step of h.
   // Friction uses the force already accumulated, so call it after every other force phase.
+  // `normal`: the penalty force at the state given, or (for symplectic Euler only) the force the
+  // step's end state implies (penalty_contact.hpp), which uses the accumulated force too.
   // `totals` (one per collider) is overwritten. Pinned particles are skipped. When `active` is given,
   // it is cleared and receives every pushing contact (in a fixed order: by block of particles, then
   // collider, then particle). Particles are processed in
@@ -87,7 +95,8 @@ class ContactModel {
                           const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
                           std::vector<ColliderContactTotals>& totals,
                           std::vector<ActiveContact>* active = nullptr,
-                          ContactWorkspace* workspace = nullptr) const;
+                          ContactWorkspace* workspace = nullptr,
+                          ContactNormalScheme normal = ContactNormalScheme::explicit_penalty) const;
 
  private:
   std::vector<Collider> colliders_;

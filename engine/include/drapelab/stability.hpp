@@ -42,7 +42,9 @@ double symplectic_euler_stable_step(const ClothModel& model, double air_damping,
 double damping_ratio_step(const ClothModel& model, ContactRates contact = {});
 
 // A step (s) below which `integrator` is stable on this network, from the bounds above: symplectic
-// Euler's bound for it, Verlet and leapfrog (all w h < 2 undamped); 1.39 x that for RK4 (its region
+// Euler's bound without the contact terms for symplectic Euler (its solver takes the contact force at
+// the step's end, which acts as extra mass along the normal and only lowers the rates: see
+// penalty_contact.hpp), with them for Verlet and leapfrog (all w h < 2 undamped); 1.39 x that for RK4 (its region
 // reaches 2.83 on the imaginary axis and 2.79 on the negative real axis); min(damping_ratio_step,
 // symplectic bound) for explicit Euler and midpoint; infinity for implicit Euler.
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,

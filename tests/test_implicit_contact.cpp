@@ -1,0 +1,190 @@
+// The linearly implicit penalty contact of symplectic Euler (penalty_contact.hpp): the normal force is
+// the one the step's end state implies, so the contact's stiffness and damping no longer bound the
+// step. Checked on the formula itself, on a particle's normal motion, and on a whole cloth resting on
+// a floor at steps where the explicit penalty force diverges.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+#include "drapelab/collision_metrics.hpp"
+#include "drapelab/contact_model.hpp"
+#include "drapelab/grid_cloth.hpp"
+#include "drapelab/penalty_contact.hpp"
+#include "drapelab/spring_damper_solver.hpp"
+#include "drapelab/stability.hpp"
+
+namespace drapelab {
+namespace {
+
+constexpr double kGravity = 9.81;  // m/s^2
+
+TEST(LinearlyImplicitNormalForce, SatisfiesTheEndOfStepEquation) {
+  const double k = 1000.0, c = 0.2, m = 1.5e-5, h = 1e-4;  // N/m, N*s/m, kg, s
+  for (double depth : {1e-5, 2e-3}) {                       // m
+    for (double u : {-2.0, -0.01, 0.0}) {                   // m/s, approaching or still
+      for (double other : {-5e-3, 0.0, 1e-3}) {             // N along the normal
+        const double fn = linearly_implicit_normal_force(depth, u, other, m, h, k, c);
+        ASSERT_GT(fn, 0.0);
+        const double u_end = u + h / m * (other + fn);       // m/s, the step's end velocity
+        const double implied = k * (depth - h * u_end) - c * u_end;  // N, the spring-damper there
+        EXPECT_NEAR(fn, implied, 1e-12 * std::abs(fn) + 1e-15) << depth << " " << u << " " << other;
+      }
+    }
+  }
+}
+
+TEST(LinearlyImplicitNormalForce, AtRestItIsThePenaltyForceAndAsTheStepShrinksTooTheExplicitOne) {
+  const double k = 1000.0, c = 0.2, m = 1.5e-5;  // N/m, N*s/m, kg
+  const double depth = m * kGravity / k;          // m: the sag under the particle's weight
+  EXPECT_NEAR(linearly_implicit_normal_force(depth, 0.0, -m * kGravity, m, 1e-3, k, c), k * depth, 1e-15);
+  const double explicit_force = penalty_normal_force(1e-3, -0.5, k, c);  // N
+  const double tiny_step = linearly_implicit_normal_force(1e-3, -0.5, 0.0, m, 1e-12, k, c);
+  EXPECT_NEAR(tiny_step, explicit_force, 1e-6 * explicit_force);
+  // At a step like the cloth's, it is smaller: the contact cannot push more than the step allows.
+  EXPECT_LT(linearly_implicit_normal_force(1e-3, -0.5, 0.0, m, 1e-4, k, c), 0.5 * explicit_force);
+}
+
+TEST(LinearlyImplicitNormalForce, OnlyPushes) {
+  // Separating faster than the spring can hold: no pull.
+  EXPECT_EQ(linearly_implicit_normal_force(1e-4, 5.0, 0.0, 1e-3, 1e-3, 1000.0, 0.2), 0.0);
+  // Lifted off by a strong outward force.
+  EXPECT_EQ(linearly_implicit_normal_force(1e-4, 0.0, 10.0, 1e-3, 1e-3, 1000.0, 0.2), 0.0);
+}
+
+// One particle of mass m dropped onto a plane, along its normal, by symplectic Euler: y is its height
+// above the contact surface (m), contact when y < 0. Returns the largest |y| seen after `settle` s, or
+// infinity when the motion blows up.
+double bounce(double h, bool implicit, double settle, double* final_height) {
+  const double k = 1000.0, c = 0.2, m = 1.5e-5;  // the sphere drape's contact on a 129 x 129 sheet
+  double y = 0.01, v = 0.0, worst_after_settle = 0.0;
+  const int steps = static_cast<int>(std::lround(1.0 / h));
+  for (int s = 0; s < steps; ++s) {
+    const double gravity = -m * kGravity;  // N
+    double fn = 0.0;
+    if (y < 0.0)
+      fn = implicit ? linearly_implicit_normal_force(-y, v, gravity, m, h, k, c) : penalty_normal_force(-y, v, k, c);
+    v += h / m * (gravity + fn);
+    y += h * v;
+    if (!std::isfinite(y) || std::abs(y) > 1.0) return std::numeric_limits<double>::infinity();
+    if (s * h > settle) worst_after_settle = std::max(worst_after_settle, std::abs(y + m * kGravity / k));
+  }
+  *final_height = y;
+  return worst_after_settle;
+}
+
+TEST(ImplicitContactParticle, SettlesAtTheSagAtStepsWhereTheExplicitForceDiverges) {
+  const double m = 1.5e-5, c = 0.2, k = 1000.0;
+  const double explicit_limit = (std::sqrt(c * c / (m * m) + 4.0 * k / m) - c / m) / (k / m);  // s, stability.hpp
+  for (double factor : {3.0, 30.0}) {
+    const double h = factor * explicit_limit;
+    double height = 0.0;
+    EXPECT_FALSE(std::isfinite(bounce(h, false, 0.5, &height))) << "explicit penalty at " << factor << " x its limit";
+    const double deviation = bounce(h, true, 0.5, &height);
+    ASSERT_TRUE(std::isfinite(deviation)) << factor;
+    const double sag = m * kGravity / k;             // m
+    EXPECT_NEAR(height, -sag, 1e-3 * sag) << factor;  // rests at the penalty sag
+    EXPECT_LT(deviation, 1e-3 * sag) << factor;       // and stays there
+  }
+}
+
+TEST(ImplicitContactParticle, WithinTheExplicitLimitBothLandTheSame) {
+  const double h = 1e-6;  // s, far inside both limits
+  double explicit_height = 0.0, implicit_height = 0.0;
+  ASSERT_TRUE(std::isfinite(bounce(h, false, 0.5, &explicit_height)));
+  ASSERT_TRUE(std::isfinite(bounce(h, true, 0.5, &implicit_height)));
+  EXPECT_NEAR(implicit_height, explicit_height, 1e-9);  // m: both at the sag, 0.15 um
+}
+
+// A 0.5 m sheet of 21 x 21 light particles (0.11 g) lying flat at y = 0.005 m, the contact thickness.
+GridClothSpec light_sheet() {
+  GridClothSpec spec;
+  spec.nx = spec.ny = 21;
+  spec.size = {0.5, 0.5};
+  spec.center = {0.0, 0.005, 0.0};
+  spec.mass = 0.05;  // kg
+  spec.thickness = 0.005;
+  spec.stretch = {1000.0, 0.01};
+  spec.shear = {100.0, 0.005};
+  spec.bend = {5.0, 0.001};
+  return spec;
+}
+constexpr ContactParameters kHeavyContact{1000.0, 2.0};  // N/m, N*s/m: 2 m / c = 0.11 ms per particle
+
+TEST(ImplicitContactStep, SymplecticEulerStepIgnoresTheContactAndVerletsKeepsIt) {
+  const ClothModel model = build_grid_cloth(light_sheet());
+  const ContactRates contact{kHeavyContact.stiffness, kHeavyContact.damping};
+  const double springs_only = symplectic_euler_stable_step(model, 0.1);
+  const double with_contact = symplectic_euler_stable_step(model, 0.1, contact);
+  ASSERT_LT(with_contact, 0.5 * springs_only);  // the contact damping would bound an explicit step
+  EXPECT_EQ(stable_step_estimate(model, 0.1, contact, Integrator::symplectic_euler), springs_only);
+  EXPECT_EQ(stable_step_estimate(model, 0.1, contact, Integrator::verlet), with_contact);
+  EXPECT_EQ(stable_step_estimate(model, 0.1, contact, Integrator::leapfrog), with_contact);
+}
+
+// A sheet of light particles laid on a floor whose contact damping bounds the explicit step far below
+// the springs' bound. At the springs' step, symplectic Euler (implicit contact) settles at the sag with
+// the normal forces carrying the weight; Verlet, whose contact force is explicit, diverges there.
+struct FloorRun {
+  SolverStatus status = SolverStatus::ok;
+  double normal_force = 0.0;     // N, summed over the floor's contacts at the end
+  double lowest_normal_force = std::numeric_limits<double>::infinity();  // N, over the last quarter second
+  double highest_normal_force = 0.0;                                     // N, over the last quarter second
+  double max_penetration = 0.0;  // m, at the end
+};
+
+FloorRun rest_on_floor(Integrator integrator, double seconds) {
+  const GridClothSpec spec = light_sheet();
+  auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  Collider floor;
+  floor.name = "floor";
+  floor.shape = ColliderShape::plane;
+  floor.friction = floor.static_friction = 0.3;
+  auto contacts = std::make_shared<const ContactModel>(std::vector<Collider>{floor}, kHeavyContact, spec.thickness);
+  SpringDamperSettings settings;
+  settings.air_damping = 0.1;
+  settings.contacts = contacts;
+  settings.integrator = integrator;
+  const double h = 0.8 * symplectic_euler_stable_step(*model, settings.air_damping);  // s, the springs' step
+  SpringDamperSolver solver("floor", model, initial_grid_state(*model, spec, 0.0, 0), settings);
+  const int steps = static_cast<int>(std::lround(seconds / h));
+  FloorRun run;
+  for (int s = 0; s < steps && solver.status() == SolverStatus::ok; ++s) {
+    solver.step(h);
+    if (solver.state().time < seconds - 0.25) continue;
+    run.lowest_normal_force = std::min(run.lowest_normal_force, solver.contact_totals()[0].normal_force);
+    run.highest_normal_force = std::max(run.highest_normal_force, solver.contact_totals()[0].normal_force);
+  }
+  run.status = solver.status();
+  if (run.status != SolverStatus::ok) return run;
+  run.normal_force = solver.contact_totals()[0].normal_force;
+  run.max_penetration = compute_collision_metrics(*model, solver.state(), *contacts, solver.state().time).max_penetration;
+  return run;
+}
+
+TEST(ImplicitContactStep, ClothRestsOnAHeavilyDampedFloorAtTheSpringsStep) {
+  const double particle_mass = 0.05 / (21 * 21);  // kg
+  const FloorRun ours = rest_on_floor(Integrator::symplectic_euler, 1.0);
+  ASSERT_EQ(ours.status, SolverStatus::ok);
+  const double weight = 0.05 * kGravity;  // N
+  EXPECT_NEAR(ours.normal_force, weight, 0.01 * weight);
+  const double sag = particle_mass * kGravity / 1000.0;  // m
+  EXPECT_NEAR(ours.max_penetration, sag, 0.05 * sag);
+
+  EXPECT_NEAR(ours.lowest_normal_force, weight, 0.01 * weight);  // at rest for the last quarter second
+  EXPECT_NEAR(ours.highest_normal_force, weight, 0.01 * weight);
+
+  // Verlet's explicit contact cannot hold the sheet at this step: the damper overshoots, the sheet
+  // chatters off the floor and the normal force swings between zero and over a thousand times the
+  // weight.
+  const FloorRun verlet = rest_on_floor(Integrator::verlet, 1.0);
+  ASSERT_EQ(verlet.status, SolverStatus::ok);  // the contact only pushes, so the chatter stays bounded
+  EXPECT_LT(verlet.lowest_normal_force, 0.5 * weight);
+  EXPECT_GT(verlet.highest_normal_force, 2.0 * weight);
+}
+
+}  // namespace
+}  // namespace drapelab
