@@ -194,6 +194,34 @@ TEST(FclConversion, BoundsHoldTheShape) {
   }
 }
 
+// The broad phase's bounding sphere: every point of the shape lies within it, and it is tight (the
+// farthest point of each shape, a sphere's surface, a capsule's tip, a cylinder's rim, a box's corner,
+// is on it).
+TEST(FclConversion, BoundingRadiusHoldsTheShapeAndIsTight) {
+  std::mt19937_64 random(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double expected[] = {0.3, std::hypot(0.3, 0.4), 0.25 + 0.1, std::sqrt(0.25 + 0.04 + 0.09)};
+  int checked = 0;
+  for (ShapeCase& shape : shape_cases()) {
+    const FclCollider fcl = make_fcl_collider(shape.collider);
+    if (shape.collider.shape == ColliderShape::plane) {
+      EXPECT_TRUE(std::isinf(bounding_radius(fcl)));
+      continue;
+    }
+    const double radius = bounding_radius(fcl);
+    EXPECT_NEAR(radius, expected[checked++], 1e-12);
+    double farthest = 0.0;  // m, of the sampled points inside the shape
+    for (int trial = 0; trial < 20000; ++trial) {
+      const Eigen::Vector3d local(u(random) * shape.extent, u(random) * shape.extent, u(random) * shape.extent);
+      if (shape.local_sdf(local) > 0.0) continue;
+      EXPECT_LE(local.norm(), radius) << local.transpose();
+      farthest = std::max(farthest, local.norm());
+    }
+    EXPECT_GT(farthest, 0.8 * radius);  // the samples reached near the bound
+  }
+  EXPECT_EQ(checked, 4);
+}
+
 TEST(ColliderMotion, ConstantVelocityAndSpin) {
   Collider c;
   c.center = {1, 0, 0};

@@ -15,6 +15,7 @@
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_sphere.h>
 #include <fcl/narrowphase/distance.h>
 
+#include <cmath>
 #include <limits>
 
 namespace drapelab {
@@ -113,6 +114,26 @@ double ParticleContactQuery::clearance(const FclCollider& collider, const Eigen:
   fcl::DistanceResultd result;
   fcl::distance(sphere_.get(), particle_pose, collider.geometry.get(), shape_pose, request, result);
   return result.min_distance;
+}
+
+double bounding_radius(const FclCollider& collider) {
+  const fcl::CollisionGeometry<double>& shape = *collider.geometry;
+  switch (shape.getNodeType()) {
+    case fcl::GEOM_SPHERE: return static_cast<const fcl::Sphere<double>&>(shape).radius;
+    case fcl::GEOM_CAPSULE: {
+      const auto& capsule = static_cast<const fcl::Capsule<double>&>(shape);
+      return 0.5 * capsule.lz + capsule.radius;
+    }
+    case fcl::GEOM_CYLINDER: {
+      const auto& cylinder = static_cast<const fcl::Cylinder<double>&>(shape);
+      return std::hypot(0.5 * cylinder.lz, cylinder.radius);
+    }
+    case fcl::GEOM_BOX: return 0.5 * static_cast<const fcl::Box<double>&>(shape).side.norm();
+    case fcl::GEOM_HALFSPACE: return std::numeric_limits<double>::infinity();
+    default: break;
+  }
+  const fcl::AABBd& local = shape.aabb_local;  // any other shape: the sphere around its local box
+  return 0.5 * (local.max_ - local.min_).norm() + local.center().norm();
 }
 
 Eigen::AlignedBox3d collider_bounds(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,

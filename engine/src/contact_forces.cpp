@@ -21,8 +21,8 @@ namespace {
 constexpr int kContactBlock = 512;
 
 // The broad phase of one posed collider: a plane compares the particle's height above it; other
-// shapes test the bounding box and the bounding sphere (the box alone is loose for a rotated or round
-// shape).
+// shapes test the bounding box and the shape's exact bounding sphere (the box alone is loose for a
+// rotated or round shape; for a sphere collider the bounding sphere is the contact test itself).
 kernels::NearCollider near_test(const FclCollider& collider, const Eigen::Isometry3d& shape_pose, double radius) {
   kernels::NearCollider near;
   near.plane = collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE;
@@ -37,9 +37,9 @@ kernels::NearCollider near_test(const FclCollider& collider, const Eigen::Isomet
   const Eigen::AlignedBox3d box = collider_bounds(collider, shape_pose, radius);
   Eigen::Map<Eigen::Vector3d>(near.low) = box.min();
   Eigen::Map<Eigen::Vector3d>(near.high) = box.max();
-  const fcl::AABBd& local = collider.geometry->aabb_local;
-  Eigen::Map<Eigen::Vector3d>(near.center) = shape_pose * local.center();
-  const double reach = 0.5 * (local.max_ - local.min_).norm() + radius;
+  Eigen::Map<Eigen::Vector3d>(near.center) = shape_pose.translation();  // FCL shapes are centred on it
+  // Widened by a relative 1e-9 so that rounding never drops a particle FCL would call touching.
+  const double reach = (bounding_radius(collider) + radius) * (1.0 + 1e-9);
   near.reach_squared = reach * reach;
   return near;
 }

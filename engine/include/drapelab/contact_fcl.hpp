@@ -61,6 +61,11 @@ class ParticleContactQuery {
   std::shared_ptr<fcl::CollisionGeometry<double>> sphere_;
 };
 
+// Radius (m) of the smallest sphere about the FCL shape frame's origin that holds the shape, exact for
+// every shape make_fcl_collider makes (a sphere's own radius, not the sphere around its bounding box,
+// which is sqrt(3) times larger); infinite for a plane.
+double bounding_radius(const FclCollider& collider);
+
 // World-space bounding box of a posed collider, grown by `margin` (m). Unbounded for a plane.
 Eigen::AlignedBox3d collider_bounds(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
                                     double margin);
