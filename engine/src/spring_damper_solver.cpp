@@ -236,7 +236,10 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
   ContactRates contact;
   if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
   const double stable_step = stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
-  const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping, contact);
+  // Symplectic Euler's contact is taken at the step's end and does not enter its bound.
+  const bool contact_bounds_step = settings_.integrator != Integrator::symplectic_euler;
+  const NetworkRates rates =
+      network_rate_bounds(*model_, settings_.air_damping, contact_bounds_step ? contact : ContactRates{});
   if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
     text << "integrator symplectic_euler, leapfrog or implicit_euler (" << integrator_name(settings_.integrator)
          << " gains energy on every undamped spring and is stable only while damping outweighs it), ";
@@ -246,7 +249,9 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
          << implicit_stats()->residual_last << " in " << implicit_stats()->iterations_last
          << " iterations; a collider moving faster than its contact can push back also needs a smaller dt), ";
   else if (stable_step > 0.0 && std::isfinite(stable_step) && stable_step < h)
-    text << "a smaller dt (the Gershgorin bound of these springs, dampers and contacts gives a stable "
+    text << "a smaller dt (the Gershgorin bound of these springs and dampers"
+         << (contact_bounds_step ? " and of the contact" : "")
+         << " gives a stable "
          << integrator_name(settings_.integrator) << " step below about " << stable_step << " s), ";
   else if (std::isfinite(stable_step) && stable_step >= h)
     text << "a smaller dt (dt is inside the springs' stable step of about " << stable_step
@@ -258,10 +263,12 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
     text << "or more damping for the stiffness (this scheme is stable only for dt below about kd / ks of "
             "the springs).";
   else if (2.0 * rates.damping > h * rates.stiffness)
-    text << "or less damping (lower kd, air_damping or contact.damping: here the dampers, not the springs, "
-            "limit the step; they act per spring or particle, so light particles need small values).";
+    text << (contact_bounds_step ? "or less damping (lower kd, air_damping or contact.damping"
+                                 : "or less damping (lower kd or air_damping")
+         << ": here the dampers, not the springs, limit the step; they act per spring or particle, so light "
+            "particles need small values).";
   else
-    text << "or softer springs (lower ks or contact.stiffness).";
+    text << (contact_bounds_step ? "or softer springs (lower ks or contact.stiffness)." : "or softer springs (lower ks).");
   status_ = SolverStatus::unstable;
   message_ = text.str();
 }

@@ -91,7 +91,7 @@ std::string summary_json(const scene::Scene& scene, const ClothModel& model,
                   {"bend", model.springs.count(SpringKind::bend)}}},
                 {"total_mass", model.total_mass()},
                 {"rest_area", model.rest_area()},
-                {"stable_symplectic_step", number_or_null(symplectic_euler_stable_step(model, scene.cloth.air_damping, scene.contact_rates()))}};
+                {"stable_symplectic_step", number_or_null(stable_step_estimate(model, scene.cloth.air_damping, scene.contact_rates(), Integrator::symplectic_euler))}};
   ordered_json solvers = ordered_json::object();
   for (const auto& run : runs) solvers[run.spec->name] = solver_json(run);
   j["solvers"] = solvers;
