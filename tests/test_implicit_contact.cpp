@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "drapelab/collision_metrics.hpp"
 #include "drapelab/contact_model.hpp"
@@ -53,6 +54,93 @@ TEST(LinearlyImplicitNormalForce, OnlyPushes) {
   EXPECT_EQ(linearly_implicit_normal_force(1e-4, 5.0, 0.0, 1e-3, 1e-3, 1000.0, 0.2), 0.0);
   // Lifted off by a strong outward force.
   EXPECT_EQ(linearly_implicit_normal_force(1e-4, 0.0, 10.0, 1e-3, 1e-3, 1000.0, 0.2), 0.0);
+}
+
+TEST(LinearlyImplicitNormalForces, OneContactIsTheClosedFormBitForBit) {
+  const NormalContact contact{Eigen::Vector3d(0.6, 0.8, 0.0), 2e-3, Eigen::Vector3d(0.1, -0.2, 0.3)};
+  const Eigen::Vector3d v(0.3, -1.5, 0.2), other(1e-4, -2e-4, 5e-5);  // m/s, N
+  double fn = 0.0;
+  linearly_implicit_normal_forces(&contact, 1, v, other, 1.5e-5, 1e-4, 1000.0, 0.2, &fn);
+  EXPECT_EQ(fn, linearly_implicit_normal_force(contact.depth, (v - contact.surface_velocity).dot(contact.normal),
+                                               other.dot(contact.normal), 1.5e-5, 1e-4, 1000.0, 0.2));
+}
+
+// Two or three contacts solved together: every pushing force is the spring-damper at the common end
+// velocity, and every contact left out would pull there.
+TEST(LinearlyImplicitNormalForces, SeveralContactsAreSolvedTogether) {
+  const double k = 1000.0, c = 0.2, m = 1.5e-5, h = 5e-4;  // N/m, N*s/m, kg, s: h c / m = 6.7
+  const double resistance = c + h * k;
+  const NormalContact floor{Eigen::Vector3d::UnitY(), 1e-3, Eigen::Vector3d::Zero()};
+  const NormalContact wall{Eigen::Vector3d::UnitX(), 5e-4, Eigen::Vector3d::Zero()};
+  const NormalContact slope{Eigen::Vector3d(-0.6, 0.8, 0.0), 2e-4, Eigen::Vector3d(0.0, 0.1, 0.0)};
+  const Eigen::Vector3d gravity(0.0, -m * kGravity, 0.0);  // N
+  struct Case {
+    std::vector<NormalContact> contacts;
+    Eigen::Vector3d velocity;  // m/s
+  };
+  const std::vector<Case> cases = {
+      {{floor, wall}, {-0.5, -1.0, 0.0}},          // driven into both
+      {{floor, wall}, {2.0, -1.0, 0.0}},           // leaving the wall fast: only the floor pushes
+      {{floor, wall, slope}, {-0.2, -0.3, 0.1}},   // three at once
+      {{wall, slope}, {0.1, 0.5, 0.0}},
+  };
+  int pulling_left_out = 0;
+  for (const Case& test : cases) {
+    const int count = static_cast<int>(test.contacts.size());
+    std::vector<double> fn(test.contacts.size());
+    linearly_implicit_normal_forces(test.contacts.data(), count, test.velocity, gravity, m, h, k, c, fn.data());
+    Eigen::Vector3d total = gravity;
+    for (int a = 0; a < count; ++a) total += fn[a] * test.contacts[a].normal;
+    const Eigen::Vector3d end_velocity = test.velocity + h / m * total;
+    for (int a = 0; a < count; ++a) {
+      const NormalContact& contact = test.contacts[a];
+      const double implied = k * contact.depth - resistance * contact.normal.dot(end_velocity - contact.surface_velocity);
+      EXPECT_GE(fn[a], 0.0);
+      if (fn[a] > 0.0) {
+        EXPECT_NEAR(fn[a], implied, 1e-9 * std::abs(implied)) << "contact " << a;
+      } else {
+        EXPECT_LE(implied, 1e-12) << "contact " << a << " was left out but would push";
+        ++pulling_left_out;
+      }
+    }
+  }
+  EXPECT_GE(pulling_left_out, 1);  // the active set did have to drop a contact somewhere
+}
+
+// A particle pressed by gravity into a V between two planes (each 30 degrees from level), stepped by
+// symplectic Euler at h c / m = 10: solved together, the two contacts bring it to rest at its sag;
+// solved one after the other (each blind to the other's force), it never settles.
+double wedge_speed_after(double seconds, bool together) {
+  const double k = 1000.0, c = 0.2, m = 1.5e-5, r = 0.005;  // N/m, N*s/m, kg, m (contact radius)
+  const double h = 10.0 * m / c;                            // s
+  const Eigen::Vector3d left(std::sin(0.5236), std::cos(0.5236), 0.0), right(-left.x(), left.y(), 0.0);
+  const Eigen::Vector3d gravity(0.0, -m * kGravity, 0.0);  // N
+  Eigen::Vector3d x(0.0, 0.02, 0.0), v(0.3, 0.0, 0.0);      // m, m/s
+  const int steps = static_cast<int>(std::lround(seconds / h));
+  for (int s = 0; s < steps; ++s) {
+    std::vector<NormalContact> touching;
+    for (const Eigen::Vector3d& n : {left, right})
+      if (r - n.dot(x) > 0.0) touching.push_back({n, r - n.dot(x), Eigen::Vector3d::Zero()});
+    Eigen::Vector3d force = gravity;
+    if (together) {
+      double fn[2] = {0.0, 0.0};
+      if (!touching.empty())
+        linearly_implicit_normal_forces(touching.data(), static_cast<int>(touching.size()), v, gravity, m, h, k, c, fn);
+      for (std::size_t a = 0; a < touching.size(); ++a) force += fn[a] * touching[a].normal;
+    } else {
+      for (const NormalContact& contact : touching)
+        force += linearly_implicit_normal_force(contact.depth, v.dot(contact.normal), force.dot(contact.normal), m, h,
+                                                k, c) * contact.normal;
+    }
+    v += h / m * force;
+    x += h * v;
+  }
+  return v.norm();
+}
+
+TEST(ImplicitContactParticle, RestsInAWedgeOnlyWhenItsContactsAreSolvedTogether) {
+  EXPECT_LT(wedge_speed_after(2.0, true), 1e-9);     // m/s: at rest
+  EXPECT_GT(wedge_speed_after(2.0, false), 1e-6);    // still moving after 2 s (measured 7 mm/s)
 }
 
 // One particle of mass m dropped onto a plane, along its normal, by symplectic Euler: y is its height

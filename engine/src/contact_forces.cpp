@@ -9,6 +9,7 @@
 #include <fcl/geometry/shape/halfspace.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -87,54 +88,98 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
     work.posed[c].moving = poses_ ? hosted.moving() : !colliders_[c].motion.is_static();
   }
   work.block_totals.assign(static_cast<std::size_t>(blocks) * collider_count, ColliderContactTotals{});
-  if (work.block_active.size() < static_cast<std::size_t>(blocks)) work.block_active.resize(static_cast<std::size_t>(blocks));
-  if (work.block_near.size() < static_cast<std::size_t>(blocks))
-    work.block_near.resize(static_cast<std::size_t>(blocks), std::vector<int>(kContactBlock));
+  const auto block_count = static_cast<std::size_t>(blocks);
+  if (work.block_active.size() < block_count) work.block_active.resize(block_count);
+  if (work.block_touching.size() < block_count) work.block_touching.resize(block_count);
+  if (work.block_order.size() < block_count) work.block_order.resize(block_count);
+  if (work.block_near.size() < block_count) work.block_near.resize(block_count, std::vector<int>(kContactBlock));
 
-  // A block visits the colliders in order for each of its particles' forces, as a serial loop would:
-  // friction sees the normal forces of the colliders before it.
+  // The friction of one contact whose normal force fn (N) is already in its particle's force, sized
+  // with everything the particle carries so far, and the contact's share of its collider's totals.
+  const auto finish_contact = [&](std::int64_t block, const TouchingContact& touching, double fn) {
+    const int i = touching.particle;
+    const std::size_t c = static_cast<std::size_t>(touching.collider);
+    const Collider& collider = colliders_[c];
+    Eigen::Vector3d friction = Eigen::Vector3d::Zero();
+    if (fn > 0.0 && collider.static_friction > 0.0) {
+      const double mass = model.mass[i];
+      const Eigen::Vector3d relative_velocity = v.col(i) - touching.surface_velocity;
+      const Eigen::Vector3d trial = relative_velocity + (h / mass) * force.col(i);
+      friction = coulomb_friction_force(trial - trial.dot(touching.normal) * touching.normal, mass, h, fn,
+                                        collider.static_friction, collider.friction);
+      force.col(i) += friction;
+    }
+    ColliderContactTotals& total = work.block_totals[static_cast<std::size_t>(block) * collider_count + c];
+    ++total.contact_count;
+    total.normal_force += fn;
+    total.friction_force += friction.norm();
+    total.max_depth = std::max(total.max_depth, touching.depth);
+  };
+
   const auto contact_block = [&](std::int64_t block) {
     const int begin = static_cast<int>(block * kContactBlock), end = std::min(n, begin + kContactBlock);
     std::vector<ActiveContact>& block_active = work.block_active[static_cast<std::size_t>(block)];
     block_active.clear();
+    // 1. Every overlap in the block, collider by collider, each collider's in particle order.
+    std::vector<TouchingContact>& found = work.block_touching[static_cast<std::size_t>(block)];
+    found.clear();
     int* near = work.block_near[static_cast<std::size_t>(block)].data();
     for (std::size_t c = 0; c < collider_count; ++c) {
       const Collider& collider = colliders_[c];
       const PosedCollider& posed = work.posed[c];
-      ColliderContactTotals& total = work.block_totals[static_cast<std::size_t>(block) * collider_count + c];
       const int near_count = kernels::near_particles(posed.near, x.data(), begin, end, near);  // broad phase
       for (int k = 0; k < near_count; ++k) {
         const int i = near[k];
         if (model.is_pinned(i)) continue;
         const auto touching = query_.contact(fcl_colliders_[c], posed.shape_pose, x.col(i));
         if (!touching) continue;
-        const Eigen::Vector3d& normal = touching->normal;
         const Eigen::Vector3d surface_velocity =
             !posed.moving ? Eigen::Vector3d::Zero()
             : poses_      ? posed.hosted.point_velocity(x.col(i))
                           : collider_point_velocity(collider, t, x.col(i));
-        const Eigen::Vector3d relative_velocity = v.col(i) - surface_velocity;
-        const double normal_velocity = relative_velocity.dot(normal);  // m/s, > 0 separating
-        const double fn =
-            normal_scheme == ContactNormalScheme::linearly_implicit
-                ? linearly_implicit_normal_force(touching->depth, normal_velocity, force.col(i).dot(normal),
-                                                 model.mass[i], h, parameters_.stiffness, parameters_.damping)
-                : penalty_normal_force(touching->depth, normal_velocity, parameters_.stiffness, parameters_.damping);
-        force.col(i) += fn * normal;
-        if (active && fn > 0.0) block_active.push_back({i, normal});
-        Eigen::Vector3d friction = Eigen::Vector3d::Zero();
-        if (fn > 0.0 && collider.static_friction > 0.0) {
-          const double mass = model.mass[i];
-          const Eigen::Vector3d trial = relative_velocity + (h / mass) * force.col(i);
-          friction = coulomb_friction_force(trial - trial.dot(normal) * normal, mass, h, fn,
-                                            collider.static_friction, collider.friction);
-          force.col(i) += friction;
-        }
-        ++total.contact_count;
-        total.normal_force += fn;
-        total.friction_force += friction.norm();
-        total.max_depth = std::max(total.max_depth, touching->depth);
+        found.push_back({i, static_cast<int>(c), touching->depth, touching->normal, surface_velocity});
       }
+    }
+    if (normal_scheme == ContactNormalScheme::explicit_penalty) {
+      // 2a. In that order, as a serial loop over colliders would: friction sees the normal and friction
+      // forces of the colliders before it.
+      for (const TouchingContact& touching : found) {
+        const int i = touching.particle;
+        const double fn = penalty_normal_force(touching.depth, (v.col(i) - touching.surface_velocity).dot(touching.normal),
+                                               parameters_.stiffness, parameters_.damping);
+        force.col(i) += fn * touching.normal;
+        if (active && fn > 0.0) block_active.push_back({i, touching.normal});
+        finish_contact(block, touching, fn);
+      }
+      return;
+    }
+    // 2b. End of step: each particle's contacts together (penalty_contact.hpp), then their frictions in
+    // collider order. The overlaps grouped by particle (a counting sort, stable: colliders stay in order).
+    std::array<int, kContactBlock + 1> first{};  // per particle of the block: its first entry in `order`
+    for (const TouchingContact& touching : found) ++first[static_cast<std::size_t>(touching.particle - begin) + 1];
+    for (int p = 0; p < kContactBlock; ++p) first[p + 1] += first[p];
+    std::vector<int>& order = work.block_order[static_cast<std::size_t>(block)];
+    order.resize(found.size());
+    std::array<int, kContactBlock> next;
+    std::copy(first.begin(), first.end() - 1, next.begin());
+    for (std::size_t e = 0; e < found.size(); ++e)
+      order[static_cast<std::size_t>(next[static_cast<std::size_t>(found[e].particle - begin)]++)] = static_cast<int>(e);
+    std::array<NormalContact, kMaxSimultaneousContacts> normals;
+    std::array<double, kMaxSimultaneousContacts> fn;
+    for (int p = 0; p < end - begin; ++p) {
+      const int touching_count = first[p + 1] - first[p];
+      if (touching_count == 0) continue;
+      const int count = std::min(touching_count, kMaxSimultaneousContacts);  // any further ones push nothing
+      const int i = begin + p;
+      for (int a = 0; a < count; ++a) {
+        const TouchingContact& touching = found[static_cast<std::size_t>(order[first[p] + a])];
+        normals[a] = {touching.normal, touching.depth, touching.surface_velocity};
+      }
+      linearly_implicit_normal_forces(normals.data(), count, v.col(i), force.col(i), model.mass[i], h,
+                                      parameters_.stiffness, parameters_.damping, fn.data());
+      for (int a = 0; a < count; ++a) force.col(i) += fn[a] * normals[a].normal;
+      for (int a = 0; a < touching_count; ++a)
+        finish_contact(block, found[static_cast<std::size_t>(order[first[p] + a])], a < count ? fn[a] : 0.0);
     }
   };
   kernels::for_each_block(blocks, n >= kernels::kParallelParticles, contact_block);

@@ -44,6 +44,15 @@ struct PosedCollider {
   kernels::NearCollider near;
 };
 
+// A particle found inside a collider's contact shell by the narrow phase.
+struct TouchingContact {
+  int particle = 0;
+  int collider = 0;
+  double depth = 0.0;                                          // m, > 0
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();           // outward, unit
+  Eigen::Vector3d surface_velocity = Eigen::Vector3d::Zero();  // m/s, the collider's surface there
+};
+
 // What the contact phase keeps between calls: per block of particles and per collider, the totals and
 // pushing contacts found there, so that blocks can run on any thread and still be summed in one fixed
 // order (results independent of the thread count). Owned by the caller; grows once.
@@ -52,6 +61,8 @@ struct ContactWorkspace {
   std::vector<ColliderContactTotals> block_totals;   // blocks x colliders, block-major
   std::vector<std::vector<ActiveContact>> block_active;  // per block, in particle order
   std::vector<std::vector<int>> block_near;  // per block: the broad phase's particles for one collider
+  std::vector<std::vector<TouchingContact>> block_touching;  // per block: overlaps, collider by collider
+  std::vector<std::vector<int>> block_order;  // per block: those overlaps' indices, particle by particle
 };
 
 // How the penalty normal force is timed within a step (penalty_contact.hpp).

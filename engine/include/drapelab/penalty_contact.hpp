@@ -39,6 +39,32 @@ inline double linearly_implicit_normal_force(double depth, double normal_velocit
   return std::max(0.0, (stiffness * depth - resistance * free_velocity) / (1.0 + h * resistance / mass));
 }
 
+// The most colliders whose end-of-step forces are solved together for one particle; a particle inside
+// more at once (no scene comes near) gets no normal force from the rest.
+constexpr int kMaxSimultaneousContacts = 16;
+
+// One collider's overlap with a particle, as the end-of-step solve below needs it.
+struct NormalContact {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();          // outward, unit
+  double depth = 0.0;                                         // m, > 0 inside
+  Eigen::Vector3d surface_velocity = Eigen::Vector3d::Zero();  // m/s, the collider's surface at the particle
+};
+
+// The end-of-step normal forces (N, one per contact, written to `normal_forces`) of a particle touching
+// `count` colliders at once, solved together: with v' the particle's velocity at the step's end,
+//   (m I + h R sum_a n_a n_a^T) v' = m v + h f_o + h sum_a (k d_a + R n_a . s_a) n_a,   R = c + h k,
+// over the active set a, and fn_a = k d_a - R n_a . (v' - s_a). Contacts whose force would pull leave
+// the active set and the system is solved again, until every active force pushes and every inactive
+// one would pull (a few passes for the two or three colliders a particle can touch). Solving them one
+// after another instead would not be stable: each would miss the others' forces, and between two
+// colliders a particle can then gain energy at steps the springs allow. One contact reduces exactly to
+// linearly_implicit_normal_force, which is what it calls then. At most kMaxSimultaneousContacts
+// are solved; forces of any further contacts are zero. `velocity` m/s, `other_force` N (every
+// force on the particle but these contacts), `mass` kg, `h` s.
+void linearly_implicit_normal_forces(const NormalContact* contacts, int count, const Eigen::Vector3d& velocity,
+                                     const Eigen::Vector3d& other_force, double mass, double h, double stiffness,
+                                     double damping, double* normal_forces);
+
 // `trial_tangential_velocity` (m/s): the tangential velocity relative to the collider's surface that
 // the particle of `mass` (kg) would have after a step of h (s) under every force but friction.
 // Returns the friction force (N), tangential.
