@@ -244,37 +244,43 @@ TEST(ContactPhase, BlockTotalsEqualADirectSumOverEveryParticle) {
   kernels::set_thread_count(1);
   // Every particle in contact, found directly with FCL, pushed out along its normal.
   const ContactModel& contacts = *scene.settings.contacts;
-  int direct_count = 0;
-  double direct_normal = 0.0;
   ASSERT_EQ(scene.settings.integrator, Integrator::symplectic_euler);
   int on_both = 0;
+  int direct_counts[2] = {0, 0};
+  double direct_normals[2] = {0.0, 0.0};  // N
   for (int i = 0; i < scene.model->particle_count(); ++i) {
     // Both colliders' overlaps, ball first; symplectic Euler solves a particle's contacts together at
     // the step's end, starting from the contact-free force (penalty_contact.hpp).
     std::vector<NormalContact> overlaps;
-    for (std::size_t c = 0; c < 2; ++c) {
+    std::vector<int> colliders;
+    for (int c = 0; c < 2; ++c) {
       const auto touching = contacts.query().contact(contacts.fcl_collider(c), contacts.shape_pose(c, 0.0), state.x.col(i));
-      if (!touching) {
-        if (c == 0) break;  // only the ball's totals are checked
-        continue;
-      }
+      if (!touching) continue;
       overlaps.push_back({touching->normal, touching->depth,
                           collider_point_velocity(contacts.collider(c), 0.0, state.x.col(i))});
+      colliders.push_back(c);
     }
     if (overlaps.empty()) continue;
-    ++direct_count;
     on_both += overlaps.size() == 2 ? 1 : 0;
     const Eigen::Vector3d pushed = with_contacts.col(i) - without_contacts.col(i);
-    EXPECT_GT(pushed.dot(overlaps[0].normal), 0.0) << "particle " << i;
+    if (colliders[0] == 0) {
+      EXPECT_GT(pushed.dot(overlaps[0].normal), 0.0) << "particle " << i;
+    }
     double fn[2] = {0.0, 0.0};
     linearly_implicit_normal_forces(overlaps.data(), static_cast<int>(overlaps.size()), state.v.col(i),
                                     without_contacts.col(i), scene.model->mass[i], 2e-5, 1000.0, 0.2, fn);
-    direct_normal += fn[0];
+    for (std::size_t a = 0; a < overlaps.size(); ++a) {
+      ++direct_counts[colliders[a]];
+      direct_normals[colliders[a]] += fn[a];
+    }
   }
   EXPECT_GT(on_both, 10);  // the joint solve is exercised
-  const ColliderContactTotals& ball = solver.contact_totals()[0];
-  EXPECT_EQ(ball.contact_count, direct_count);
-  EXPECT_NEAR(ball.normal_force, direct_normal, 1e-12 * direct_normal);  // N, summation order only
+  for (int c = 0; c < 2; ++c) {
+    const ColliderContactTotals& total = solver.contact_totals()[static_cast<std::size_t>(c)];
+    EXPECT_EQ(total.contact_count, direct_counts[c]) << "collider " << c;
+    EXPECT_NEAR(total.normal_force, direct_normals[c], 1e-12 * direct_normals[c]) << "collider " << c;  // N, summation order only
+  }
+  EXPECT_GT(direct_normals[0], 0.0);
 }
 
 }  // namespace

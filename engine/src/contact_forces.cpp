@@ -177,7 +177,10 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
       }
       linearly_implicit_normal_forces(normals.data(), count, v.col(i), force.col(i), model.mass[i], h,
                                       parameters_.stiffness, parameters_.damping, fn.data());
-      for (int a = 0; a < count; ++a) force.col(i) += fn[a] * normals[a].normal;
+      for (int a = 0; a < count; ++a) {
+        force.col(i) += fn[a] * normals[a].normal;
+        if (active && fn[a] > 0.0) block_active.push_back({i, normals[a].normal});
+      }
       for (int a = 0; a < touching_count; ++a)
         finish_contact(block, found[static_cast<std::size_t>(order[first[p] + a])], a < count ? fn[a] : 0.0);
     }

@@ -19,13 +19,12 @@ void linearly_implicit_normal_forces(const NormalContact* contacts, int count, c
     return;
   }
   const double resistance = damping + h * stiffness;  // N*s/m
-  // Which contacts push. Start with all; each pass solves with the active ones, then drops those whose
-  // force would pull and re-admits those that would push. A particle touches a handful of colliders at
-  // most; past kMaxSimultaneousContacts the rest are left out with zero force.
   const int solved = std::min(count, kMaxSimultaneousContacts);
-  std::array<bool, kMaxSimultaneousContacts> active;
-  active.fill(true);
-  for (int pass = 0; pass <= solved; ++pass) {
+  using Active = std::array<bool, kMaxSimultaneousContacts>;
+  // The end velocity with the contacts in `active` pushing, and every contact's force there (N):
+  // fn_a = k d_a - R n_a . (v' - s_a). Returns the first contact that does not fit the set (active but
+  // not pushing, or left out but pushing), or -1 when the set is consistent.
+  const auto solve_with = [&](const Active& active) {
     Eigen::Matrix3d system = mass * Eigen::Matrix3d::Identity();   // kg
     Eigen::Vector3d momentum = mass * velocity + h * other_force;  // kg m/s
     for (int a = 0; a < solved; ++a) {
@@ -36,21 +35,31 @@ void linearly_implicit_normal_forces(const NormalContact* contacts, int count, c
                   contact.normal;
     }
     const Eigen::Vector3d end_velocity = system.llt().solve(momentum);  // m/s; m I plus PSD terms: SPD
-    bool changed = false;
+    int misfit = -1;
     for (int a = 0; a < solved; ++a) {
       const NormalContact& contact = contacts[a];
       normal_forces[a] =
           stiffness * contact.depth - resistance * contact.normal.dot(end_velocity - contact.surface_velocity);
-      const bool pushes = normal_forces[a] > 0.0;
-      changed = changed || pushes != active[a];
-      active[a] = pushes;
+      if (misfit < 0 && active[a] != (normal_forces[a] > 0.0)) misfit = a;
     }
-    if (!changed) break;
+    return misfit;
+  };
+  // Murty's least-index pivoting: start with every contact pushing and flip the first one that does not
+  // fit, until none is left. In the forces fn the conditions form a linear complementarity problem whose
+  // matrix I + (h R / m) [n_a . n_b] is symmetric positive definite, so its solution is unique and this
+  // rule reaches it in finitely many flips from any start (solving, then dropping every pulling contact
+  // at once, can cycle between sets when normals meet at sharp angles). The cap only guards rounding.
+  Active active;
+  active.fill(true);
+  int misfit = solve_with(active);
+  for (int flip = 0; misfit >= 0 && flip < 64 * solved; ++flip) {
+    active[misfit] = !active[misfit];
+    misfit = solve_with(active);
   }
-  // Only pushing forces remain (after the last pass, a force from a set that was still changing is
-  // clamped as the single-contact force is).
+  // Only pushing forces remain: the consistent set's, or (should rounding ever exhaust the flips) the
+  // last set's, clamped as the single-contact force is.
   for (int a = 0; a < count; ++a)
-    if (a >= solved || !active[a]) normal_forces[a] = 0.0;
+    if (a >= solved || !active[a] || normal_forces[a] < 0.0) normal_forces[a] = 0.0;
 }
 
 }  // namespace drapelab

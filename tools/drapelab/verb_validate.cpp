@@ -58,8 +58,8 @@ int validate_verb(const ValidateArguments& arguments) {
     const double solver_bound = stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), solver.integrator);
     if (solver_bound == 0.0)
       std::cerr << "warning: solver " << solver.name << ": " << integrator_name(solver.integrator)
-                << " has no stable step on these springs (some spring is undamped); the run may become "
-                   "unstable\n";
+                << " has no stable step here (an undamped spring, or a contact without contact.damping); "
+                   "the run may become unstable\n";
     else if (solver.dt > solver_bound)
       std::cerr << "warning: solver " << solver.name << ": dt " << solver.dt << " s is above the "
                 << integrator_name(solver.integrator) << " stable step estimate " << solver_bound

@@ -99,9 +99,10 @@ class ContactModel {
   // step's end state implies (penalty_contact.hpp), which uses the accumulated force too.
   // `totals` (one per collider) is overwritten. Pinned particles are skipped. When `active` is given,
   // it is cleared and receives every pushing contact (in a fixed order: by block of particles, then
-  // collider, then particle). Particles are processed in
-  // fixed blocks spread over the threads (particle_loops.hpp); `workspace` keeps the blocks' results
-  // between calls (a temporary one when null), and with it the call allocates nothing once grown.
+  // collider, then particle; with the end-of-step normal, by block, then particle, then collider).
+  // Particles are processed in fixed blocks spread over the threads (particle_loops.hpp); `workspace`
+  // keeps the blocks' results between calls (a temporary one when null), and with it the call
+  // allocates nothing once grown.
   void add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
                           const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
                           std::vector<ColliderContactTotals>& totals,

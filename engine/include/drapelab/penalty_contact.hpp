@@ -53,9 +53,9 @@ struct NormalContact {
 // The end-of-step normal forces (N, one per contact, written to `normal_forces`) of a particle touching
 // `count` colliders at once, solved together: with v' the particle's velocity at the step's end,
 //   (m I + h R sum_a n_a n_a^T) v' = m v + h f_o + h sum_a (k d_a + R n_a . s_a) n_a,   R = c + h k,
-// over the active set a, and fn_a = k d_a - R n_a . (v' - s_a). Contacts whose force would pull leave
-// the active set and the system is solved again, until every active force pushes and every inactive
-// one would pull (a few passes for the two or three colliders a particle can touch). Solving them one
+// over the active set a, and fn_a = k d_a - R n_a . (v' - s_a): the set whose forces all push while
+// every contact left out would pull there. That set is unique, and found by flipping the first
+// contact that does not fit it, one at a time (Murty's least-index rule). Solving them one
 // after another instead would not be stable: each would miss the others' forces, and between two
 // colliders a particle can then gain energy at steps the springs allow. One contact reduces exactly to
 // linearly_implicit_normal_force, which is what it calls then. At most kMaxSimultaneousContacts
