@@ -106,9 +106,7 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
   }
   if (settings_.contacts) {
     PhaseTimer timer(stats_, StepPhase::contacts);
-    // Symplectic Euler takes the normal force its step's end state implies, so contacts do not
-    // bound its step (penalty_contact.hpp); every other scheme evaluates forces at its own stages.
-    const ContactNormalScheme normal = settings_.integrator == Integrator::symplectic_euler
+    const ContactNormalScheme normal = contact_at_step_end(settings_.integrator)
                                            ? ContactNormalScheme::linearly_implicit
                                            : ContactNormalScheme::explicit_penalty;
     settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
@@ -236,8 +234,7 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
   ContactRates contact;
   if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
   const double stable_step = stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
-  // Symplectic Euler's contact is taken at the step's end and does not enter its bound.
-  const bool contact_bounds_step = settings_.integrator != Integrator::symplectic_euler;
+  const bool contact_bounds_step = !contact_at_step_end(settings_.integrator);
   const NetworkRates rates =
       network_rate_bounds(*model_, settings_.air_damping, contact_bounds_step ? contact : ContactRates{});
   if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)

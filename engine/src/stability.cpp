@@ -51,10 +51,10 @@ double damping_ratio_step(const ClothModel& model, ContactRates contact) {
 
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
                             Integrator integrator) {
+  if (contact_at_step_end(integrator)) contact = {};  // the network alone bounds the step
   const double symplectic = symplectic_euler_stable_step(model, air_damping, contact);
   switch (integrator) {
-    // Its contact force is the one at the step's end (penalty_contact.hpp): the network alone bounds it.
-    case Integrator::symplectic_euler: return symplectic_euler_stable_step(model, air_damping);
+    case Integrator::symplectic_euler:
     case Integrator::verlet:
     case Integrator::leapfrog: return symplectic;
     case Integrator::rk4: return 1.39 * symplectic;

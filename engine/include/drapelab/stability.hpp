@@ -41,12 +41,16 @@ double symplectic_euler_stable_step(const ClothModel& model, double air_damping,
 // disc, so the same bound is safe for it. Zero when some spring is undamped.
 double damping_ratio_step(const ClothModel& model, ContactRates contact = {});
 
-// A step (s) below which `integrator` is stable on this network, from the bounds above: symplectic
-// Euler's bound without the contact terms for symplectic Euler (its solver takes the contact force at
-// the step's end, which acts as extra mass along the normal and only lowers the rates: see
-// penalty_contact.hpp), with them for Verlet and leapfrog (all w h < 2 undamped); 1.39 x that for RK4 (its region
-// reaches 2.83 on the imaginary axis and 2.79 on the negative real axis); min(damping_ratio_step,
-// symplectic bound) for explicit Euler and midpoint; infinity for implicit Euler.
+// Whether `integrator`'s solver takes the penalty contact force at the end of its step (linearly
+// implicit along the normal, penalty_contact.hpp): the contact then acts as extra mass along the normal
+// and does not bound the step. Symplectic Euler only; the other schemes evaluate it at their stages.
+inline bool contact_at_step_end(Integrator integrator) { return integrator == Integrator::symplectic_euler; }
+
+// A step (s) below which `integrator` is stable on this network, from the bounds above, with the
+// contact left out when contact_at_step_end(integrator): symplectic Euler's bound for it, Verlet and
+// leapfrog (all w h < 2 undamped); 1.39 x that for RK4 (its region reaches 2.83 on the imaginary axis
+// and 2.79 on the negative real axis); min(damping_ratio_step, symplectic bound) for explicit Euler and
+// midpoint; infinity for implicit Euler.
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
                             Integrator integrator);
 
