@@ -41,6 +41,12 @@ TEST_F(BenchCli, QuickRunWritesARowPerSceneAndSolver) {
       ours_second_half = second_half;
       EXPECT_DOUBLE_EQ(ratio, 1.0);
       EXPECT_DOUBLE_EQ(second_half_ratio, 1.0);
+      // Adaptive substeps: dt and ms per step are the mean substep's, far below the 1/120 s step.
+      EXPECT_NE(cells[6].find("symplectic_euler (adaptive substeps)"), std::string::npos) << cells[6];
+      const double dt = std::stod(cells[7]), ms_per_step = std::stod(cells[10]);
+      EXPECT_GT(dt, 0.0);
+      EXPECT_LT(dt, 1.0 / 1200.0);
+      EXPECT_NEAR(cost, 1e-3 * ms_per_step / dt, 1e-3 * cost) << "wall s per simulated s = step cost / step";
     } else {
       EXPECT_NEAR(ratio, cost / ours_cost, 1e-4 * ratio) << lines[k];
       EXPECT_NEAR(second_half_ratio, second_half / ours_second_half, 1e-4 * second_half_ratio) << lines[k];

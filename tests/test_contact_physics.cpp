@@ -52,10 +52,11 @@ struct Simulation {
 };
 
 // A solver at 0.8 x its integrator's stable step estimate for the cloth with its contacts (implicit
-// Euler: 1/240 s, the loader's default for it).
+// Euler: 1/240 s, the loader's default for it; adaptive substeps: steps of 1/120 s, the loader's
+// default, each split by the solver).
 Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> colliders, ContactParameters contact,
                            double air_damping, const ClothState* initial = nullptr,
-                           Integrator integrator = Integrator::symplectic_euler) {
+                           Integrator integrator = Integrator::symplectic_euler, bool adaptive = false) {
   Simulation s;
   s.model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   s.contacts = std::make_shared<const ContactModel>(std::move(colliders), contact, spec.thickness);
@@ -63,9 +64,11 @@ Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> coll
   settings.air_damping = air_damping;
   settings.contacts = s.contacts;
   settings.integrator = integrator;
+  settings.adaptive_substeps = adaptive;
   s.h = integrator == Integrator::implicit_euler
             ? 1.0 / 240.0
             : 0.8 * stable_step_estimate(*s.model, air_damping, {contact.stiffness, contact.damping}, integrator);
+  if (adaptive) s.h = 1.0 / 120.0;
   const ClothState start = initial ? *initial : initial_grid_state(*s.model, spec, 0.0, 0);
   s.solver = std::make_unique<SpringDamperSolver>("test", s.model, start, settings);
   return s;
@@ -108,14 +111,17 @@ TEST(ContactPhysics, RestingClothNormalForcesBalanceItsWeightAndSagIsMgOverK) {
   }
 }
 
-// V8: a 1 m, 41 x 41 cloth dropped 0.2 m onto a sphere of radius 0.3 m.
-TEST(ContactPhysics, V8ClothDrapedOnASphereRestsAtTheThicknessSymmetrically) {
+// V8: a 1 m, 41 x 41 cloth dropped 0.2 m onto a sphere of radius 0.3 m; with fixed steps and with
+// adaptive substeps (the same criteria: the longer substeps must not cost the drape its accuracy).
+void check_v8_sphere_drape(bool adaptive) {
+  SCOPED_TRACE(adaptive ? "adaptive substeps" : "fixed steps");
   const double radius = 0.3, thickness = 0.005, stiffness = 1000.0;
   std::vector<double> penetrations;
   for (double k : {stiffness, 3.0 * stiffness}) {
     const GridClothSpec spec = sheet(41, 1.0, {0, 0.5 + radius + 0.2, 0}, 0.25);
     const double damping = std::sqrt(k * 0.25 / 1681);  // N*s/m: contact damping ratio about 1/2
-    Simulation s = make_simulation(spec, {sphere_collider({0, 0.5, 0}, radius)}, {k, damping}, 2.0);
+    Simulation s = make_simulation(spec, {sphere_collider({0, 0.5, 0}, radius)}, {k, damping}, 2.0, nullptr,
+                                   Integrator::symplectic_euler, adaptive);
     s.run_for(4.0);
     const CollisionMetrics c = s.collisions();
     const double mean_sag_bound = 0.25 * kGravity / (c.contact_count * k);  // M g / (N_c k)
@@ -143,6 +149,10 @@ TEST(ContactPhysics, V8ClothDrapedOnASphereRestsAtTheThicknessSymmetrically) {
   // Penalty depth shrinks as stiffness grows: 3x the stiffness, about a third of the depth.
   EXPECT_NEAR(penetrations[1] / penetrations[0], 1.0 / 3.0, 0.1);
 }
+
+TEST(ContactPhysics, V8ClothDrapedOnASphereRestsAtTheThicknessSymmetrically) { check_v8_sphere_drape(false); }
+
+TEST(ContactPhysics, V8DrapeHoldsWithAdaptiveSubsteps) { check_v8_sphere_drape(true); }
 
 // A cloth dropped on a round table rests on the cap at the cap's height plus the thickness.
 TEST(ContactPhysics, ClothRestsFlatOnACylindersCap) {

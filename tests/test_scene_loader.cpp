@@ -691,6 +691,25 @@ TEST(SceneLoader, ImplicitOptionsAreReadAndChecked) {
                        at(last), {"solvers.0.implicit applies only to integrator: implicit_euler", "rk4"}));
 }
 
+TEST(SceneLoader, AdaptiveSubstepsAreReadCheckedAndGetAHalfFrameStep) {
+  // Without dt, an adaptive solver steps at 1/120 s and splits each step itself.
+  const auto base = without_lines(kBase, 34, 34);
+  const auto result = load(base + "    adaptive_substeps: true\n");
+  ASSERT_LOADS(result);
+  EXPECT_TRUE(result.scene->solvers[0].adaptive_substeps);
+  EXPECT_EQ(result.scene->solvers[0].steps_per_frame, 2);
+  const auto plain = load(base);
+  ASSERT_LOADS(plain);
+  EXPECT_FALSE(plain.scene->solvers[0].adaptive_substeps);
+
+  const int last = static_cast<int>(std::count(base.begin(), base.end(), '\n')) + 1;
+  for (const char* integrator : {"explicit_euler", "midpoint", "implicit_euler"})
+    EXPECT_TRUE(HasError(load(with_line(base, 33, std::string("    integrator: ") + integrator) +
+                              "    adaptive_substeps: true\n"),
+                         at(last), {"solvers.0.adaptive_substeps needs integrator symplectic_euler", integrator}));
+  EXPECT_TRUE(HasError(load(base + "    adaptive_substeps: 3\n"), at(last), {"solvers.0.adaptive_substeps"}));
+}
+
 TEST(SceneLoader, ExplicitEulerIsAvailable) {
   const auto result = load(with_line(kBase, 33, "    integrator: explicit_euler"));
   ASSERT_LOADS(result);

@@ -5,6 +5,8 @@
 #include <optional>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <algorithm>
 
 #include "drapelab/forces.hpp"
 #include "drapelab/particle_loops.hpp"
@@ -41,6 +43,7 @@ const char* step_phase_name(StepPhase phase) {
     case StepPhase::contacts: return "contacts";
     case StepPhase::integrate: return "integrate";
     case StepPhase::health_check: return "health_check";
+    case StepPhase::step_bound: return "step_bound";
     case StepPhase::count: break;
   }
   return "unknown";
@@ -89,6 +92,14 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   }
   for (int i = 0; i < model_->particle_count(); ++i)
     if (model_->is_pinned(i)) state_.v.col(i).setZero();  // a pin holds its particle still
+  if (settings_.adaptive_substeps) {
+    const Integrator i = settings_.integrator;
+    if (i == Integrator::explicit_euler || i == Integrator::midpoint || i == Integrator::implicit_euler)
+      throw std::invalid_argument(std::string("adaptive substeps need symplectic_euler, verlet, leapfrog or rk4, not ") +
+                                  integrator_name(i));
+    if (!(settings_.substep_safety > 0.0 && settings_.substep_safety <= 1.0))
+      throw std::invalid_argument("substep_safety must be in (0, 1]");
+  }
 }
 
 const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3Xd& x,
@@ -125,7 +136,8 @@ std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
 std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() const {
   std::vector<std::pair<std::string, double>> phases;
   for (int p = 0; p < static_cast<int>(StepPhase::count); ++p)
-    phases.emplace_back(step_phase_name(static_cast<StepPhase>(p)), stats_.seconds[p]);
+    if (static_cast<StepPhase>(p) != StepPhase::step_bound || settings_.adaptive_substeps)
+      phases.emplace_back(step_phase_name(static_cast<StepPhase>(p)), stats_.seconds[p]);
   return phases;
 }
 
@@ -136,6 +148,13 @@ const ImplicitSolveStats* SpringDamperSolver::implicit_stats() const {
 }
 
 std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const {
+  if (settings_.adaptive_substeps)
+    return {{"substeps", static_cast<double>(stats_.steps)},
+            {"substeps_per_step_mean", stats_.outer_steps > 0 ? static_cast<double>(stats_.steps) /
+                                                                    static_cast<double>(stats_.outer_steps)
+                                                              : 0.0},
+            {"substeps_per_step_min", static_cast<double>(stats_.substeps_min)},
+            {"substeps_per_step_max", static_cast<double>(stats_.substeps_max)}};
   if (!implicit_stats()) return {};
   const ImplicitSolveStats& cg = *implicit_stats();
   const double mean = cg.solves > 0 ? static_cast<double>(cg.iterations_total) / static_cast<double>(cg.solves) : 0.0;
@@ -163,6 +182,35 @@ const Eigen::Matrix3Xd& SpringDamperSolver::acceleration_of_force(Eigen::Matrix3
 
 void SpringDamperSolver::step(double h) {
   if (status_ != SolverStatus::ok) return;
+  if (!settings_.adaptive_substeps) {
+    single_step(h);
+    return;
+  }
+  const double start_time = state_.time;
+  const int substeps = substeps_for(h);
+  const double substep = h / substeps;
+  for (int k = 0; k < substeps && status_ == SolverStatus::ok; ++k) single_step(substep);
+  if (status_ == SolverStatus::ok) state_.time = start_time + h;  // the caller's clock, without the substeps' rounding
+  stats_.substeps_min = stats_.outer_steps == 0 ? substeps : std::min(stats_.substeps_min, substeps);
+  stats_.substeps_max = std::max(stats_.substeps_max, substeps);
+  ++stats_.outer_steps;
+}
+
+int SpringDamperSolver::substeps_for(double h) {
+  PhaseTimer timer(stats_, StepPhase::step_bound);
+  ContactRates contact;
+  if (settings_.contacts && !contact_at_step_end(settings_.integrator))
+    contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
+  const NetworkRates rates = shape_rate_bounds(*model_, state_.x, settings_.air_damping, contact, shape_tensors_);
+  const double target = settings_.substep_safety * step_from_rates(rates, settings_.integrator, 0.0);  // s
+  // At most 10^7 substeps, as the scene format allows per frame (a NaN shape gives one: the health
+  // check then stops the run).
+  const double count = std::ceil(h / target);
+  if (!(count >= 1.0)) return 1;
+  return static_cast<int>(std::min(count, 1e7));
+}
+
+void SpringDamperSolver::single_step(double h) {
   const auto start = Clock::now();
   const double force_seconds_before = force_phase_seconds();
   std::optional<std::int64_t> scanned;  // the Euler passes scan the new state as they write it

@@ -1,6 +1,7 @@
 // drapelab bench: the cost of every solver on a fixed set of scenes and resolutions, measured in one
 // process run so the ratios compare like with like. Our solver runs at its best setting (symplectic
-// Euler at 0.9 of its stable step, the spring fast path, OpenMP threads in every phase); Bullet's classic cloth at
+// Euler in adaptive substeps at 0.9 of its shape's stable step, the spring fast path, OpenMP threads
+// in every phase); Bullet's classic cloth at
 // its cheapest stable setting (a 240 Hz step with 4 iterations, halved until it holds); Bullet's
 // deformable world at its own stable step (skipped above 65 x 65 particles: it costs minutes there).
 // Writes bench.csv and bench.md; the numbers are measurements, never checked against targets.
@@ -29,7 +30,7 @@ namespace fs = std::filesystem;
 
 // The solvers every bench scene runs, replacing the scene's own list.
 const std::string kSolvers =
-    "solvers=[{name: ours, type: spring_damper, integrator: symplectic_euler, host: none},"
+    "solvers=[{name: ours, type: spring_damper, integrator: symplectic_euler, adaptive_substeps: true, host: none},"
     " {name: bullet_classic, type: bullet_softbody, iterations: 4, dt: 0.004166666666666667},"
     " {name: bullet_deformable, type: bullet_deformable}]";
 constexpr int kLargestDeformable = 65;  // particles per side
@@ -53,6 +54,13 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec, const
   };
   m.result = runner::simulate_solver(scene, spec, setup, options);
   return m;
+}
+
+// A solver counter by name (0 when the solver does not report it).
+double counter_value(const std::vector<std::pair<std::string, double>>& counters, const std::string& name) {
+  for (const auto& [key, value] : counters)
+    if (key == name) return value;
+  return 0.0;
 }
 
 std::string cpu_name() {
@@ -136,6 +144,14 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
         row.status = solver_status_name(m.result.status);
         row.wall_per_simulated = m.result.wall_seconds_per_simulated_second();
         row.ms_per_step = m.result.ms_per_step();
+        if (trial.adaptive_substeps) {  // report the integrator's own steps: the mean substep and its cost
+          row.setting += " (adaptive substeps)";
+          const double substeps = counter_value(m.result.counters, "substeps");
+          if (substeps > 0.0) {
+            row.dt = m.result.simulated_seconds() / substeps;
+            row.ms_per_step = 1e3 * m.result.wall_seconds / substeps;
+          }
+        }
         row.max_stretch = m.max_stretch;
         row.max_penetration = m.max_penetration;
         row.second_half_wall_per_simulated =

@@ -34,14 +34,25 @@ struct SpringDamperSettings {
   std::shared_ptr<const ContactModel> contacts;  // colliders and penalty parameters; none when null
   ImplicitSolveSettings implicit;                // implicit_euler only: CG tolerance and iteration cap
   bool fast_springs = true;  // the spring-family fast path when the springs allow (spring_families.hpp)
+  // Adaptive substeps: each step(h) is split into as many equal substeps as the current shape's stable
+  // step needs (stability.hpp shape_rate_bounds), at `substep_safety` times that step. Symplectic
+  // Euler, Verlet, leapfrog and RK4 only (their step is bound by the springs, whose directions change
+  // as the cloth moves); the constructor refuses the others.
+  bool adaptive_substeps = false;
+  double substep_safety = 0.9;
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
-enum class StepPhase { body_forces, springs, contacts, integrate, health_check, count };
+// step_bound: the adaptive substeps' shape bound, once per step(h).
+enum class StepPhase { body_forces, springs, contacts, integrate, health_check, step_bound, count };
 const char* step_phase_name(StepPhase phase);
 struct StepStats {
   std::array<double, static_cast<int>(StepPhase::count)> seconds{};
-  std::int64_t steps = 0;
+  std::int64_t steps = 0;  // integrator steps (substeps when adaptive)
+  // Adaptive substeps: calls of step(h), and the fewest and most substeps one of them took.
+  std::int64_t outer_steps = 0;
+  int substeps_min = 0;
+  int substeps_max = 0;
 };
 
 class SpringDamperSolver final : public Solver {
@@ -80,6 +91,10 @@ class SpringDamperSolver final : public Solver {
   bool uses_fast_springs() const { return spring_families_ != nullptr; }
 
  private:
+  // One integrator step of h (s): the scheme's update, the step's bookkeeping and the health check.
+  void single_step(double h);
+  // How many substeps step(h) takes when adaptive: h over the shape's stable step times the safety.
+  int substeps_for(double h);
   // One step of each scheme (explicit_schemes.cpp, except the Euler pair and implicit Euler here).
   // The Euler pair returns the health scan of the new state (first_unhealthy_particle).
   std::int64_t euler_step(double h);
@@ -116,6 +131,7 @@ class SpringDamperSolver final : public Solver {
   std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
   ContactWorkspace contact_workspace_;  // the contact phase's per-block results
+  Eigen::Matrix<double, 12, Eigen::Dynamic> shape_tensors_;  // adaptive substeps: the bound's scratch
   StepStats stats_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;

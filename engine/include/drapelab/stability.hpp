@@ -9,6 +9,8 @@
 // Light particles on damped springs are often limited by the damping term, not the stiffness.
 #pragma once
 
+#include <Eigen/Core>
+
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/integrators.hpp"
 
@@ -45,6 +47,32 @@ double damping_ratio_step(const ClothModel& model, ContactRates contact = {});
 // implicit along the normal, penalty_contact.hpp): the contact then acts as extra mass along the normal
 // and does not bound the step. Symplectic Euler only; the other schemes evaluate it at their stages.
 inline bool contact_at_step_end(Integrator integrator) { return integrator == Integrator::symplectic_euler; }
+
+// Tighter bounds at one shape x (3 x N, m), for steps chosen as the cloth moves (adaptive substeps).
+// Particle i's stiffness tensor S_i sums its springs' elastic Jacobian blocks
+//   P = ks [u u^T + max(0, 1 - l0 / l) (I - u u^T)]   (spring_jacobian_for_solve; ks I when l = 0)
+// and its damping tensor D_i their kd u u^T. Each P is positive semidefinite, so for any displacement
+// field (a - b)^T P (a - b) <= 2 a^T P a + 2 b^T P b, and summing over springs
+//   omega_max^2 <= K = max_i 2 lambda_max(S_i) / m_i,   c_max <= C = max_i 2 lambda_max(D_i) / m_i + air
+// (compressed springs' negative across-spring stiffness only lowers omega). Gershgorin's bounds above
+// are the same with the trace in place of lambda_max: for a flat sheet, whose springs at a particle
+// span the plane equally, lambda_max is half the trace and the step 1.4 to 1.5 times longer. The bound
+// holds at x only, so a caller re-evaluates it as the cloth moves. The contact adds as above.
+// `tensors` is scratch (12 x N, resized on first use) so that repeated calls allocate nothing.
+NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
+                               ContactRates contact, Eigen::Matrix<double, 12, Eigen::Dynamic>& tensors);
+
+// The largest eigenvalue of the symmetric 3 x 3 matrix with diagonal (a, b, c) and off-diagonal
+// entries d = (0,1), e = (0,2), f = (1,2): the characteristic cubic's largest root q + 2 p t, with t
+// found from above by Newton's method (no trigonometric functions: this runs for every particle
+// whenever the adaptive substeps re-evaluate their bound), widened by 1e-9 relative so rounding never
+// puts it below the true value.
+double largest_symmetric_eigenvalue(double a, double b, double c, double d, double e, double f);
+
+// The stable step (s) of each integrator from rates K and C: symplectic Euler's
+// (sqrt(C^2 + 4 K) - C) / K for it, Verlet and leapfrog; 1.39 x that for RK4; the smaller of that and
+// `damping_ratio` (damping_ratio_step) for explicit Euler and midpoint; infinity for implicit Euler.
+double step_from_rates(const NetworkRates& rates, Integrator integrator, double damping_ratio);
 
 // A step (s) below which `integrator` is stable on this network, from the bounds above, with the
 // contact left out when contact_at_step_end(integrator): symplectic Euler's bound for it, Verlet and

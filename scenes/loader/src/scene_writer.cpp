@@ -124,7 +124,9 @@ std::string resolved_scene_yaml(const Scene& s) {
         << "    type: " << solver.type << "\n";
     if (solver.type == "spring_damper")
       out << "    integrator: " << integrator_name(solver.integrator) << "\n"
-          << "    host: " << (solver.bullet_host ? "bullet" : "none") << "  # a plugin in a Bullet world, or bare\n";
+          << "    host: " << (solver.bullet_host ? "bullet" : "none") << "  # a plugin in a Bullet world, or bare\n"
+          << "    adaptive_substeps: " << (solver.adaptive_substeps ? "true" : "false")
+          << "  # split dt into the substeps the shape's stable step needs\n";
     if (solver.type == "spring_damper" && solver.integrator == Integrator::implicit_euler)
       out << "    implicit: {tolerance: " << format_number(solver.implicit.tolerance)
           << ", max_iterations: " << solver.implicit.max_iterations << "}  # conjugate gradient\n";

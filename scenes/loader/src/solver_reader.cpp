@@ -14,7 +14,7 @@ namespace {
 
 const std::vector<std::string> kSolverTypes = {"spring_damper", "bullet_softbody", "bullet_deformable"};
 const std::vector<std::string> kCommonKeys = {"name", "type", "dt", "round_dt", "max_speed", "runaway_stretch"};
-const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit"};
+const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit", "adaptive_substeps"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size", "collider_margin", "kLST"};
 const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", "collider_margin"};
 
@@ -59,6 +59,7 @@ class SolverReader {
       read_integrator(solver, path, spec);
       // A plugin in a Bullet world (default), or stepped bare, without Bullet.
       spec.bullet_host = solver.choice("host", {"bullet", "none"}, "bullet").value_or("bullet") == "bullet";
+      read_adaptive_substeps(solver, path, spec);
     }
     else read_bullet_options(solver, spec);
     const double frame_period = scene_.frame_period();
@@ -95,6 +96,19 @@ class SolverReader {
         implicit.integer("max_iterations", {1.0, true, 1e6, true}, defaults.max_iterations).value_or(defaults.max_iterations));
   }
 
+  // Adaptive substeps follow the springs' stable step as the shape changes; explicit Euler and the
+  // midpoint rule are bound by kd / ks instead, which the shape does not change, and implicit Euler
+  // has no stable step to follow.
+  void read_adaptive_substeps(MapReader& solver, const std::string& path, SolverSpec& spec) {
+    spec.adaptive_substeps = solver.boolean("adaptive_substeps", false).value_or(false);
+    const Integrator i = spec.integrator;
+    if (spec.adaptive_substeps &&
+        (i == Integrator::explicit_euler || i == Integrator::midpoint || i == Integrator::implicit_euler))
+      r_.error(solver.get("adaptive_substeps"), path + ".adaptive_substeps",
+               "needs integrator symplectic_euler, verlet, leapfrog or rk4, whose step the springs bound (this "
+               "solver uses " + std::string(integrator_name(i)) + ")");
+  }
+
   // Bullet's cloths (bullet-notes 1.7, 2.4): soft margin = thickness, voxel small enough.
   void read_bullet_options(MapReader& solver, SolverSpec& spec) {
     if (spec.type == "bullet_softbody")
@@ -124,7 +138,9 @@ class SolverReader {
   // some spring is undamped, since they have no stable step then), and implicit Euler 1/240 s (four
   // steps per 60 Hz frame: large steps are its point, but contacts and friction are explicit in it);
   // Bullet's classic cloth the step where its stiffness mapping holds, ks w h^2 = 0.1. All are
-  // rounded down to a whole number of steps per frame.
+  // rounded down to a whole number of steps per frame. With adaptive substeps, 1/120 s: the solver
+  // re-evaluates its shape's stable step at every step and splits the step to fit (every scene of
+  // scenes/ stays stable with one evaluation per 60 Hz frame; the evaluation costs about five substeps).
   double automatic_step(SolverSpec& spec) {
     const double frame_period = scene_.frame_period();
     if (!cloth_ok_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
@@ -141,6 +157,9 @@ class SolverReader {
         const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
         if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);
         reason = "0.9 x the stable step of its explicit springs";
+      } else if (spec.adaptive_substeps) {
+        target = 1.0 / 120.0;
+        reason = "1/120 s: the solver splits each step into the substeps its current shape needs";
       } else if (spec.integrator == Integrator::implicit_euler) {
         target = 1.0 / 240.0;
         reason = "implicit Euler's default of 1/240 s";

@@ -19,6 +19,7 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
     settings.air_damping = scene.cloth.air_damping;
     settings.max_speed = spec.max_speed;
     settings.implicit = spec.implicit;
+    settings.adaptive_substeps = spec.adaptive_substeps;
     if (!spec.bullet_host) {
       settings.contacts = std::move(contacts);
       return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);

@@ -62,6 +62,9 @@ struct SolverSpec {
   std::string note;                   // what the loader chose or changed (automatic or rounded dt)
   // spring_damper only: stepped as an action inside a Bullet world (host: bullet) or bare (host: none).
   bool bullet_host = true;
+  // spring_damper only: split each dt into the substeps the current shape's stable step needs
+  // (SpringDamperSettings::adaptive_substeps); symplectic_euler, verlet, leapfrog and rk4.
+  bool adaptive_substeps = false;
   // spring_damper with implicit_euler only: the conjugate gradient's relative tolerance and cap.
   ImplicitSolveSettings implicit;
   // bullet_softbody only (bullet-notes 1.7; README, "Bullet's classic cloth"):
