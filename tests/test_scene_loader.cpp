@@ -703,7 +703,7 @@ TEST(SceneLoader, AdaptiveSubstepsAreReadCheckedAndGetAHalfFrameStep) {
   EXPECT_FALSE(plain.scene->solvers[0].adaptive_substeps);
 
   const int last = static_cast<int>(std::count(base.begin(), base.end(), '\n')) + 1;
-  for (const char* integrator : {"explicit_euler", "midpoint", "implicit_euler"})
+  for (const char* integrator : {"explicit_euler", "midpoint", "rk4", "verlet", "leapfrog", "implicit_euler"})
     EXPECT_TRUE(HasError(load(with_line(base, 33, std::string("    integrator: ") + integrator) +
                               "    adaptive_substeps: true\n"),
                          at(last), {"solvers.0.adaptive_substeps needs integrator symplectic_euler", integrator}));

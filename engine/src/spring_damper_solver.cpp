@@ -93,10 +93,9 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   for (int i = 0; i < model_->particle_count(); ++i)
     if (model_->is_pinned(i)) state_.v.col(i).setZero();  // a pin holds its particle still
   if (settings_.adaptive_substeps) {
-    const Integrator i = settings_.integrator;
-    if (i == Integrator::explicit_euler || i == Integrator::midpoint || i == Integrator::implicit_euler)
-      throw std::invalid_argument(std::string("adaptive substeps need symplectic_euler, verlet, leapfrog or rk4, not ") +
-                                  integrator_name(i));
+    if (settings_.integrator != Integrator::symplectic_euler)
+      throw std::invalid_argument(std::string("adaptive substeps need symplectic_euler, not ") +
+                                  integrator_name(settings_.integrator));
     if (!(settings_.substep_safety > 0.0 && settings_.substep_safety <= 1.0))
       throw std::invalid_argument("substep_safety must be in (0, 1]");
   }
@@ -201,7 +200,7 @@ int SpringDamperSolver::substeps_for(double h) {
   ContactRates contact;
   if (settings_.contacts && !contact_at_step_end(settings_.integrator))
     contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
-  const NetworkRates rates = shape_rate_bounds(*model_, state_.x, settings_.air_damping, contact, shape_tensors_);
+  const NetworkRates rates = shape_rate_bounds(*model_, state_.x, settings_.air_damping, contact, shape_bound_);
   const double target = settings_.substep_safety * step_from_rates(rates, settings_.integrator, 0.0);  // s
   // At most 10^7 substeps, as the scene format allows per frame (a NaN shape gives one: the health
   // check then stops the run).

@@ -56,11 +56,11 @@ int validate_verb(const ValidateArguments& arguments) {
     if (solver.type != "spring_damper") continue;
     if (solver.adaptive_substeps) {
       // The shape bound at the start; it is re-evaluated at every dt as the cloth moves.
-      Eigen::Matrix<double, 12, Eigen::Dynamic> tensors;
+      ShapeBoundWorkspace workspace;
       ContactRates contact = contact_at_step_end(solver.integrator) ? ContactRates{} : s.contact_rates();
       const ClothState start = scene::initial_scene_state(s, model);
       const double shape_step = step_from_rates(
-          shape_rate_bounds(model, start.x, s.cloth.air_damping, contact, tensors), solver.integrator, 0.0);
+          shape_rate_bounds(model, start.x, s.cloth.air_damping, contact, workspace), solver.integrator, 0.0);
       std::cout << "    adaptive substeps: 0.9 x the shape's stable step, " << shape_step
                 << " s at the start (" << std::ceil(solver.dt / (0.9 * shape_step))
                 << " substeps per dt), re-evaluated at every dt\n";

@@ -10,6 +10,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <vector>
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/integrators.hpp"
@@ -58,16 +60,15 @@ inline bool contact_at_step_end(Integrator integrator) { return integrator == In
 // are the same with the trace in place of lambda_max: for a flat sheet, whose springs at a particle
 // span the plane equally, lambda_max is half the trace and the step 1.4 to 1.5 times longer. The bound
 // holds at x only, so a caller re-evaluates it as the cloth moves. The contact adds as above.
-// `tensors` is scratch (12 x N, resized on first use) so that repeated calls allocate nothing.
+// `workspace` holds each particle's list of springs, built on the first call: keep one per model, so
+// that later calls allocate nothing. Runs on the spring-loop threads (shape_bound_loops.hpp), with
+// the same bits for any thread count.
+struct ShapeBoundWorkspace {
+  std::vector<std::int64_t> first;     // particle i's springs are incident[first[i] .. first[i + 1])
+  std::vector<std::int32_t> incident;  // spring indices, increasing within each particle
+};
 NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
-                               ContactRates contact, Eigen::Matrix<double, 12, Eigen::Dynamic>& tensors);
-
-// The largest eigenvalue of the symmetric 3 x 3 matrix with diagonal (a, b, c) and off-diagonal
-// entries d = (0,1), e = (0,2), f = (1,2): the characteristic cubic's largest root q + 2 p t, with t
-// found from above by Newton's method (no trigonometric functions: this runs for every particle
-// whenever the adaptive substeps re-evaluate their bound), widened by 1e-9 relative so rounding never
-// puts it below the true value.
-double largest_symmetric_eigenvalue(double a, double b, double c, double d, double e, double f);
+                               ContactRates contact, ShapeBoundWorkspace& workspace);
 
 // The stable step (s) of each integrator from rates K and C: symplectic Euler's
 // (sqrt(C^2 + 4 K) - C) / K for it, Verlet and leapfrog; 1.39 x that for RK4; the smaller of that and

@@ -96,17 +96,14 @@ class SolverReader {
         implicit.integer("max_iterations", {1.0, true, 1e6, true}, defaults.max_iterations).value_or(defaults.max_iterations));
   }
 
-  // Adaptive substeps follow the springs' stable step as the shape changes; explicit Euler and the
-  // midpoint rule are bound by kd / ks instead, which the shape does not change, and implicit Euler
-  // has no stable step to follow.
+  // Adaptive substeps follow symplectic Euler's stable step as the shape changes: its damped
+  // stability condition is exact, where the other schemes' differ (SpringDamperSettings).
   void read_adaptive_substeps(MapReader& solver, const std::string& path, SolverSpec& spec) {
     spec.adaptive_substeps = solver.boolean("adaptive_substeps", false).value_or(false);
-    const Integrator i = spec.integrator;
-    if (spec.adaptive_substeps &&
-        (i == Integrator::explicit_euler || i == Integrator::midpoint || i == Integrator::implicit_euler))
+    if (spec.adaptive_substeps && spec.integrator != Integrator::symplectic_euler)
       r_.error(solver.get("adaptive_substeps"), path + ".adaptive_substeps",
-               "needs integrator symplectic_euler, verlet, leapfrog or rk4, whose step the springs bound (this "
-               "solver uses " + std::string(integrator_name(i)) + ")");
+               "needs integrator symplectic_euler, whose stable step the shape bound gives exactly (this solver "
+               "uses " + std::string(integrator_name(spec.integrator)) + ")");
   }
 
   // Bullet's cloths (bullet-notes 1.7, 2.4): soft margin = thickness, voxel small enough.

@@ -63,7 +63,7 @@ struct SolverSpec {
   // spring_damper only: stepped as an action inside a Bullet world (host: bullet) or bare (host: none).
   bool bullet_host = true;
   // spring_damper only: split each dt into the substeps the current shape's stable step needs
-  // (SpringDamperSettings::adaptive_substeps); symplectic_euler, verlet, leapfrog and rk4.
+  // (SpringDamperSettings::adaptive_substeps); symplectic_euler only.
   bool adaptive_substeps = false;
   // spring_damper with implicit_euler only: the conjugate gradient's relative tolerance and cap.
   ImplicitSolveSettings implicit;
