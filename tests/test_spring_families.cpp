@@ -9,8 +9,10 @@
 #include "drapelab/disc_cloth.hpp"
 #include "drapelab/forces.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "drapelab/particle_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/spring_families.hpp"
+#include "drapelab/spring_family_loops.hpp"
 
 namespace drapelab {
 namespace {
@@ -50,6 +52,33 @@ TEST(SpringFamilies, ForcesEqualThePlainLoopToRoundingOnEveryGrid) {
     add_spring_forces(model, state.x, state.v, plain);
     families->add_forces(state.x, state.v, fast);
     EXPECT_LT((fast - plain).cwiseAbs().maxCoeff(), 1e-12 * plain.cwiseAbs().maxCoeff());
+  }
+}
+
+// The solver's fast path starts the force from gravity and air drag inside the spring kernel's first
+// pass: the same bits as the separate body-force pass followed by the springs, on 1 and 2 threads.
+TEST(SpringFamilies, BodyForcesInTheFirstPassEqualTheSeparatePassBitForBit) {
+  for (int n : {9, 97}) {  // one thread's region, and one large enough to split among threads
+    SCOPED_TRACE(n);
+    const GridClothSpec spec = grid(n, n);
+    const ClothModel model = build_grid_cloth(spec);
+    const ClothState state = shaken(model, spec);
+    auto families = SpringFamilies::build(model);
+    ASSERT_TRUE(families);
+    const Eigen::Matrix3Xd mass = model.mass.transpose().replicate(3, 1);          // kg per coordinate
+    const Eigen::Matrix3Xd weight = Eigen::Vector3d(0.3, -9.81, 0.1) * model.mass.transpose();  // N
+    const double air = 0.7;                                                         // 1/s
+    const int threads_before = kernels::thread_count();
+    for (int threads : {1, 2}) {
+      kernels::set_thread_count(threads);
+      Eigen::Matrix3Xd separate(3, model.particle_count());
+      kernels::set_body_forces(model.particle_count(), weight.data(), mass.data(), air, state.v.data(), separate.data());
+      families->add_forces(state.x, state.v, separate);
+      Eigen::Matrix3Xd fused = Eigen::Matrix3Xd::Constant(3, model.particle_count(), 123.0);  // overwritten
+      families->set_body_and_spring_forces(state.x, state.v, weight, mass, air, fused);
+      EXPECT_TRUE((fused.array() == separate.array()).all()) << threads << " thread(s)";
+    }
+    kernels::set_thread_count(threads_before);
   }
 }
 

@@ -21,6 +21,12 @@ void set_body_forces(std::int64_t n, const double* weight, const double* mass, d
   for (std::int64_t k = 0; k < 3 * n; ++k) f[k] = weight[k] - air * (v[k] * mass[k]);
 }
 
+void set_body_forces_range(std::int64_t begin, std::int64_t end, const double* weight, const double* mass,
+                           double air, const double* v, double* f) {
+#pragma omp simd
+  for (std::int64_t k = 3 * begin; k < 3 * end; ++k) f[k] = weight[k] - air * (v[k] * mass[k]);
+}
+
 namespace {
 
 // Particles per block of the update passes: a block is updated and tested branch-free on unit-stride

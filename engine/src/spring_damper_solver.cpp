@@ -103,16 +103,19 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
 
 const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3Xd& x,
                                                             const Eigen::Matrix3Xd& v, double t, double h) {
-  {
-    // Gravity and air drag in one pass that overwrites the buffer (clearing the last evaluation).
-    PhaseTimer timer(stats_, StepPhase::body_forces);
-    kernels::set_body_forces(model_->particle_count(), weight_.data(), coordinate_mass_.data(),
-                             settings_.air_damping, v.data(), force_.data());
-  }
-  {
+  if (spring_families_) {
+    // Gravity and air drag in the spring kernel's first pass (the same bits as the pass below).
     PhaseTimer timer(stats_, StepPhase::springs);
-    if (spring_families_) spring_families_->add_forces(x, v, force_);
-    else add_spring_forces(*model_, x, v, force_);
+    spring_families_->set_body_and_spring_forces(x, v, weight_, coordinate_mass_, settings_.air_damping, force_);
+  } else {
+    {
+      // Gravity and air drag in one pass that overwrites the buffer (clearing the last evaluation).
+      PhaseTimer timer(stats_, StepPhase::body_forces);
+      kernels::set_body_forces(model_->particle_count(), weight_.data(), coordinate_mass_.data(),
+                               settings_.air_damping, v.data(), force_.data());
+    }
+    PhaseTimer timer(stats_, StepPhase::springs);
+    add_spring_forces(*model_, x, v, force_);
   }
   if (settings_.contacts) {
     PhaseTimer timer(stats_, StepPhase::contacts);

@@ -114,7 +114,7 @@ void gather(const std::vector<SpringFamily>& families, FamilyScratch& scratch, d
 }  // namespace
 
 void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
-                       FamilyScratch& scratch, double* f) {
+                       FamilyScratch& scratch, double* f, const BodyForceInputs* body) {
   const std::int64_t n = scratch.particles;
   const std::int64_t family_count = static_cast<std::int64_t>(families.size());
   const std::int64_t max_offset = scratch.padding;
@@ -127,8 +127,10 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
   const std::int64_t blocks = (n + kGatherBlock - 1) / kGatherBlock;
 #pragma omp parallel if (n * family_count >= kParallelSlots)
   {
-    // 1. The packed state into six unit-stride arrays (their padding stays zero).
-#pragma omp for schedule(static)
+    // 1. The packed state into six unit-stride arrays (their padding stays zero), and the body forces
+    // into f when asked for (by a function of particle_loops.cpp, built without fused multiply-adds,
+    // so f has the bits of set_body_forces); the barrier ending this pass precedes every gather.
+#pragma omp for schedule(static) nowait
     for (std::int64_t i = 0; i < n; ++i) {
       px[i] = x[3 * i];
       py[i] = x[3 * i + 1];
@@ -137,6 +139,13 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
       vy[i] = v[3 * i + 1];
       vz[i] = v[3 * i + 2];
     }
+    if (body) {
+#pragma omp for schedule(static) nowait
+      for (std::int64_t block = 0; block < blocks; ++block)
+        set_body_forces_range(block * kGatherBlock, std::min(n, (block + 1) * kGatherBlock), body->weight,
+                              body->mass, body->air, v, f);
+    }
+#pragma omp barrier
     // 2. Each thread walks its own run of blocks in order: a block's slot forces of every family,
     // then the gather of its particles, while those slots are still in cache. Particle i reads slots
     // i and i - offset, computed by this block or an earlier one; only the first max_offset particles

@@ -21,6 +21,10 @@ inline constexpr std::int64_t kParallelParticles = 4096;
 // per coordinate. Overwrites f, so it also clears the force of the last evaluation.
 void set_body_forces(std::int64_t n, const double* weight, const double* mass, double air, const double* v,
                      double* f);
+// The same for particles begin <= i < end only, on the calling thread: for a pass that already runs
+// in a parallel region (the spring fast path's first pass). The same expression, so the same bits.
+void set_body_forces_range(std::int64_t begin, std::int64_t end, const double* weight, const double* mass,
+                           double air, const double* v, double* f);
 
 // The first particle (lowest index) whose position or velocity is not finite or whose speed squared
 // exceeds max_speed_squared (m^2/s^2); -1 when every particle is healthy.

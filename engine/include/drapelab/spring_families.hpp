@@ -29,6 +29,10 @@ class SpringFamilies {
 
   // force += every spring's damped force, +f on the first particle and -f on the second (N).
   void add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
+  // force = gravity and air drag (per coordinate: weight m g in N, mass in kg, air in 1/s; as
+  // particle_loops.hpp set_body_forces, bit for bit) + every spring's force, in one threaded pass.
+  void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& weight,
+                                  const Eigen::Matrix3Xd& mass, double air, Eigen::Matrix3Xd& force);
 
   int family_count() const { return static_cast<int>(families_.size()); }
   const std::vector<SpringFamily>& families() const { return families_; }

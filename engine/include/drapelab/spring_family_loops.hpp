@@ -50,8 +50,17 @@ struct FamilyScratch {
 //   -[ks (l - l0) + kd (dv . d) / l] d / l,   d = x(i) - x(i + offset),   zero for a zero length (N).
 // x, v, f: 3 x particles, packed as in ClothState (m, m/s, N). Every particle's terms are summed in
 // the same order whatever the thread count, so the result is bitwise identical for any thread count.
+// Gravity and air drag to start f from instead of its contents (particle_loops.hpp set_body_forces:
+// per coordinate, weight in N, mass in kg, air in 1/s).
+struct BodyForceInputs {
+  const double* weight = nullptr;
+  const double* mass = nullptr;
+  double air = 0.0;
+};
+// With `body`, f is first overwritten with the body forces, in the same parallel region's first pass
+// (one pass over the particles and one start of the threads fewer than set_body_forces, then this).
 void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
-                       FamilyScratch& scratch, double* f);
+                       FamilyScratch& scratch, double* f, const BodyForceInputs* body = nullptr);
 // Threads the loops use (OpenMP); always 1 in a build without OpenMP.
 void set_thread_count(int threads);
 int thread_count();
