@@ -145,6 +145,19 @@ TEST_F(StudyCli, UnknownSolverIsBadInputNamingTheChoices) {
   EXPECT_FALSE(fs::exists(dir() / "out"));
 }
 
+TEST_F(StudyCli, AdaptiveSolverIsBadInputForTheStepVaryingVerbs) {
+  const fs::path file = scene("sheet.yaml", kSheet);
+  for (const std::string verb : {"stability", "study"}) {
+    std::vector<std::string> arguments = {verb, file.string(), "--set", "solvers.0.adaptive_substeps=true"};
+    if (verb == "study") arguments.insert(arguments.end(), {"--out", (dir() / "out").string()});
+    const auto result = run_drapelab(arguments);
+    EXPECT_EQ(result.exit_code, 2) << verb << ": " << result.output;
+    EXPECT_NE(result.output.find("adaptive_substeps: true"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("solvers.0.adaptive_substeps=false"), std::string::npos) << result.output;
+  }
+  EXPECT_FALSE(fs::exists(dir() / "out"));
+}
+
 TEST_F(StudyCli, OtherBadInputExits2) {
   const fs::path file = scene("sheet.yaml", kSheet);
   const auto integrator = run_drapelab(

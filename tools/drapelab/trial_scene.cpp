@@ -46,6 +46,14 @@ std::optional<std::size_t> choose_solver(const scene::Scene& scene, const std::s
              available;
     return std::nullopt;
   }
+  if (scene.solvers[*chosen].adaptive_substeps) {
+    // These verbs vary the step, and an adaptive solver chooses its own substeps whatever dt is.
+    *error = "solver '" + scene.solvers[*chosen].name +
+             "' has adaptive_substeps: true, so it picks its own substeps and the step this verb varies "
+             "decides nothing; run it without (--set solvers." + std::to_string(*chosen) +
+             ".adaptive_substeps=false)";
+    return std::nullopt;
+  }
   return chosen;
 }
 

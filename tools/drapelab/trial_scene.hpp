@@ -17,7 +17,8 @@ std::optional<scene::Scene> load_trial_scene(const std::string& file,
                                              std::vector<std::string> overrides, double duration);
 
 // The solver named `name`; without a name, the first spring_damper solver, else the first solver.
-// With `spring_damper_only`, other types are refused. Returns its index, or nothing with `error`
+// With `spring_damper_only`, other types are refused; so is a solver with adaptive substeps (the
+// verbs that choose a solver vary its step, which such a solver overrides). Returns its index, or nothing with `error`
 // set to a message that names what was expected (the scene's solvers and their types).
 std::optional<std::size_t> choose_solver(const scene::Scene& scene, const std::string& name,
                                          bool spring_damper_only, std::string* error);
