@@ -21,12 +21,12 @@ inline double largest_eigenvalue(double a, double b, double c, double d, double 
   const double spread = (a - q) * (a - q) + (b - q) * (b - q) + (c - q) * (c - q) + 2.0 * off;
   if (spread <= 0.0) return q;  // a multiple of the identity
   const double p = std::sqrt(spread / 6.0);
-  const double ba = (a - q) / p, bb = (b - q) / p, bc = (c - q) / p;
-  const double bd = d / p, be = e / p, bf = f / p;
-  const double det = ba * (bb * bc - bf * bf) - bd * (bd * bc - bf * be) + be * (bd * bf - bb * be);
-  const double r = std::clamp(0.5 * det, -1.0, 1.0);
+  // det(B) = det(A - q I) / p^3: one division instead of scaling each entry.
+  const double sa = a - q, sb = b - q, sc = c - q;
+  const double shifted_det = sa * (sb * sc - f * f) - d * (d * sc - f * e) + e * (d * f - sb * e);
+  const double r = std::clamp(0.5 * shifted_det / (p * p * p), -1.0, 1.0);
   double t = std::min(1.0, 0.5 + std::sqrt((1.0 + r) / 6.0));
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 3; ++k) {  // three steps reach the root to about 1e-10 relative from this start
     const double excess = 4.0 * t * t * t - 3.0 * t - r;  // > 0 above the root
     const double slope = 12.0 * t * t - 3.0;              // > 0 for t > 1/2
     if (!(excess > 0.0 && slope > 0.0)) break;            // at the root, to rounding
@@ -43,42 +43,59 @@ double largest_symmetric_eigenvalue(double a, double b, double c, double d, doub
 }
 
 ShapeRates shape_rate_maxima(std::int64_t n, IncidentSprings adjacency, SpringArrays s, const double* inverse_mass,
-                             const double* x, double contact_stiffness, double contact_damping) {
+                             const double* x, double contact_stiffness, double contact_damping,
+                             std::int64_t spring_count, double* terms) {
+  // terms: 8 rows of spring_count values: the spring's u u^T (xx, yy, zz, xy, xz, yz), then ks (1 - a)
+  // and ks a (N/m), a = max(0, 1 - l0 / l): the parts of ks on u u^T and on I.
+  double* const uu[6] = {terms, terms + spring_count, terms + 2 * spring_count, terms + 3 * spring_count,
+                         terms + 4 * spring_count, terms + 5 * spring_count};
+  double* const along = terms + 6 * spring_count;
+  double* const isotropic = terms + 7 * spring_count;
   double stiffness_rate = 0.0, damping_rate = 0.0;  // 1/s^2, 1/s
-  // Each particle recomputes its springs' terms rather than adding into shared tensors: no writes to
-  // other particles, so the threads need no coordination and the sums keep one order.
-#pragma omp parallel for schedule(static) reduction(max : stiffness_rate, damping_rate) if (n >= kParallelParticles)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const double w = inverse_mass[i];  // 1/kg, 0 when pinned
-    if (w == 0.0) continue;
-    double t[12] = {};  // S_i (xx, yy, zz, xy, xz, yz) in N/m, then D_i in N*s/m
-    for (std::int64_t k = adjacency.first[i]; k < adjacency.first[i + 1]; ++k) {
-      const std::int32_t e = adjacency.incident[k];
+  const bool parallel = n >= kParallelParticles;
+#pragma omp parallel if (parallel)
+  {
+    // 1. Each spring's direction and split stiffness, once, in a vectorised loop over the springs.
+#pragma omp for simd schedule(simd : static)
+    for (std::int64_t e = 0; e < spring_count; ++e) {
       const std::int64_t a = s.v0[e], b = s.v1[e];
       const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
       const double squared = dx * dx + dy * dy + dz * dz;  // m^2
-      if (squared > 0.0) {
-        const double inverse_length = 1.0 / std::sqrt(squared);  // 1/m
-        const double ux = dx * inverse_length, uy = dy * inverse_length, uz = dz * inverse_length;
-        const double across = std::max(0.0, 1.0 - s.rest_length[e] * inverse_length);  // per ks
-        const double along = s.ks[e] * (1.0 - across);  // N/m on u u^T, once the across part is split off
-        const double isotropic = s.ks[e] * across;      // N/m on I
-        const double uu[6] = {ux * ux, uy * uy, uz * uz, ux * uy, ux * uz, uy * uz};
+      // A spring of zero length has no direction: its "u u^T" is the identity, so it counts as stiff
+      // and damped in every direction (across = 0 puts its whole ks there).
+      const bool has_direction = squared > 0.0;
+      const double inverse_length = has_direction ? 1.0 / std::sqrt(squared) : 0.0;  // 1/m
+      const double ux = dx * inverse_length, uy = dy * inverse_length, uz = dz * inverse_length;
+      const double across = has_direction ? std::max(0.0, 1.0 - s.rest_length[e] * inverse_length) : 0.0;
+      uu[0][e] = has_direction ? ux * ux : 1.0;
+      uu[1][e] = has_direction ? uy * uy : 1.0;
+      uu[2][e] = has_direction ? uz * uz : 1.0;
+      uu[3][e] = ux * uy;
+      uu[4][e] = ux * uz;
+      uu[5][e] = uy * uz;
+      along[e] = s.ks[e] * (1.0 - across);
+      isotropic[e] = s.ks[e] * across;
+    }
+    // 2. Each particle sums its own springs (no writes to shared sums, one order), then the largest
+    // eigenvalues of its two tensors.
+#pragma omp for schedule(static) reduction(max : stiffness_rate, damping_rate)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double w = inverse_mass[i];  // 1/kg, 0 when pinned
+      if (w == 0.0) continue;
+      double t[12] = {};  // S_i (xx, yy, zz, xy, xz, yz) in N/m, then D_i in N*s/m
+      for (std::int64_t k = adjacency.first[i]; k < adjacency.first[i + 1]; ++k) {
+        const std::int32_t e = adjacency.incident[k];
         for (int c = 0; c < 6; ++c) {
-          t[c] += along * uu[c] + (c < 3 ? isotropic : 0.0);
-          t[6 + c] += s.kd[e] * uu[c];
-        }
-      } else {  // no direction: count it as stiff and damped in every direction
-        for (int c = 0; c < 3; ++c) {
-          t[c] += s.ks[e];
-          t[6 + c] += s.kd[e];
+          const double on_identity = c < 3 ? isotropic[e] : 0.0;  // N/m
+          t[c] += along[e] * uu[c][e] + on_identity;
+          t[6 + c] += s.kd[e] * uu[c][e];
         }
       }
+      const double stiffness = largest_eigenvalue(t[0], t[1], t[2], t[3], t[4], t[5]);
+      const double damping = largest_eigenvalue(t[6], t[7], t[8], t[9], t[10], t[11]);
+      stiffness_rate = std::max(stiffness_rate, (2.0 * stiffness + contact_stiffness) * w);
+      damping_rate = std::max(damping_rate, (2.0 * damping + contact_damping) * w);
     }
-    const double stiffness = largest_eigenvalue(t[0], t[1], t[2], t[3], t[4], t[5]);
-    const double damping = largest_eigenvalue(t[6], t[7], t[8], t[9], t[10], t[11]);
-    stiffness_rate = std::max(stiffness_rate, (2.0 * stiffness + contact_stiffness) * w);
-    damping_rate = std::max(damping_rate, (2.0 * damping + contact_damping) * w);
   }
   return {stiffness_rate, damping_rate};
 }

@@ -51,11 +51,12 @@ NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& 
       workspace.incident[next[s.v0[e]]++] = static_cast<std::int32_t>(e);
       workspace.incident[next[s.v1[e]]++] = static_cast<std::int32_t>(e);
     }
+    workspace.terms.resize(8 * s.size());
   }
   const kernels::ShapeRates maxima = kernels::shape_rate_maxima(
       count, {workspace.first.data(), workspace.incident.data()},
       {s.v0.data(), s.v1.data(), s.rest_length.data(), s.ks.data(), s.kd.data()}, model.inverse_mass.data(), x.data(),
-      contact.stiffness, contact.damping);
+      contact.stiffness, contact.damping, static_cast<std::int64_t>(s.size()), workspace.terms.data());
   return {maxima.stiffness, maxima.damping + air_damping};
 }
 

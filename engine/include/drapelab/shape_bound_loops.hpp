@@ -34,10 +34,12 @@ struct ShapeRates {
 // Over the n particles at positions x (3 x n, m), each free one's stiffness tensor
 // S_i = sum ks [u u^T + max(0, 1 - l0 / l) (I - u u^T)] and damping tensor D_i = sum kd u u^T over its
 // springs (ks I and kd I for a spring of zero length), and the largest eigenvalue of each.
-// inverse_mass is per particle (1/kg, 0 for a pinned one, which is skipped).
+// inverse_mass is per particle (1/kg, 0 for a pinned one, which is skipped). Each spring's direction
+// is computed once, in a vectorised pass over the springs into `terms` (room for 8 x spring_count),
+// then each particle sums its own springs' terms.
 ShapeRates shape_rate_maxima(std::int64_t n, IncidentSprings adjacency, SpringArrays springs,
                              const double* inverse_mass, const double* x, double contact_stiffness,
-                             double contact_damping);
+                             double contact_damping, std::int64_t spring_count, double* terms);
 
 // The largest eigenvalue of the symmetric 3 x 3 matrix with diagonal (a, b, c) and off-diagonal
 // entries d = (0,1), e = (0,2), f = (1,2): the characteristic cubic's largest root, found from above by

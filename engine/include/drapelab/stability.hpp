@@ -60,12 +60,14 @@ inline bool contact_at_step_end(Integrator integrator) { return integrator == In
 // are the same with the trace in place of lambda_max: for a flat sheet, whose springs at a particle
 // span the plane equally, lambda_max is half the trace and the step 1.4 to 1.5 times longer. The bound
 // holds at x only, so a caller re-evaluates it as the cloth moves. The contact adds as above.
-// `workspace` holds each particle's list of springs, built on the first call: keep one per model, so
+// `workspace` holds each particle's list of springs and room for per-spring terms, built on the
+// first call: keep one per model, so
 // that later calls allocate nothing. Runs on the spring-loop threads (shape_bound_loops.hpp), with
 // the same bits for any thread count.
 struct ShapeBoundWorkspace {
   std::vector<std::int64_t> first;     // particle i's springs are incident[first[i] .. first[i + 1])
   std::vector<std::int32_t> incident;  // spring indices, increasing within each particle
+  std::vector<double> terms;           // per spring: u u^T and ks split across it (shape_bound_loops.hpp)
 };
 NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
                                ContactRates contact, ShapeBoundWorkspace& workspace);
