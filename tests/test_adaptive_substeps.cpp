@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <string>
 
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/shape_bound_loops.hpp"
@@ -231,6 +232,20 @@ TEST(AdaptiveSubsteps, SheetWithoutShearSpringsFoldsUpStably) {
   for (int k = 0; k < 240 && solver.status() == SolverStatus::ok; ++k) solver.step(1.0 / 120.0);
   ASSERT_EQ(solver.status(), SolverStatus::ok) << solver.message();
   EXPECT_GT(solver.stats().substeps_max, solver.stats().substeps_min);  // the bound moved with the shape
+}
+
+TEST(AdaptiveSubsteps, AStoppedRunSaysWhichSubstepAndSuggestsTurningThemOff) {
+  const auto spec = hanging_sheet(9);
+  const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  SpringDamperSettings settings;
+  settings.adaptive_substeps = true;
+  settings.max_speed = 0.05;  // m/s: the falling sheet passes it within the first steps
+  SpringDamperSolver solver("sheet", model, initial_grid_state(*model, spec, 1e-3, 3), settings);
+  for (int k = 0; k < 60 && solver.status() == SolverStatus::ok; ++k) solver.step(1.0 / 120.0);
+  ASSERT_EQ(solver.status(), SolverStatus::unstable);
+  const std::string& message = solver.message();
+  EXPECT_NE(message.find("after step " + std::to_string(solver.state().step_count)), std::string::npos) << message;
+  EXPECT_NE(message.find("adaptive_substeps: false"), std::string::npos) << message;
 }
 
 TEST(AdaptiveSubsteps, RefusesEverySchemeButSymplecticEuler) {

@@ -1,12 +1,12 @@
 // Our spring-damper cloth solver: the step as a list of named, timed phases.
 #include "drapelab/spring_damper_solver.hpp"
 
+#include <algorithm>
 #include <chrono>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
-#include <algorithm>
 
 #include "drapelab/forces.hpp"
 #include "drapelab/particle_loops.hpp"
@@ -281,6 +281,9 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
          << settings_.max_speed << " m/s";
   text << " after step " << state_.step_count << " (t = " << state_.time << " s, dt = " << h
        << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
+  if (settings_.adaptive_substeps)
+    text << "a smaller dt or adaptive_substeps: false (the substeps follow the shape's stable step, taken once "
+            "per dt; the cloth may have changed faster than that), ";
   ContactRates contact;
   if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
   const double stable_step = stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
