@@ -132,30 +132,29 @@ TEST_F(StudyCli, StabilityMaxDtCapsTheSearch) {
       << result.output;
 }
 
-TEST_F(StudyCli, UnknownSolverIsBadInputNamingTheChoices) {
-  const fs::path file = scene("sheet.yaml", kSheet);
+// Both solver-choosing verbs on the sheet with `options` exit 2, say every one of `expected`, and
+// write nothing.
+void expect_both_verbs_refuse(const fs::path& sheet, const fs::path& out, const std::vector<std::string>& options,
+                              const std::vector<std::string>& expected) {
   for (const std::string verb : {"stability", "study"}) {
-    std::vector<std::string> arguments = {verb, file.string(), "--solver", "nosuch"};
-    if (verb == "study") arguments.insert(arguments.end(), {"--out", (dir() / "out").string()});
+    std::vector<std::string> arguments = {verb, sheet.string()};
+    arguments.insert(arguments.end(), options.begin(), options.end());
+    if (verb == "study") arguments.insert(arguments.end(), {"--out", out.string()});
     const auto result = run_drapelab(arguments);
     EXPECT_EQ(result.exit_code, 2) << verb << ": " << result.output;
-    EXPECT_NE(result.output.find("'nosuch'"), std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("ours (spring_damper)"), std::string::npos) << result.output;
+    for (const auto& text : expected) EXPECT_NE(result.output.find(text), std::string::npos) << result.output;
   }
-  EXPECT_FALSE(fs::exists(dir() / "out"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(StudyCli, UnknownSolverIsBadInputNamingTheChoices) {
+  expect_both_verbs_refuse(scene("sheet.yaml", kSheet), dir() / "out", {"--solver", "nosuch"},
+                           {"'nosuch'", "ours (spring_damper)"});
 }
 
 TEST_F(StudyCli, AdaptiveSolverIsBadInputForTheStepVaryingVerbs) {
-  const fs::path file = scene("sheet.yaml", kSheet);
-  for (const std::string verb : {"stability", "study"}) {
-    std::vector<std::string> arguments = {verb, file.string(), "--set", "solvers.0.adaptive_substeps=true"};
-    if (verb == "study") arguments.insert(arguments.end(), {"--out", (dir() / "out").string()});
-    const auto result = run_drapelab(arguments);
-    EXPECT_EQ(result.exit_code, 2) << verb << ": " << result.output;
-    EXPECT_NE(result.output.find("adaptive_substeps: true"), std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("solvers.0.adaptive_substeps=false"), std::string::npos) << result.output;
-  }
-  EXPECT_FALSE(fs::exists(dir() / "out"));
+  expect_both_verbs_refuse(scene("sheet.yaml", kSheet), dir() / "out", {"--set", "solvers.0.adaptive_substeps=true"},
+                           {"adaptive_substeps: true", "solvers.0.adaptive_substeps=false"});
 }
 
 TEST_F(StudyCli, OtherBadInputExits2) {
