@@ -316,6 +316,30 @@ TEST_F(Cli, ResolvedYamlValidatesAndReproducesTheRun) {
   EXPECT_EQ(read_text(again / "metrics.csv"), read_text(out / "metrics.csv"));
 }
 
+// Adaptive substeps through the program: counted in summary.json, recorded in resolved.yaml (whose
+// rerun reproduces the run), and shown by validate.
+TEST_F(Cli, AdaptiveSubstepsAreCountedRecordedAndShown) {
+  const fs::path file = scene("small.yaml", kSmall);
+  const fs::path out = dir() / "out";
+  const auto result = run(file, out, {"--set", "solvers.0.adaptive_substeps=true"});
+  ASSERT_EQ(result.exit_code, 0) << all_output(result);
+  const json summary = json::parse(read_text(out / "summary.json"));
+  const json& ours = summary.at("solvers").at("ours");
+  ASSERT_TRUE(ours.contains("integrator_statistics")) << ours.dump();
+  const auto& counts = ours.at("integrator_statistics");
+  EXPECT_GE(counts.at("substeps").get<double>(), ours.at("steps").get<double>());
+  EXPECT_GE(counts.at("substeps_per_step_max").get<double>(), counts.at("substeps_per_step_min").get<double>());
+  EXPECT_TRUE(ours.at("phase_seconds").contains("step_bound")) << ours.dump();
+  EXPECT_NE(read_text(out / "resolved.yaml").find("adaptive_substeps: true"), std::string::npos);
+  const fs::path again = dir() / "again";
+  ASSERT_EQ(run(out / "resolved.yaml", again).exit_code, 0);
+  EXPECT_EQ(read_text(again / "metrics.csv"), read_text(out / "metrics.csv"));
+  const auto validated = run_drapelab({"validate", file.string(), "--set", "solvers.0.adaptive_substeps=true"});
+  EXPECT_EQ(validated.exit_code, 0) << all_output(validated);
+  EXPECT_NE(validated.output.find("adaptive substeps: 0.9 x the shape's stable step"), std::string::npos)
+      << validated.output;
+}
+
 TEST_F(Cli, QuietRunPrintsNothingWhenAllIsWell) {
   const fs::path file = scene("small.yaml", kSmall);
   const auto result = run(file, dir() / "out", {"-q"});
