@@ -200,11 +200,8 @@ void SpringDamperSolver::step(double h) {
 
 int SpringDamperSolver::substeps_for(double h) {
   PhaseTimer timer(stats_, StepPhase::step_bound);
-  ContactRates contact;
-  if (settings_.contacts && !contact_at_step_end(settings_.integrator))
-    contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
-  const NetworkRates rates = shape_rate_bounds(*model_, state_.x, settings_.air_damping, contact, shape_bound_);
-  const double target = settings_.substep_safety * step_from_rates(rates, settings_.integrator, 0.0);  // s
+  const double target =
+      settings_.substep_safety * shape_stable_step(*model_, state_.x, settings_.air_damping, shape_bound_);  // s
   // At most 10^7 substeps, as the scene format allows per frame (a NaN shape gives one: the health
   // check then stops the run).
   const double count = std::ceil(h / target);

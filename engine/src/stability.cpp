@@ -60,6 +60,11 @@ NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& 
   return {maxima.stiffness, maxima.damping + air_damping};
 }
 
+double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
+                         ShapeBoundWorkspace& workspace) {
+  return step_from_rates(shape_rate_bounds(model, x, air_damping, {}, workspace), Integrator::symplectic_euler, 0.0);
+}
+
 namespace {
 
 double symplectic_step_of_rates(const NetworkRates& r) {

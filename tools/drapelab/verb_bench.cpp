@@ -56,13 +56,6 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec, const
   return m;
 }
 
-// A solver counter by name (0 when the solver does not report it).
-double counter_value(const std::vector<std::pair<std::string, double>>& counters, const std::string& name) {
-  for (const auto& [key, value] : counters)
-    if (key == name) return value;
-  return 0.0;
-}
-
 std::string cpu_name() {
   std::ifstream in("/proc/cpuinfo");
   std::string line;
@@ -146,7 +139,7 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
         row.ms_per_step = m.result.ms_per_step();
         if (trial.adaptive_substeps) {  // report the integrator's own steps: the mean substep and its cost
           row.setting += " (adaptive substeps)";
-          const double substeps = counter_value(m.result.counters, "substeps");
+          const double substeps = m.result.counter("substeps").value_or(0.0);
           if (substeps > 0.0) {
             row.dt = m.result.simulated_seconds() / substeps;
             row.ms_per_step = 1e3 * m.result.wall_seconds / substeps;

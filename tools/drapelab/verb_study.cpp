@@ -63,12 +63,6 @@ struct ErrorTracker {
   }
 };
 
-std::optional<double> counter(const runner::SimulationResult& result, const std::string& name) {
-  for (const auto& [key, value] : result.counters)
-    if (key == name) return value;
-  return std::nullopt;
-}
-
 // The command as typed, with the program's path shortened to its name (the table is for a README).
 std::string shown_command(const std::string& command_line) {
   const auto space = command_line.find(' ');
@@ -235,7 +229,7 @@ int study_verb(const StudyArguments& arguments, const std::string& command_line,
         row.stopped_at = result.final_state.time;
       }
       if (integrator == Integrator::implicit_euler)
-        row.cg_iterations_mean = counter(result, "cg_iterations_mean");
+        row.cg_iterations_mean = result.counter("cg_iterations_mean");
       rows.push_back(row);
       std::ostringstream line;
       line << "  " << integrator_name(integrator) << " h = " << format_number(row.dt)

@@ -5,6 +5,7 @@
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_loader.hpp"
 #include "drapelab/scene/scene_writer.hpp"
+#include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
 #include "verbs.hpp"
 
@@ -57,12 +58,11 @@ int validate_verb(const ValidateArguments& arguments) {
     if (solver.adaptive_substeps) {
       // The shape bound at the start; it is re-evaluated at every dt as the cloth moves.
       ShapeBoundWorkspace workspace;
-      ContactRates contact = contact_at_step_end(solver.integrator) ? ContactRates{} : s.contact_rates();
-      const ClothState start = scene::initial_scene_state(s, model);
-      const double shape_step = step_from_rates(
-          shape_rate_bounds(model, start.x, s.cloth.air_damping, contact, workspace), solver.integrator, 0.0);
-      std::cout << "    adaptive substeps: 0.9 x the shape's stable step, " << shape_step
-                << " s at the start (" << std::ceil(solver.dt / (0.9 * shape_step))
+      const double shape_step =
+          shape_stable_step(model, scene::initial_scene_state(s, model).x, s.cloth.air_damping, workspace);
+      const double safety = SpringDamperSettings{}.substep_safety;
+      std::cout << "    adaptive substeps: " << safety << " x the shape's stable step, " << shape_step
+                << " s at the start (" << std::ceil(solver.dt / (safety * shape_step))
                 << " substeps per dt), re-evaluated at every dt\n";
       continue;  // its substeps follow the shape's bound, so the fixed-step warning does not apply
     }

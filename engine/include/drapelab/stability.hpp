@@ -71,6 +71,10 @@ struct ShapeBoundWorkspace {
 };
 NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
                                ContactRates contact, ShapeBoundWorkspace& workspace);
+// Symplectic Euler's stable step (s) at shape x from those bounds, without the contact (it takes the
+// contact at the step's end): the step adaptive substeps follow.
+double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
+                         ShapeBoundWorkspace& workspace);
 
 // The stable step (s) of each integrator from rates K and C: symplectic Euler's
 // (sqrt(C^2 + 4 K) - C) / K for it, Verlet and leapfrog; 1.39 x that for RK4; the smaller of that and

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,6 +58,12 @@ struct SimulationResult {
 
   bool interrupted() const { return stopped_by == StopCause::interrupted; }
   double simulated_seconds() const { return static_cast<double>(steps) * dt; }
+  // A counter of Solver::counters() by name; nothing when the solver does not report it.
+  std::optional<double> counter(const std::string& name) const {
+    for (const auto& [key, value] : counters)
+      if (key == name) return value;
+    return std::nullopt;
+  }
   double ms_per_step() const {
     return steps > 0 ? 1e3 * wall_seconds / static_cast<double>(steps) : 0.0;
   }
