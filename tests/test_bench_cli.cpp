@@ -1,5 +1,6 @@
 // drapelab bench --quick as a smoke test: every scene and solver gets a row, our solver's ratio is 1,
-// the others' ratios are their cost over ours, and bad sizes are refused. Timings are never checked.
+// the others' ratios are their cost over ours, --repeat keeps the fastest run, and bad sizes and
+// repeat counts are refused. Timings are never checked.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -53,6 +54,38 @@ TEST_F(BenchCli, QuickRunWritesARowPerSceneAndSolver) {
     }
   }
   EXPECT_NE(read_text(out / "bench.md").find("| curtain | 33 x 33 | bullet_classic |"), std::string::npos);
+}
+
+// --repeat: every solver runs that many times in each cell and the fastest run is the row. Every
+// solver here is deterministic, so the repeats agree on the physics and the bench warns of nothing.
+TEST_F(BenchCli, RepeatReportsTheFastestOfTheRunsAndTheirSpread) {
+  const fs::path out = dir() / "bench";
+  const fs::path source(DRAPELAB_SOURCE_DIR);
+  const CommandResult result = run_drapelab({"bench", "--quick", "--repeat", "2", "--scenes",
+                                             (source / "scenes/curtain.yaml").string(), "--out", out.string()});
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(result.output.find("warning:"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("fastest of 2 runs"), std::string::npos) << result.output;
+  const auto lines = split_lines(read_text(out / "bench.csv"));
+  ASSERT_EQ(lines.size(), 1u + 3);
+  const auto header = split_csv(lines[0]);
+  ASSERT_EQ(header.size(), 18u);
+  ASSERT_EQ(header[16], "runs");
+  ASSERT_EQ(header[17], "wall_spread");
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    const auto cells = split_csv(lines[k]);
+    ASSERT_EQ(cells.size(), header.size()) << lines[k];
+    EXPECT_EQ(cells[16], "2") << lines[k];
+    EXPECT_GE(std::stod(cells[17]), 1.0) << "the slowest run over the fastest: " << lines[k];
+    EXPECT_GT(std::stod(cells[11]), 0.0) << "the curtain stretches under its weight: " << lines[k];
+  }
+}
+
+TEST_F(BenchCli, BadRepeatIsRefused) {
+  const CommandResult result = run_drapelab({"bench", "--quick", "--repeat", "0", "--out", (dir() / "b").string()});
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("--repeat: 0 runs is outside 1..100"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(dir() / "b" / "bench.csv")) << "nothing written for bad arguments";
 }
 
 TEST_F(BenchCli, BadSizeIsRefused) {

@@ -56,6 +56,71 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec, const
   return m;
 }
 
+// Every run of one solver's setting in one cell: the fastest is reported, with the spread of the
+// wall times. Our solver and Bullet's are deterministic, so a repeat that changes the physics
+// (status, max stretch or max penetration) is worth a warning.
+struct SolverRuns {
+  scene::SolverSpec trial;
+  bool skipped = false;
+  Measured fastest;
+  double slowest_wall = 0.0;  // s
+  int count = 0;
+  bool differed = false, interrupted = false;
+
+  void add(Measured m) {
+    interrupted = m.result.interrupted();
+    if (count > 0 && (m.result.status != fastest.result.status || m.max_stretch != fastest.max_stretch ||
+                      m.max_penetration != fastest.max_penetration))
+      differed = true;
+    slowest_wall = std::max(slowest_wall, m.result.wall_seconds);
+    if (count == 0 || m.result.wall_seconds < fastest.result.wall_seconds) fastest = std::move(m);
+    ++count;
+  }
+};
+
+BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, const SolverRuns& r) {
+  BenchRow row;
+  row.scene = scene.name;
+  row.size = n;
+  row.particles = model.particle_count();
+  row.springs = static_cast<long long>(model.springs.size());
+  row.solver = r.trial.name;
+  row.type = r.trial.type;
+  if (r.skipped) {
+    row.status = "skipped";
+    row.setting = "over " + std::to_string(kLargestDeformable) + " x " + std::to_string(kLargestDeformable) +
+                  ": minutes per run";
+    return row;
+  }
+  const runner::SimulationResult& result = r.fastest.result;
+  row.setting = r.trial.type == "spring_damper"      ? std::string(integrator_name(r.trial.integrator))
+                : r.trial.type == "bullet_softbody" ? std::to_string(r.trial.iterations) + " iterations"
+                                                     : "its stable step";
+  row.dt = r.trial.dt;
+  row.status = solver_status_name(result.status);
+  row.wall_per_simulated = result.wall_seconds_per_simulated_second();
+  row.ms_per_step = result.ms_per_step();
+  if (r.trial.adaptive_substeps) {  // report the integrator's own steps: the mean substep and its cost
+    row.setting += " (adaptive substeps)";
+    const double substeps = result.counter("substeps").value_or(0.0);
+    if (substeps > 0.0) {
+      row.dt = result.simulated_seconds() / substeps;
+      row.ms_per_step = 1e3 * result.wall_seconds / substeps;
+    }
+  }
+  row.max_stretch = r.fastest.max_stretch;
+  row.max_penetration = r.fastest.max_penetration;
+  row.second_half_wall_per_simulated = result.second_half_wall_seconds_per_simulated_second(scene.frame_period());
+  row.runs = r.count;
+  row.wall_spread = result.wall_seconds > 0.0 ? r.slowest_wall / result.wall_seconds : 1.0;
+  return row;
+}
+
+int interrupted(const fs::path& out) {
+  std::cerr << "interrupted; " << (out / "bench.csv").string() << " holds the rows measured so far\n";
+  return runner::kExitInterrupted;
+}
+
 std::string cpu_name() {
   std::ifstream in("/proc/cpuinfo");
   std::string line;
@@ -75,6 +140,8 @@ void add_bench_options(CLI::App& verb, BenchArguments& arguments) {
       ->delimiter(',');
   verb.add_option("--duration", arguments.duration, "Simulated seconds per run (default 0.5; 0.1 with --quick)");
   verb.add_option("--threads", arguments.threads, "Threads for our solver's loops (default: every core)");
+  verb.add_option("--repeat", arguments.repeat,
+                  "Runs of every solver in every cell, interleaved; the fastest is reported (default 1)");
 }
 
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt) {
@@ -85,6 +152,11 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
   const double duration = arguments.duration > 0.0 ? arguments.duration : (arguments.quick ? 0.1 : 0.5);
   const fs::path out = arguments.out.empty() ? fs::path("out/bench") : fs::path(arguments.out);
   const int threads = arguments.threads > 0 ? arguments.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int repeat = arguments.repeat;
+  if (repeat < 1 || repeat > 100) {
+    std::cerr << "error: --repeat: " << repeat << " runs is outside 1..100\n";
+    return kExitBadInput;
+  }
   for (int n : sizes)
     if (n < 2 || n > 2000) {
       std::cerr << "error: --sizes: " << n << " particles per side is outside 2..2000\n";
@@ -101,64 +173,52 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       const auto scene = load_trial_scene(file, {resolution, kSolvers}, duration);
       if (!scene) return kExitBadInput;  // the loader printed why
       const runner::SceneSetup setup = runner::build_scene_setup(*scene);
-      double ours_cost = 0.0, ours_second_half_cost = 0.0;  // wall s per simulated s
+      // First each solver's setting and its first run, then the repeats, round by round across the
+      // solvers, so that a slow spell of the machine falls on all of them alike.
+      std::vector<SolverRuns> runs;
       for (const auto& spec : scene->solvers) {
-        BenchRow row;
-        row.scene = scene->name;
-        row.size = n;
-        row.particles = setup.model->particle_count();
-        row.springs = static_cast<long long>(setup.model->springs.size());
-        row.solver = spec.name;
-        row.type = spec.type;
-        if (spec.type == "bullet_deformable" && n > kLargestDeformable) {
-          row.status = "skipped";
-          row.setting = "over " + std::to_string(kLargestDeformable) + " x " + std::to_string(kLargestDeformable) +
-                        ": minutes per run";
-          table.rows.push_back(row);
-          continue;
-        }
-        scene::SolverSpec trial = spec;
-        Measured m = measure(*scene, trial, setup, interrupt);
-        // Bullet's classic cloth: halve the step until it holds (its cheapest stable setting).
-        for (int halving = 0; spec.type == "bullet_softbody" && halving < kClassicHalvings &&
-                              m.result.status != SolverStatus::ok && !m.result.interrupted();
-             ++halving) {
-          trial = with_steps_per_frame(trial, scene->frame_period(), 2 * trial.steps_per_frame);
-          m = measure(*scene, trial, setup, interrupt);
-        }
-        if (m.result.interrupted()) {
-          std::cerr << "interrupted; " << (out / "bench.csv").string() << " holds the rows measured so far\n";
-          return runner::kExitInterrupted;
-        }
-        row.setting = spec.type == "spring_damper"      ? std::string(integrator_name(trial.integrator))
-                      : spec.type == "bullet_softbody" ? std::to_string(trial.iterations) + " iterations"
-                                                        : "its stable step";
-        row.dt = trial.dt;
-        row.status = solver_status_name(m.result.status);
-        row.wall_per_simulated = m.result.wall_seconds_per_simulated_second();
-        row.ms_per_step = m.result.ms_per_step();
-        if (trial.adaptive_substeps) {  // report the integrator's own steps: the mean substep and its cost
-          row.setting += " (adaptive substeps)";
-          const double substeps = m.result.counter("substeps").value_or(0.0);
-          if (substeps > 0.0) {
-            row.dt = m.result.simulated_seconds() / substeps;
-            row.ms_per_step = 1e3 * m.result.wall_seconds / substeps;
+        SolverRuns r;
+        r.trial = spec;
+        r.skipped = spec.type == "bullet_deformable" && n > kLargestDeformable;
+        if (!r.skipped) {
+          r.add(measure(*scene, r.trial, setup, interrupt));
+          // Bullet's classic cloth: halve the step until it holds (its cheapest stable setting).
+          for (int halving = 0; spec.type == "bullet_softbody" && halving < kClassicHalvings &&
+                                r.fastest.result.status != SolverStatus::ok && !r.fastest.result.interrupted();
+               ++halving) {
+            SolverRuns halved;
+            halved.trial = with_steps_per_frame(r.trial, scene->frame_period(), 2 * r.trial.steps_per_frame);
+            halved.add(measure(*scene, halved.trial, setup, interrupt));
+            r = std::move(halved);
           }
         }
-        row.max_stretch = m.max_stretch;
-        row.max_penetration = m.max_penetration;
-        row.second_half_wall_per_simulated =
-            m.result.second_half_wall_seconds_per_simulated_second(scene->frame_period());
-        if (spec.type == "spring_damper") {
+        if (r.fastest.result.interrupted()) return interrupted(out);
+        runs.push_back(std::move(r));
+      }
+      for (int round = 1; round < repeat; ++round)
+        for (SolverRuns& r : runs) {
+          if (r.skipped) continue;
+          r.add(measure(*scene, r.trial, setup, interrupt));
+          if (r.interrupted) return interrupted(out);
+          if (r.differed)
+            std::cerr << "warning: " << scene->name << " " << n << "x" << n << " " << r.trial.name
+                      << ": a repeated run gave a different status, max stretch or max penetration\n";
+        }
+      double ours_cost = 0.0, ours_second_half_cost = 0.0;  // wall s per simulated s
+      for (const SolverRuns& r : runs) {
+        BenchRow row = bench_row(*scene, n, *setup.model, r);
+        if (r.trial.type == "spring_damper") {
           ours_cost = row.wall_per_simulated;
           ours_second_half_cost = row.second_half_wall_per_simulated;
         }
-        row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
-        row.second_half_cost_ratio =
-            ours_second_half_cost > 0.0 ? row.second_half_wall_per_simulated / ours_second_half_cost : 0.0;
+        if (!r.skipped) {
+          row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
+          row.second_half_cost_ratio =
+              ours_second_half_cost > 0.0 ? row.second_half_wall_per_simulated / ours_second_half_cost : 0.0;
+          std::cout << format_row(row) << std::endl;
+        }
         table.rows.push_back(row);
-        std::cout << format_row(row) << std::endl;
-        write_bench_files(out, table);  // after every row, so an interrupted bench keeps what it measured
+        write_bench_files(out, table);  // after every cell, so an interrupted bench keeps what it measured
       }
     }
   write_bench_files(out, table);

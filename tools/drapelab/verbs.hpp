@@ -107,6 +107,7 @@ struct BenchArguments {
   std::vector<std::string> scenes;     // scene files; default sphere_drape, table_drape, curtain
   double duration = 0.0;               // s per run; 0 = 0.5 (0.1 with --quick)
   int threads = 0;                     // threads for our solver's loops; 0 = every core
+  int repeat = 1;                      // runs of every solver in every cell; the fastest is reported
 };
 void add_bench_options(CLI::App& verb, BenchArguments& arguments);
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt);
