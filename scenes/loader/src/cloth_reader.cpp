@@ -94,7 +94,6 @@ void ClothReader::read_mesh(MapReader& cloth) {
   }
   const auto path = cloth.text("path", std::nullopt);
   if (!path) return;
-  spec.mesh_path = *path;
   spec.mesh_file = std::filesystem::path(*path).is_absolute() ? std::filesystem::path(*path) : folder_ / *path;
   const ObjReadResult read = read_obj_file(spec.mesh_file);
   const std::string shown = spec.mesh_file.string() + (read.error_line > 0 ? ":" + std::to_string(read.error_line) : "");

@@ -28,8 +28,7 @@ struct ClothSpec {
   // springs and pins (grid coordinates only for a grid).
   GridClothSpec grid;           // size, resolution, plane, ...
   DiscSpec disc;                // shape: disc: radius, rings (center, rotation and ring_at filled in)
-  std::string mesh_path;        // shape: mesh: the OBJ file as written in the scene
-  std::filesystem::path mesh_file;  // ... resolved against the scene file's folder
+  std::filesystem::path mesh_file;  // shape: mesh: the OBJ file, resolved against the scene file's folder
   double mesh_scale = 1.0;      // shape: mesh: factor applied to the file's coordinates
   std::shared_ptr<const TriangleMesh> mesh;  // shape: mesh: read at load, scaled, turned and moved
   std::string material;         // preset applied before the explicit keys (empty: none)
