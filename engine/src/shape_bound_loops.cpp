@@ -10,6 +10,12 @@
 namespace drapelab::kernels {
 namespace {
 
+// Particles per chunk of the per-particle pass: their two summed tensors (12 rows) stay in L1 between
+// the gather and the eigenvalue loop.
+constexpr std::int64_t kBoundChunk = 256;
+
+// Written without branches (selects instead), so that the loop over a chunk's particles vectorises;
+// every select keeps the value the branching form would have, so the bits are those of that form.
 inline double largest_eigenvalue(double a, double b, double c, double d, double e, double f) {
   // With q the mean eigenvalue and B = (A - q I) / p scaled to unit spread, the eigenvalues are
   // q + 2 p t for the roots t of 4 t^3 - 3 t = det(B) / 2 = r (cos 3 phi = 4 cos^3 phi - 3 cos phi, so
@@ -19,8 +25,8 @@ inline double largest_eigenvalue(double a, double b, double c, double d, double 
   const double off = d * d + e * e + f * f;
   const double q = (a + b + c) / 3.0;
   const double spread = (a - q) * (a - q) + (b - q) * (b - q) + (c - q) * (c - q) + 2.0 * off;
-  if (spread <= 0.0) return q;  // a multiple of the identity
-  const double p = std::sqrt(spread / 6.0);
+  const bool isotropic = spread <= 0.0;  // a multiple of the identity: q is the eigenvalue
+  const double p = std::sqrt(isotropic ? 1.0 : spread / 6.0);
   // det(B) = det(A - q I) / p^3: one division instead of scaling each entry.
   const double sa = a - q, sb = b - q, sc = c - q;
   const double shifted_det = sa * (sb * sc - f * f) - d * (d * sc - f * e) + e * (d * f - sb * e);
@@ -29,11 +35,12 @@ inline double largest_eigenvalue(double a, double b, double c, double d, double 
   for (int k = 0; k < 3; ++k) {  // three steps reach the root to about 1e-10 relative from this start
     const double excess = 4.0 * t * t * t - 3.0 * t - r;  // > 0 above the root
     const double slope = 12.0 * t * t - 3.0;              // > 0 for t > 1/2
-    if (!(excess > 0.0 && slope > 0.0)) break;            // at the root, to rounding
-    t -= excess / slope;
+    // At the root, to rounding, t stays: this step and every later one leave it as it is.
+    const bool descend = excess > 0.0 && slope > 0.0;
+    t = descend ? t - excess / (descend ? slope : 1.0) : t;
   }
-  const double largest = q + 2.0 * p * t;
-  return largest + 1e-9 * std::abs(largest);
+  const double largest = isotropic ? q : q + 2.0 * p * t;
+  return isotropic ? q : largest + 1e-9 * std::abs(largest);
 }
 
 }  // namespace
@@ -76,25 +83,33 @@ ShapeRates shape_rate_maxima(std::int64_t n, IncidentSprings adjacency, SpringAr
       along[e] = s.ks[e] * (1.0 - across);
       isotropic[e] = s.ks[e] * across;
     }
-    // 2. Each particle sums its own springs (no writes to shared sums, one order), then the largest
-    // eigenvalues of its two tensors.
+    // 2. Chunk by chunk, each particle sums its own springs (no writes to shared sums, one order), then
+    // the largest eigenvalues of its two tensors, in a vectorised loop over the chunk's particles.
+    const std::int64_t chunks = (n + kBoundChunk - 1) / kBoundChunk;
 #pragma omp for schedule(static) reduction(max : stiffness_rate, damping_rate)
-    for (std::int64_t i = 0; i < n; ++i) {
-      const double w = inverse_mass[i];  // 1/kg, 0 when pinned
-      if (w == 0.0) continue;
-      double t[12] = {};  // S_i (xx, yy, zz, xy, xz, yz) in N/m, then D_i in N*s/m
-      for (std::int64_t k = adjacency.first[i]; k < adjacency.first[i + 1]; ++k) {
-        const std::int32_t e = adjacency.incident[k];
-        for (int c = 0; c < 6; ++c) {
-          const double on_identity = c < 3 ? isotropic[e] : 0.0;  // N/m
-          t[c] += along[e] * uu[c][e] + on_identity;
-          t[6 + c] += s.kd[e] * uu[c][e];
+    for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
+      const std::int64_t begin = chunk * kBoundChunk, count = std::min(n, begin + kBoundChunk) - begin;
+      double t[12][kBoundChunk];  // S_i (xx, yy, zz, xy, xz, yz) in N/m, then D_i in N*s/m
+      for (std::int64_t j = 0; j < count; ++j) {
+        double sum[12] = {};
+        for (std::int64_t k = adjacency.first[begin + j]; k < adjacency.first[begin + j + 1]; ++k) {
+          const std::int32_t e = adjacency.incident[k];
+          for (int c = 0; c < 6; ++c) {
+            const double on_identity = c < 3 ? isotropic[e] : 0.0;  // N/m
+            sum[c] += along[e] * uu[c][e] + on_identity;
+            sum[6 + c] += s.kd[e] * uu[c][e];
+          }
         }
+        for (int c = 0; c < 12; ++c) t[c][j] = sum[c];
       }
-      const double stiffness = largest_eigenvalue(t[0], t[1], t[2], t[3], t[4], t[5]);
-      const double damping = largest_eigenvalue(t[6], t[7], t[8], t[9], t[10], t[11]);
-      stiffness_rate = std::max(stiffness_rate, (2.0 * stiffness + contact_stiffness) * w);
-      damping_rate = std::max(damping_rate, (2.0 * damping + contact_damping) * w);
+      const double* w = inverse_mass + begin;  // 1/kg, 0 when pinned (a pinned particle bounds nothing)
+#pragma omp simd reduction(max : stiffness_rate, damping_rate)
+      for (std::int64_t j = 0; j < count; ++j) {
+        const double stiffness = largest_eigenvalue(t[0][j], t[1][j], t[2][j], t[3][j], t[4][j], t[5][j]);
+        const double damping = largest_eigenvalue(t[6][j], t[7][j], t[8][j], t[9][j], t[10][j], t[11][j]);
+        stiffness_rate = std::max(stiffness_rate, w[j] == 0.0 ? 0.0 : (2.0 * stiffness + contact_stiffness) * w[j]);
+        damping_rate = std::max(damping_rate, w[j] == 0.0 ? 0.0 : (2.0 * damping + contact_damping) * w[j]);
+      }
     }
   }
   return {stiffness_rate, damping_rate};
