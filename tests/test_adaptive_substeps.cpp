@@ -110,6 +110,57 @@ TEST(ShapeStepBound, HoldsTheLinearisedNetworkOnFlatAndCrumpledSheets) {
   }
 }
 
+// The per-particle pass runs in chunks of particles (its eigenvalues vectorised over a chunk): on a
+// sheet of several chunks, with pins and every particle of its own mass, the bound is the largest
+// 2 lambda_max(S_i) / m_i and 2 lambda_max(D_i) / m_i over the free particles, each tensor summed here
+// from the springs and its eigenvalue taken by Eigen. A tensor paired with another particle's mass, or
+// a pinned particle counted, moves the maximum.
+TEST(ShapeStepBound, IsTheLargestParticleRateOverASheetOfManyChunks) {
+  const ClothModel base = build_grid_cloth(hanging_sheet(41));  // 1,681 particles: 7 chunks of 256
+  ClothModel model = base;
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < model.particle_count(); ++i)
+    if (!model.is_pinned(i)) model.inverse_mass[i] /= std::pow(4.0, u(random));  // masses over a factor 16
+  Eigen::Matrix3Xd x = model.rest_positions;
+  const double spacing = 1.0 / 40.0;  // m
+  for (int i = 0; i < x.cols(); ++i)
+    for (int c = 0; c < 3; ++c) x(c, i) += 0.4 * spacing * u(random);
+  const int n = model.particle_count();
+  std::vector<Eigen::Matrix3d> stiffness(n, Eigen::Matrix3d::Zero()), damping(n, Eigen::Matrix3d::Zero());
+  const SpringSet& s = model.springs;
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    const Eigen::Vector3d d = x.col(s.v0[e]) - x.col(s.v1[e]);
+    const Eigen::Vector3d dir = d.normalized();
+    const double across = std::max(0.0, 1.0 - s.rest_length[e] / d.norm());
+    const Eigen::Matrix3d block =
+        s.ks[e] * ((1.0 - across) * dir * dir.transpose() + across * Eigen::Matrix3d::Identity());  // N/m
+    for (int end : {s.v0[e], s.v1[e]}) {
+      stiffness[end] += block;
+      damping[end] += s.kd[e] * dir * dir.transpose();
+    }
+  }
+  NetworkRates expected;
+  const auto largest = [](const Eigen::Matrix3d& m) {
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues().maxCoeff();
+  };
+  for (int i = 0; i < n; ++i) {
+    expected.stiffness = std::max(expected.stiffness, 2.0 * largest(stiffness[i]) * model.inverse_mass[i]);
+    expected.damping = std::max(expected.damping, 2.0 * largest(damping[i]) * model.inverse_mass[i]);
+  }
+  Tensors tensors;
+  const int threads_before = kernels::thread_count();
+  for (int threads : {1, 2}) {
+    kernels::set_thread_count(threads);
+    const NetworkRates bound = shape_rate_bounds(model, x, 0.0, {}, tensors);
+    EXPECT_GE(bound.stiffness, expected.stiffness * (1.0 - 1e-12)) << threads;
+    EXPECT_NEAR(bound.stiffness, expected.stiffness, 1e-8 * expected.stiffness) << threads;
+    EXPECT_GE(bound.damping, expected.damping * (1.0 - 1e-12)) << threads;
+    EXPECT_NEAR(bound.damping, expected.damping, 1e-8 * expected.damping) << threads;
+  }
+  kernels::set_thread_count(threads_before);
+}
+
 TEST(ShapeStepBound, ContactAndAirAddAsInTheGershgorinBound) {
   const auto spec = hanging_sheet(5);
   const ClothModel model = build_grid_cloth(spec);
@@ -202,7 +253,7 @@ TEST(AdaptiveSubsteps, SwingingSheetStaysStableAndAsAccurateAsItsStepAllows) {
 }
 
 TEST(AdaptiveSubsteps, OneAndTwoThreadsGiveIdenticalBits) {
-  // Large enough that the spring loops split among threads; the bound itself is one serial pass.
+  // Large enough that the spring loops and the shape bound split among threads.
   const auto spec = hanging_sheet(97);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const int threads_before = kernels::thread_count();
