@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace {
 
@@ -81,6 +82,60 @@ TEST(CliInterrupt, CtrlCLeavesCompleteFilesAndExits130) {
   EXPECT_EQ(summary["run"]["state"], "interrupted");
   EXPECT_EQ(summary["solvers"]["ours"]["frames_recorded"].get<std::size_t>(), frames);
   EXPECT_EQ(summary["run"]["frames_done"].get<std::size_t>() + 1, frames);
+  fs::remove_all(folder);
+}
+
+// Ctrl-C during drapelab bench --repeat: the cells already measured stay in bench.csv as whole rows,
+// and the program exits with 130. The second cell (65 x 65, Bullet's deformable cloth at tens of
+// seconds per run) is still running when the signal comes.
+TEST(CliInterrupt, CtrlCDuringABenchKeepsTheMeasuredRowsAndExits130) {
+  const fs::path folder = fs::temp_directory_path() / ("drapelab_bench_interrupt_" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const fs::path out = folder / "bench";
+  const std::string scene = std::string(DRAPELAB_SOURCE_DIR) + "/scenes/sphere_drape.yaml";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execl(DRAPELAB_EXE, DRAPELAB_EXE, "bench", "--sizes", "5,65", "--repeat", "2", "--duration", "1",
+            "--scenes", scene.c_str(), "--out", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait until the first cell's three rows are on disk, then interrupt.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline && count_lines(read_text(out / "bench.csv")) < 4)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(::kill(child, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+
+  const std::string csv = read_text(out / "bench.csv");
+  ASSERT_FALSE(csv.empty());
+  EXPECT_EQ(csv.back(), '\n');  // whole rows only
+  std::istringstream rows(csv);
+  std::string header, row;
+  std::getline(rows, header);
+  const auto columns = std::count(header.begin(), header.end(), ',');
+  std::size_t small_cell = 0;
+  while (std::getline(rows, row)) {
+    EXPECT_EQ(std::count(row.begin(), row.end(), ','), columns) << row;
+    if (row.rfind("sphere_drape,5,", 0) == 0) {
+      ++small_cell;
+      std::vector<std::string> cells;  // no cell of these rows holds a comma
+      std::istringstream fields(row);
+      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      ASSERT_EQ(cells.size(), 18u) << row;
+      EXPECT_EQ(cells[8], "ok") << row;
+      EXPECT_EQ(cells[16], "2") << "two runs: " << row;
+    }
+  }
+  EXPECT_EQ(small_cell, 3u);
+  EXPECT_TRUE(fs::exists(out / "bench.md"));
   fs::remove_all(folder);
 }
 

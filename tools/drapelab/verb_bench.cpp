@@ -58,7 +58,8 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec, const
 
 // Every run of one solver's setting in one cell: the fastest is reported, with the spread of the
 // wall times. Our solver and Bullet's are deterministic, so a repeat that changes the physics
-// (status, max stretch or max penetration) is worth a warning.
+// (status, max stretch or max penetration) is worth a warning. An interrupted run only sets
+// `interrupted`: its time is that of part of a run.
 struct SolverRuns {
   scene::SolverSpec trial;
   bool skipped = false;
@@ -69,6 +70,7 @@ struct SolverRuns {
 
   void add(Measured m) {
     interrupted = m.result.interrupted();
+    if (interrupted) return;
     if (count > 0 && (m.result.status != fastest.result.status || m.max_stretch != fastest.max_stretch ||
                       m.max_penetration != fastest.max_penetration))
       differed = true;
@@ -116,9 +118,24 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
   return row;
 }
 
-int interrupted(const fs::path& out) {
-  std::cerr << "interrupted; " << (out / "bench.csv").string() << " holds the rows measured so far\n";
-  return runner::kExitInterrupted;
+// The rows of one scene and size, ours first (the ratios' denominator), printed as they are added.
+void add_cell_rows(BenchTable& table, const scene::Scene& scene, int n, const ClothModel& model,
+                   const std::vector<SolverRuns>& runs) {
+  double ours_cost = 0.0, ours_second_half_cost = 0.0;  // wall s per simulated s
+  for (const SolverRuns& r : runs) {
+    BenchRow row = bench_row(scene, n, model, r);
+    if (r.trial.type == "spring_damper") {
+      ours_cost = row.wall_per_simulated;
+      ours_second_half_cost = row.second_half_wall_per_simulated;
+    }
+    if (!r.skipped) {
+      row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
+      row.second_half_cost_ratio =
+          ours_second_half_cost > 0.0 ? row.second_half_wall_per_simulated / ours_second_half_cost : 0.0;
+      std::cout << format_row(row) << std::endl;
+    }
+    table.rows.push_back(row);
+  }
 }
 
 std::string cpu_name() {
@@ -176,6 +193,7 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       // First each solver's setting and its first run, then the repeats, round by round across the
       // solvers, so that a slow spell of the machine falls on all of them alike.
       std::vector<SolverRuns> runs;
+      bool stopped = false;  // interrupted: the runs completed so far still make rows
       for (const auto& spec : scene->solvers) {
         SolverRuns r;
         r.trial = spec;
@@ -183,8 +201,8 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
         if (!r.skipped) {
           r.add(measure(*scene, r.trial, setup, interrupt));
           // Bullet's classic cloth: halve the step until it holds (its cheapest stable setting).
-          for (int halving = 0; spec.type == "bullet_softbody" && halving < kClassicHalvings &&
-                                r.fastest.result.status != SolverStatus::ok && !r.fastest.result.interrupted();
+          for (int halving = 0; spec.type == "bullet_softbody" && halving < kClassicHalvings && !r.interrupted &&
+                                r.fastest.result.status != SolverStatus::ok;
                ++halving) {
             SolverRuns halved;
             halved.trial = with_steps_per_frame(r.trial, scene->frame_period(), 2 * r.trial.steps_per_frame);
@@ -192,33 +210,24 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
             r = std::move(halved);
           }
         }
-        if (r.fastest.result.interrupted()) return interrupted(out);
+        if ((stopped = r.interrupted)) break;
         runs.push_back(std::move(r));
       }
-      for (int round = 1; round < repeat; ++round)
+      for (int round = 1; round < repeat && !stopped; ++round)
         for (SolverRuns& r : runs) {
           if (r.skipped) continue;
+          const bool differed_before = r.differed;
           r.add(measure(*scene, r.trial, setup, interrupt));
-          if (r.interrupted) return interrupted(out);
-          if (r.differed)
+          if ((stopped = r.interrupted)) break;
+          if (r.differed && !differed_before)
             std::cerr << "warning: " << scene->name << " " << n << "x" << n << " " << r.trial.name
                       << ": a repeated run gave a different status, max stretch or max penetration\n";
         }
-      double ours_cost = 0.0, ours_second_half_cost = 0.0;  // wall s per simulated s
-      for (const SolverRuns& r : runs) {
-        BenchRow row = bench_row(*scene, n, *setup.model, r);
-        if (r.trial.type == "spring_damper") {
-          ours_cost = row.wall_per_simulated;
-          ours_second_half_cost = row.second_half_wall_per_simulated;
-        }
-        if (!r.skipped) {
-          row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
-          row.second_half_cost_ratio =
-              ours_second_half_cost > 0.0 ? row.second_half_wall_per_simulated / ours_second_half_cost : 0.0;
-          std::cout << format_row(row) << std::endl;
-        }
-        table.rows.push_back(row);
-        write_bench_files(out, table);  // after every cell, so an interrupted bench keeps what it measured
+      add_cell_rows(table, *scene, n, *setup.model, runs);
+      write_bench_files(out, table);  // after every cell, so an interrupted bench keeps what it measured
+      if (stopped) {
+        std::cerr << "interrupted; " << (out / "bench.csv").string() << " holds the rows measured so far\n";
+        return runner::kExitInterrupted;
       }
     }
   write_bench_files(out, table);
