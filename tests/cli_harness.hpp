@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,12 @@ std::string shell_quote(const std::string& argument);
 
 // Runs the drapelab binary (DRAPELAB_EXE) with `arguments`, from the current working directory.
 CommandResult run_drapelab(const std::vector<std::string>& arguments);
+
+// Starts the drapelab binary with `arguments` as a child process whose output is thrown away, waits
+// (up to `timeout`) until `ready()` holds, sends it SIGINT (Ctrl-C) and waits for it to end. Returns
+// its exit status, or -1 when it did not exit normally. For the tests of what an interrupt leaves.
+int interrupt_drapelab_when(const std::vector<std::string>& arguments, const std::function<bool()>& ready,
+                            std::chrono::seconds timeout = std::chrono::seconds(60));
 
 // Whole-file helpers.
 std::string read_text(const std::filesystem::path& path);

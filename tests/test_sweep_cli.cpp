@@ -29,6 +29,7 @@
 namespace {
 
 namespace fs = std::filesystem;
+using drapelab::testing::interrupt_drapelab_when;
 using drapelab::testing::read_text;
 using drapelab::testing::run_drapelab;
 using drapelab::testing::write_text;
@@ -277,18 +278,8 @@ TEST_F(SweepCli, ForceReplacesAPreviousSweep) {
 TEST_F(SweepCli, CtrlCStopsTheRunsAndKeepsTheTableValid) {
   // Runs of 600 s, two at a time: Ctrl-C arrives while both run and the third waits.
   const fs::path out = dir() / "sweep";
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(null, 2);
-    ::execl(DRAPELAB_EXE, DRAPELAB_EXE, "sweep", scene().c_str(), "--vary", "duration=600,601,602",
-            "--jobs", "2", "--out", out.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  // Wait until both runs have written frames, then interrupt the sweep only (not its children).
-  auto frames_written = [&] {
+  // Interrupted once both runs have written frames (the sweep only, not its children).
+  const auto frames_written = [&] {
     std::size_t running = 0;
     std::error_code ec;
     if (!fs::is_directory(out / "runs", ec)) return false;
@@ -300,14 +291,10 @@ TEST_F(SweepCli, CtrlCStopsTheRunsAndKeepsTheTableValid) {
     }
     return running == 2;
   };
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (std::chrono::steady_clock::now() < deadline && !frames_written())
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_EQ(::kill(child, SIGINT), 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(interrupt_drapelab_when({"sweep", scene().string(), "--vary", "duration=600,601,602", "--jobs", "2", "--out",
+                                     out.string()},
+                                    frames_written),
+            130);
   const Table table = read_table(out / "sweep.csv");
   ASSERT_EQ(table.rows.size(), 2u);
   for (const auto& row : table.rows) {
