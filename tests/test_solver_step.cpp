@@ -4,9 +4,12 @@
 
 #include <memory>
 #include <random>
+#include <string>
 
 #include "drapelab/forces.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "drapelab/particle_loops.hpp"
+#include "drapelab/spring_family_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/spring_force.hpp"
 #include "drapelab/stability.hpp"
@@ -178,6 +181,94 @@ TEST(SolverStep, StepStatsCountEveryPhase) {
     total += seconds;
   }
   EXPECT_GT(total, 0.0);
+}
+
+// A sheet of 80 x 80 particles (13 contact blocks, so both threads take several) sagging into a sphere
+// and a tilted floor, with random velocities: about a third of the particles touch something.
+struct ContactSheet {
+  std::shared_ptr<const ClothModel> model;
+  ClothState start;
+  SpringDamperSettings settings;
+};
+
+ContactSheet contact_sheet(Integrator integrator) {
+  GridClothSpec spec;
+  spec.nx = 80;
+  spec.ny = 80;
+  spec.plane = GridPlane::xz;
+  spec.center = {0.0, 0.29, 0.0};  // m: the sheet's middle 1 cm inside the ball's top
+  spec.mass = 0.25;
+  spec.stretch = {1000.0, 0.01};
+  spec.shear = {100.0, 0.005};
+  spec.bend = {5.0, 0.001};
+  spec.pins = {PinNamed{"corners"}};
+  ContactSheet sheet;
+  sheet.model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  sheet.start = random_state(*sheet.model, 17);
+  Collider ball;
+  ball.shape = ColliderShape::sphere;
+  ball.radius = 0.3;
+  Collider floor;
+  floor.shape = ColliderShape::plane;
+  floor.normal = Eigen::Vector3d(0.3, 1.0, 0.0).normalized();
+  floor.center = {0.0, 0.27, 0.0};
+  sheet.settings.integrator = integrator;
+  sheet.settings.air_damping = 0.1;
+  sheet.settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball, floor},
+                                                                 ContactParameters{1000.0, 0.2}, 0.005);
+  return sheet;
+}
+
+// With colliders, the Euler pair updates each block of particles inside the contact phase. That must
+// be exactly the force of evaluate_forces followed by the whole-cloth update pass, on any thread count.
+TEST(SolverStep, WithCollidersEachEulerStepIsTheForceThenTheUpdatePass) {
+  const int threads_before = kernels::thread_count();
+  for (Integrator integrator : {Integrator::symplectic_euler, Integrator::explicit_euler})
+    for (int threads : {1, 2}) {
+      kernels::set_thread_count(threads);
+      const ContactSheet sheet = contact_sheet(integrator);
+      const double h = 2e-5;  // s
+      SpringDamperSolver stepped("stepped", sheet.model, sheet.start, sheet.settings);
+      SpringDamperSolver reference("reference", sheet.model, sheet.start, sheet.settings);
+      ClothState expected = reference.state();  // the pins' velocities zeroed, as the solver holds them
+      for (int step = 0; step < 3; ++step) {
+        const Eigen::Matrix3Xd force = reference.evaluate_forces(expected.x, expected.v, expected.time, h);
+        int touching = 0;
+        for (const ColliderContactTotals& total : reference.contact_totals()) touching += total.contact_count;
+        ASSERT_GT(touching, sheet.model->particle_count() / 10) << "the sheet must press on the colliders";
+        Eigen::Matrix3Xd inverse_mass(3, sheet.model->particle_count());
+        for (int i = 0; i < sheet.model->particle_count(); ++i) inverse_mass.col(i).setConstant(sheet.model->inverse_mass[i]);
+        const auto pass =
+            integrator == Integrator::symplectic_euler ? kernels::symplectic_euler_pass : kernels::explicit_euler_pass;
+        ASSERT_EQ(pass(sheet.model->particle_count(), inverse_mass.data(), force.data(), h, expected.x.data(),
+                       expected.v.data(), 1e6),
+                  -1);
+        expected.time += h;
+        stepped.step(h);
+        ASSERT_EQ(stepped.status(), SolverStatus::ok) << stepped.message();
+        EXPECT_TRUE(stepped.state().x == expected.x) << integrator_name(integrator) << ", " << threads << " threads";
+        EXPECT_TRUE(stepped.state().v == expected.v) << integrator_name(integrator) << ", " << threads << " threads";
+      }
+    }
+  kernels::set_thread_count(threads_before);
+}
+
+// The update inside the contact phase still scans every block: a runaway particle in a late block
+// stops the run, and of two the lower-numbered one is named, whichever thread's block holds it.
+TEST(SolverStep, WithCollidersTheFirstRunawayParticleIsNamed) {
+  const int threads_before = kernels::thread_count();
+  for (int threads : {1, 2}) {
+    kernels::set_thread_count(threads);
+    ContactSheet sheet = contact_sheet(Integrator::symplectic_euler);
+    sheet.start.v.col(6000) = Eigen::Vector3d(2000.0, 0.0, 0.0);  // m/s, over the 1000 m/s limit
+    sheet.start.v.col(5200) = Eigen::Vector3d(0.0, 0.0, -1500.0);
+    SpringDamperSolver solver("runaway", sheet.model, sheet.start, sheet.settings);
+    solver.step(1e-6);
+    ASSERT_EQ(solver.status(), SolverStatus::unstable);
+    EXPECT_NE(solver.message().find(sheet.model->describe_particle(5200) + " moves at"), std::string::npos)
+        << solver.message();
+  }
+  kernels::set_thread_count(threads_before);
 }
 
 }  // namespace

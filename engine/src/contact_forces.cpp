@@ -65,11 +65,12 @@ Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
   return pose(c, t) * fcl_colliders_[c].shape_in_collider;
 }
 
-void ContactModel::add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
-                                      const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
-                                      std::vector<ColliderContactTotals>& totals,
-                                      std::vector<ActiveContact>* active, ContactWorkspace* workspace,
-                                      ContactNormalScheme normal_scheme) const {
+std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
+                                              const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
+                                              std::vector<ColliderContactTotals>& totals,
+                                              std::vector<ActiveContact>* active, ContactWorkspace* workspace,
+                                              ContactNormalScheme normal_scheme,
+                                              const ContactBlockFollowUp* follow_up) const {
   ContactWorkspace temporary;
   ContactWorkspace& work = workspace ? *workspace : temporary;
   const std::size_t collider_count = colliders_.size();
@@ -92,6 +93,7 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
   if (work.block_active.size() < block_count) work.block_active.resize(block_count);
   if (work.block_touching.size() < block_count) work.block_touching.resize(block_count);
   if (work.block_order.size() < block_count) work.block_order.resize(block_count);
+  if (work.block_flagged.size() < block_count) work.block_flagged.resize(block_count);
   if (work.block_near.size() < block_count) work.block_near.resize(block_count, std::vector<int>(kContactBlock));
 
   // The friction of one contact whose normal force fn (N) is already in its particle's force, sized
@@ -116,7 +118,7 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
     total.max_depth = std::max(total.max_depth, touching.depth);
   };
 
-  const auto contact_block = [&](std::int64_t block) {
+  const auto contact_block_forces = [&](std::int64_t block) {
     const int begin = static_cast<int>(block * kContactBlock), end = std::min(n, begin + kContactBlock);
     std::vector<ActiveContact>& block_active = work.block_active[static_cast<std::size_t>(block)];
     block_active.clear();
@@ -185,6 +187,12 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
         finish_contact(block, found[static_cast<std::size_t>(order[first[p] + a])], a < count ? fn[a] : 0.0);
     }
   };
+  const auto contact_block = [&](std::int64_t block) {
+    contact_block_forces(block);
+    if (!follow_up) return;
+    const std::int64_t begin = block * kContactBlock, end = std::min<std::int64_t>(n, begin + kContactBlock);
+    work.block_flagged[static_cast<std::size_t>(block)] = follow_up->run(follow_up->context, begin, end);
+  };
   kernels::for_each_block(blocks, n >= kernels::kParallelParticles, contact_block);
 
   // The blocks' results in block order.
@@ -203,6 +211,10 @@ void ContactModel::add_contact_forces(const ClothModel& model, double t, double 
       active->insert(active->end(), part.begin(), part.end());
     }
   }
+  if (follow_up)  // blocks in increasing particle order: the first flag found is the lowest
+    for (std::int64_t block = 0; block < blocks; ++block)
+      if (work.block_flagged[static_cast<std::size_t>(block)] >= 0) return work.block_flagged[static_cast<std::size_t>(block)];
+  return -1;
 }
 
 }  // namespace drapelab

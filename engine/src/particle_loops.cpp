@@ -83,27 +83,57 @@ std::int64_t first_unhealthy_particle(std::int64_t n, const double* x, const dou
   return update_and_scan(n, x, v, max_speed_squared, [](std::int64_t, std::int64_t) {});
 }
 
+namespace {
+
+// The two Euler updates of coordinates [begin, end), each the one expression every pass and range
+// below uses, so a fused update gives the bits of the whole-cloth pass.
+void symplectic_euler_update(std::int64_t begin, std::int64_t end, const double* inverse_mass, const double* f,
+                             double h, double* x, double* v) {
+#pragma omp simd
+  for (std::int64_t k = begin; k < end; ++k) {
+    const double vk = v[k] + h * (f[k] * inverse_mass[k]);  // v(n+1) = v(n) + a(n) h
+    v[k] = vk;
+    x[k] += h * vk;  // x(n+1) = x(n) + v(n+1) h
+  }
+}
+
+void explicit_euler_update(std::int64_t begin, std::int64_t end, const double* inverse_mass, const double* f,
+                           double h, double* x, double* v) {
+#pragma omp simd
+  for (std::int64_t k = begin; k < end; ++k) {
+    const double vk = v[k];
+    x[k] += h * vk;                            // x(n+1) = x(n) + v(n) h
+    v[k] = vk + h * (f[k] * inverse_mass[k]);  // v(n+1) = v(n) + a(n) h
+  }
+}
+
+// Particles [begin, end) on the calling thread, block by block as the whole-cloth passes take them:
+// every particle updated, and the first unhealthy one (blocks in increasing order) or kNone.
+template <typename Update>
+std::int64_t update_and_scan_range(std::int64_t begin, std::int64_t end, const double* x, const double* v,
+                                   double max_speed_squared, Update update) {
+  std::int64_t first = kNone;
+  for (std::int64_t block = begin; block < end; block += kBlock) {
+    const std::int64_t block_end = std::min(end, block + kBlock);
+    update(3 * block, 3 * block_end);
+    if (first == kNone) first = first_unhealthy_in(block, block_end, x, v, max_speed_squared);
+  }
+  return first;
+}
+
+}  // namespace
+
 std::int64_t symplectic_euler_pass(std::int64_t n, const double* inverse_mass, const double* f, double h,
                                    double* x, double* v, double max_speed_squared) {
   return update_and_scan(n, x, v, max_speed_squared, [=](std::int64_t begin, std::int64_t end) {
-#pragma omp simd
-    for (std::int64_t k = begin; k < end; ++k) {
-      const double vk = v[k] + h * (f[k] * inverse_mass[k]);  // v(n+1) = v(n) + a(n) h
-      v[k] = vk;
-      x[k] += h * vk;  // x(n+1) = x(n) + v(n+1) h
-    }
+    symplectic_euler_update(begin, end, inverse_mass, f, h, x, v);
   });
 }
 
 std::int64_t explicit_euler_pass(std::int64_t n, const double* inverse_mass, const double* f, double h,
                                  double* x, double* v, double max_speed_squared) {
   return update_and_scan(n, x, v, max_speed_squared, [=](std::int64_t begin, std::int64_t end) {
-#pragma omp simd
-    for (std::int64_t k = begin; k < end; ++k) {
-      const double vk = v[k];
-      x[k] += h * vk;                           // x(n+1) = x(n) + v(n) h
-      v[k] = vk + h * (f[k] * inverse_mass[k]);  // v(n+1) = v(n) + a(n) h
-    }
+    explicit_euler_update(begin, end, inverse_mass, f, h, x, v);
   });
 }
 
@@ -179,6 +209,19 @@ void for_each_block(std::int64_t blocks, bool parallel, void (*body)(const void*
     const ThreadRun run = thread_run(blocks, 1, blocks, 0);
     for (std::int64_t block = run.first_block; block < run.end_block; ++block) body(context, block);
   }
+}
+
+std::int64_t euler_range(bool symplectic, std::int64_t begin, std::int64_t end, const double* inverse_mass,
+                         const double* f, double h, double* x, double* v, double max_speed_squared) {
+  const std::int64_t first =
+      symplectic ? update_and_scan_range(begin, end, x, v, max_speed_squared,
+                                         [=](std::int64_t b, std::int64_t e) {
+                                           symplectic_euler_update(b, e, inverse_mass, f, h, x, v);
+                                         })
+                 : update_and_scan_range(begin, end, x, v, max_speed_squared, [=](std::int64_t b, std::int64_t e) {
+                     explicit_euler_update(b, e, inverse_mass, f, h, x, v);
+                   });
+  return first == kNone ? -1 : first;
 }
 
 }  // namespace drapelab::kernels

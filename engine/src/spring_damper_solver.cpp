@@ -103,30 +103,37 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
 
 const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3Xd& x,
                                                             const Eigen::Matrix3Xd& v, double t, double h) {
+  set_body_and_spring_forces(x, v);
+  if (settings_.contacts) add_contact_forces(x, v, t, h, nullptr);
+  return force_;
+}
+
+void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v) {
   if (spring_families_) {
     // Gravity and air drag in the spring kernel's first pass (the same bits as the pass below).
     PhaseTimer timer(stats_, StepPhase::springs);
     spring_families_->set_body_and_spring_forces(x, v, weight_, coordinate_mass_, settings_.air_damping, force_);
-  } else {
-    {
-      // Gravity and air drag in one pass that overwrites the buffer (clearing the last evaluation).
-      PhaseTimer timer(stats_, StepPhase::body_forces);
-      kernels::set_body_forces(model_->particle_count(), weight_.data(), coordinate_mass_.data(),
-                               settings_.air_damping, v.data(), force_.data());
-    }
-    PhaseTimer timer(stats_, StepPhase::springs);
-    add_spring_forces(*model_, x, v, force_);
+    return;
   }
-  if (settings_.contacts) {
-    PhaseTimer timer(stats_, StepPhase::contacts);
-    const ContactNormalScheme normal = contact_at_step_end(settings_.integrator)
-                                           ? ContactNormalScheme::linearly_implicit
-                                           : ContactNormalScheme::explicit_penalty;
-    settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
-                                           implicit_stats() ? &active_contacts_ : nullptr, &contact_workspace_,
-                                           normal);
+  {
+    // Gravity and air drag in one pass that overwrites the buffer (clearing the last evaluation).
+    PhaseTimer timer(stats_, StepPhase::body_forces);
+    kernels::set_body_forces(model_->particle_count(), weight_.data(), coordinate_mass_.data(),
+                             settings_.air_damping, v.data(), force_.data());
   }
-  return force_;
+  PhaseTimer timer(stats_, StepPhase::springs);
+  add_spring_forces(*model_, x, v, force_);
+}
+
+std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
+                                                    double h, const ContactBlockFollowUp* follow_up) {
+  PhaseTimer timer(stats_, StepPhase::contacts);
+  const ContactNormalScheme normal = contact_at_step_end(settings_.integrator)
+                                         ? ContactNormalScheme::linearly_implicit
+                                         : ContactNormalScheme::explicit_penalty;
+  return settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
+                                                implicit_stats() ? &active_contacts_ : nullptr, &contact_workspace_,
+                                                normal, follow_up);
 }
 
 std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
@@ -233,11 +240,38 @@ void SpringDamperSolver::single_step(double h) {
 }
 
 std::int64_t SpringDamperSolver::euler_step(double h) {
-  evaluate_forces(state_.x, state_.v, state_.time, h);
-  const auto pass =
-      settings_.integrator == Integrator::explicit_euler ? kernels::explicit_euler_pass : kernels::symplectic_euler_pass;
-  return pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h, state_.x.data(),
-              state_.v.data(), settings_.max_speed * settings_.max_speed);
+  const bool symplectic = settings_.integrator == Integrator::symplectic_euler;
+  const double max_speed_squared = settings_.max_speed * settings_.max_speed;
+  if (!settings_.contacts) {
+    evaluate_forces(state_.x, state_.v, state_.time, h);
+    const auto pass = symplectic ? kernels::symplectic_euler_pass : kernels::explicit_euler_pass;
+    return pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h, state_.x.data(),
+                state_.v.data(), max_speed_squared);
+  }
+  // With contacts, each block of particles is updated as soon as its contact forces are final, on the
+  // thread that computed them and while they are in its cache: the same expressions as the pass
+  // above, so the same bits, without a pass (and a start of the threads) of its own. The update's time
+  // is then counted in the contact phase.
+  set_body_and_spring_forces(state_.x, state_.v);
+  struct EulerUpdate {
+    bool symplectic;
+    const double* inverse_mass;
+    const double* force;
+    double h;
+    double* x;
+    double* v;
+    double max_speed_squared;
+  };
+  const EulerUpdate update{symplectic,      coordinate_inverse_mass_.data(), force_.data(), h, state_.x.data(),
+                           state_.v.data(), max_speed_squared};
+  const ContactBlockFollowUp follow_up{
+      [](const void* context, std::int64_t begin, std::int64_t end) {
+        const auto& u = *static_cast<const EulerUpdate*>(context);
+        return kernels::euler_range(u.symplectic, begin, end, u.inverse_mass, u.force, u.h, u.x, u.v,
+                                    u.max_speed_squared);
+      },
+      &update};
+  return add_contact_forces(state_.x, state_.v, state_.time, h, &follow_up);
 }
 
 // Backward Euler, linearised at the start of the step (implicit_euler.hpp).

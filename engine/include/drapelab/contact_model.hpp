@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -63,6 +64,16 @@ struct ContactWorkspace {
   std::vector<std::vector<int>> block_near;  // per block: the broad phase's particles for one collider
   std::vector<std::vector<TouchingContact>> block_touching;  // per block: overlaps, collider by collider
   std::vector<std::vector<int>> block_order;  // per block: those overlaps' indices, particle by particle
+  std::vector<std::int64_t> block_flagged;    // per block: what the follow-up flagged there, or -1
+};
+
+// Work on a block of particles run right after the block's contact forces, on the same thread while
+// the block's state and forces are still in its cache: the solver's Euler update, which then needs no
+// pass of its own. It may read and write only particles [begin, end) (the contact phase has finished
+// with them; other blocks may still be in it) and returns the lowest particle it flags there, or -1.
+struct ContactBlockFollowUp {
+  std::int64_t (*run)(const void* context, std::int64_t begin, std::int64_t end) = nullptr;
+  const void* context = nullptr;
 };
 
 // How the penalty normal force is timed within a step (penalty_contact.hpp).
@@ -103,12 +114,16 @@ class ContactModel {
   // Particles are processed in fixed blocks spread over the threads (particle_loops.hpp); `workspace`
   // keeps the blocks' results between calls (a temporary one when null), and with it the call
   // allocates nothing once grown.
-  void add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
-                          const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
-                          std::vector<ColliderContactTotals>& totals,
-                          std::vector<ActiveContact>* active = nullptr,
-                          ContactWorkspace* workspace = nullptr,
-                          ContactNormalScheme normal = ContactNormalScheme::explicit_penalty) const;
+  // `follow_up`, when given, runs on every block once its forces are final (every block, including
+  // those without contacts; x and v may be the arrays it updates); the call then returns the lowest
+  // particle it flagged, else -1.
+  std::int64_t add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
+                                  const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
+                                  std::vector<ColliderContactTotals>& totals,
+                                  std::vector<ActiveContact>* active = nullptr,
+                                  ContactWorkspace* workspace = nullptr,
+                                  ContactNormalScheme normal = ContactNormalScheme::explicit_penalty,
+                                  const ContactBlockFollowUp* follow_up = nullptr) const;
 
  private:
   std::vector<Collider> colliders_;

@@ -40,6 +40,13 @@ std::int64_t symplectic_euler_pass(std::int64_t n, const double* inverse_mass, c
 std::int64_t explicit_euler_pass(std::int64_t n, const double* inverse_mass, const double* f, double h,
                                  double* x, double* v, double max_speed_squared);
 
+// Either Euler update (symplectic when `symplectic`, else forward) of particles begin <= i < end only,
+// on the calling thread, with the same expressions as the passes above (so the same bits): for a phase
+// that already holds those particles in cache, such as the contact phase's blocks. Returns the first
+// unhealthy particle of the range, or -1.
+std::int64_t euler_range(bool symplectic, std::int64_t begin, std::int64_t end, const double* inverse_mass,
+                         const double* f, double h, double* x, double* v, double max_speed_squared);
+
 // The contact broad phase for one posed collider, in plain numbers: a plane keeps the particles less
 // than `radius` above it; any other shape those inside its bounding box and bounding sphere (both
 // grown by the particle radius). Lengths in m.

@@ -3,7 +3,9 @@
 // timed into StepStats:
 //   body forces (gravity and air drag) -> springs -> contacts -> integrate (pins held) -> health check.
 // Multi-stage schemes run the force phases once per stage; "integrate" is the rest of the step (stage
-// arithmetic, and for implicit Euler the assembly and conjugate-gradient solve).
+// arithmetic, and for implicit Euler the assembly and conjugate-gradient solve). The Euler pair with
+// colliders updates each block of particles inside the contact phase, as soon as its forces are final
+// (the same bits as a pass of its own), so there the update's time counts in "contacts".
 // The explicit step allocates nothing after the first: every buffer is sized when the solver is built,
 // except the contact phase's per-block lists and each thread's FCL buffer, sized by the first step.
 #pragma once
@@ -106,6 +108,11 @@ class SpringDamperSolver final : public Solver {
   void verlet_step(double h);
   void leapfrog_step(double h);
   void implicit_euler_step(double h);
+  // The force phases on their own: gravity, air drag and springs overwrite force_; contacts add to it
+  // (with `follow_up` run on each block of particles once its force is final; returns its flag).
+  void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
+  std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t, double h,
+                                  const ContactBlockFollowUp* follow_up);
   // a = f / m for the force just evaluated (zero on pinned particles).
   const Eigen::Matrix3Xd& acceleration_of_force(Eigen::Matrix3Xd& into) const;
   double force_phase_seconds() const;
