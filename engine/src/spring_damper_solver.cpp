@@ -110,9 +110,13 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
 
 void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v) {
   if (spring_families_) {
-    // Gravity and air drag in the spring kernel's first pass (the same bits as the pass below).
+    // Gravity and air drag inside the spring kernel (the same bits as the pass below). The kernel's
+    // split of the state is skipped when the last Euler update left it split already.
     PhaseTimer timer(stats_, StepPhase::springs);
-    spring_families_->set_body_and_spring_forces(x, v, weight_, coordinate_mass_, settings_.air_damping, force_);
+    const bool solver_state = &x == &state_.x && &v == &state_.v;
+    spring_families_->set_body_and_spring_forces(x, v, weight_, coordinate_mass_, settings_.air_damping, force_,
+                                                 solver_state && split_state_is_current_);
+    split_state_is_current_ = solver_state;
     return;
   }
   {
@@ -229,6 +233,8 @@ void SpringDamperSolver::single_step(double h) {
     case Integrator::leapfrog: leapfrog_step(h); break;
     case Integrator::implicit_euler: implicit_euler_step(h); break;
   }
+  // Only the Euler pair with colliders keeps the spring kernel's split state in step with the update.
+  if (!scanned || !settings_.contacts) split_state_is_current_ = false;
   // Whatever the step spent outside the force phases is the integrator's own work.
   const double step_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stats_.seconds[static_cast<int>(StepPhase::integrate)] += step_seconds - (force_phase_seconds() - force_seconds_before);
@@ -253,6 +259,8 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
   // above, so the same bits, without a pass (and a start of the threads) of its own. The update's time
   // is then counted in the contact phase.
   set_body_and_spring_forces(state_.x, state_.v);
+  // On the spring fast path the block's new state is also split into the kernel's unit-stride arrays
+  // there, so the next force evaluation skips its own pass over the state (and a barrier).
   struct EulerUpdate {
     bool symplectic;
     const double* inverse_mass;
@@ -261,17 +269,23 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
     double* x;
     double* v;
     double max_speed_squared;
+    SpringFamilies* families;  // null off the fast path
   };
-  const EulerUpdate update{symplectic,      coordinate_inverse_mass_.data(), force_.data(), h, state_.x.data(),
-                           state_.v.data(), max_speed_squared};
+  const EulerUpdate update{symplectic,      coordinate_inverse_mass_.data(), force_.data(), h,
+                           state_.x.data(), state_.v.data(),
+                           max_speed_squared, spring_families_.get()};
   const ContactBlockFollowUp follow_up{
       [](const void* context, std::int64_t begin, std::int64_t end) {
         const auto& u = *static_cast<const EulerUpdate*>(context);
-        return kernels::euler_range(u.symplectic, begin, end, u.inverse_mass, u.force, u.h, u.x, u.v,
-                                    u.max_speed_squared);
+        const std::int64_t flagged =
+            kernels::euler_range(u.symplectic, begin, end, u.inverse_mass, u.force, u.h, u.x, u.v, u.max_speed_squared);
+        if (u.families) u.families->split_state(u.x, u.v, begin, end);
+        return flagged;
       },
       &update};
-  return add_contact_forces(state_.x, state_.v, state_.time, h, &follow_up);
+  const std::int64_t flagged = add_contact_forces(state_.x, state_.v, state_.time, h, &follow_up);
+  split_state_is_current_ = spring_families_ != nullptr;  // every block was split as it was updated
+  return flagged;
 }
 
 // Backward Euler, linearised at the start of the step (implicit_euler.hpp).

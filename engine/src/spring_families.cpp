@@ -86,9 +86,9 @@ void SpringFamilies::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3X
 
 void SpringFamilies::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                                 const Eigen::Matrix3Xd& weight, const Eigen::Matrix3Xd& mass, double air,
-                                                Eigen::Matrix3Xd& force) {
+                                                Eigen::Matrix3Xd& force, bool state_split) {
   const kernels::BodyForceInputs body{weight.data(), mass.data(), air};
-  kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data(), &body);
+  kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data(), &body, state_split);
 }
 
 }  // namespace drapelab

@@ -113,43 +113,52 @@ void gather(const std::vector<SpringFamily>& families, FamilyScratch& scratch, d
 
 }  // namespace
 
-void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
-                       FamilyScratch& scratch, double* f, const BodyForceInputs* body) {
-  const std::int64_t n = scratch.particles;
-  const std::int64_t family_count = static_cast<std::int64_t>(families.size());
-  const std::int64_t max_offset = scratch.padding;
+void split_state_range(const double* x, const double* v, FamilyScratch& scratch, std::int64_t begin,
+                       std::int64_t end) {
   double* const px = scratch.state_row(0);
   double* const py = scratch.state_row(1);
   double* const pz = scratch.state_row(2);
   double* const vx = scratch.state_row(3);
   double* const vy = scratch.state_row(4);
   double* const vz = scratch.state_row(5);
+  for (std::int64_t i = begin; i < end; ++i) {
+    px[i] = x[3 * i];
+    py[i] = x[3 * i + 1];
+    pz[i] = x[3 * i + 2];
+    vx[i] = v[3 * i];
+    vy[i] = v[3 * i + 1];
+    vz[i] = v[3 * i + 2];
+  }
+}
+
+void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
+                       FamilyScratch& scratch, double* f, const BodyForceInputs* body, bool state_split) {
+  const std::int64_t n = scratch.particles;
+  const std::int64_t family_count = static_cast<std::int64_t>(families.size());
+  const std::int64_t max_offset = scratch.padding;
+  const double* const px = scratch.state_row(0);
+  const double* const py = scratch.state_row(1);
+  const double* const pz = scratch.state_row(2);
+  const double* const vx = scratch.state_row(3);
+  const double* const vy = scratch.state_row(4);
+  const double* const vz = scratch.state_row(5);
   const std::int64_t blocks = (n + kGatherBlock - 1) / kGatherBlock;
 #pragma omp parallel if (n * family_count >= kParallelSlots)
   {
-    // 1. The packed state into six unit-stride arrays (their padding stays zero), and the body forces
-    // into f when asked for (by a function of particle_loops.cpp, built without fused multiply-adds,
-    // so f has the bits of set_body_forces); the barrier ending this pass precedes every gather.
-#pragma omp for schedule(static) nowait
-    for (std::int64_t i = 0; i < n; ++i) {
-      px[i] = x[3 * i];
-      py[i] = x[3 * i + 1];
-      pz[i] = x[3 * i + 2];
-      vx[i] = v[3 * i];
-      vy[i] = v[3 * i + 1];
-      vz[i] = v[3 * i + 2];
-    }
-    if (body) {
-#pragma omp for schedule(static) nowait
-      for (std::int64_t block = 0; block < blocks; ++block)
-        set_body_forces_range(block * kGatherBlock, std::min(n, (block + 1) * kGatherBlock), body->weight,
-                              body->mass, body->air, v, f);
-    }
+    // 1. The packed state into six unit-stride arrays (their padding stays zero), unless the caller
+    // split it already (then the end of the phase that did so is the barrier); the barrier ending this
+    // pass precedes every slot loop, which reads particles of the other thread's run.
+    if (!state_split) {
+      const ThreadRun share = thread_run(n, 1, n, 0);  // an equal share of the particles
+      split_state_range(x, v, scratch, share.begin, share.end);
 #pragma omp barrier
+    }
     // 2. Each thread walks its own run of blocks in order: a block's slot forces of every family,
-    // then the gather of its particles, while those slots are still in cache. Particle i reads slots
-    // i and i - offset, computed by this block or an earlier one; only the first max_offset particles
-    // of a thread's run read slots of the thread before, so their gather waits for the barrier.
+    // then its body forces (by a function of particle_loops.cpp, built without fused multiply-adds, so
+    // f has the bits of set_body_forces) and the gather of its particles, while those slots are still
+    // in cache. Particle i reads slots i and i - offset, computed by this block or an earlier one;
+    // only the first max_offset particles of a thread's run read slots of the thread before, so their
+    // gather waits for the barrier (their body forces, set here by the same thread, wait with them).
     const ThreadRun run = thread_run(blocks, kGatherBlock, n, max_offset);
     for (std::int64_t block = run.first_block; block < run.end_block; ++block) {
       const std::int64_t begin = block * kGatherBlock, end = std::min(n, begin + kGatherBlock);
@@ -157,6 +166,7 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
         family_slot_forces(families[static_cast<std::size_t>(family)], px, py, pz, vx, vy, vz,
                            scratch.force_row(family, 0), scratch.force_row(family, 1), scratch.force_row(family, 2),
                            begin, end);
+      if (body) set_body_forces_range(begin, end, body->weight, body->mass, body->air, v, f);
       const std::int64_t gather_begin = std::max(begin, run.deferred_end);
       if (gather_begin < end) gather(families, scratch, f, gather_begin, end);
     }

@@ -138,6 +138,10 @@ class SpringDamperSolver final : public Solver {
   std::unique_ptr<ImplicitEulerSystem> implicit_;
   std::unique_ptr<FamilyImplicitSystem> family_implicit_;
   std::unique_ptr<SpringFamilies> spring_families_;  // null: the plain edge-list loop
+  // The fast path's unit-stride copy of the state equals state_.x and state_.v: set by the Euler
+  // update with colliders (which splits each block as it updates it) and by a force evaluation at the
+  // solver's state; cleared by every other change of the state.
+  bool split_state_is_current_ = false;
   std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
   ContactWorkspace contact_workspace_;  // the contact phase's per-block results

@@ -57,10 +57,18 @@ struct BodyForceInputs {
   const double* mass = nullptr;
   double air = 0.0;
 };
-// With `body`, f is first overwritten with the body forces, in the same parallel region's first pass
+// With `body`, f is first overwritten with the body forces, block by block in the same parallel region
 // (one pass over the particles and one start of the threads fewer than set_body_forces, then this).
+// `state_split`: the scratch's six state arrays already hold x and v (split_state_range was run over
+// every particle since they last changed), so the loops skip that pass and its barrier.
 void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
-                       FamilyScratch& scratch, double* f, const BodyForceInputs* body = nullptr);
+                       FamilyScratch& scratch, double* f, const BodyForceInputs* body = nullptr,
+                       bool state_split = false);
+// Particles begin <= i < end of x and v (3 x particles, packed) into the scratch's six state arrays,
+// on the calling thread: for a phase that has just written those particles (the Euler update), so the
+// next force evaluation need not split the whole state again.
+void split_state_range(const double* x, const double* v, FamilyScratch& scratch, std::int64_t begin,
+                       std::int64_t end);
 // Threads the loops use (OpenMP); always 1 in a build without OpenMP.
 void set_thread_count(int threads);
 int thread_count();
