@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "drapelab/grid_cloth.hpp"
@@ -163,6 +164,35 @@ TEST(ParticleLoops, BroadPhaseKeepsExactlyTheParticlesOfTheDirectTest) {
     ASSERT_GT(expected.size(), 10u);          // the test sees both outcomes
     ASSERT_LT(expected.size(), 2800u);
     EXPECT_EQ(std::vector<int>(near.begin(), near.begin() + count), expected);
+  }
+}
+
+// Particles in a row along x, 1 mm apart, so that whole chunks of the broad phase lie near a collider
+// (every one listed without the per-particle pass), far from it (skipped), or across its edge.
+TEST(ParticleLoops, BroadPhaseListsWholeChunksNearAndSkipsChunksFar) {
+  const int n = 3000;
+  std::vector<double> x(3 * n, 0.0);
+  for (int i = 0; i < n; ++i) x[3 * i] = 0.001 * i;  // m
+  kernels::NearCollider wall;  // x < 1.05 m passes: particles 0 to 1049
+  wall.plane = true;
+  wall.normal[0] = 1.0;
+  wall.offset = 1.0;
+  wall.radius = 0.05;
+  kernels::NearCollider box;  // 1.5 <= x <= 2.6 and within 0.6 of x = 2.0: particles 1500 to 2599
+  box.low[0] = 1.5;
+  box.high[0] = 2.6;
+  box.low[1] = box.low[2] = -1.0;
+  box.high[1] = box.high[2] = 1.0;
+  box.center[0] = 2.0;
+  box.reach_squared = 0.6 * 0.6;
+  for (const auto& [collider, first, last] : {std::tuple{&wall, 0, 1049}, std::tuple{&box, 1500, 2599}}) {
+    for (const auto& [begin, end] : {std::pair{0, n}, std::pair{13, 2951}}) {
+      std::vector<int> near(n);
+      const int count = kernels::near_particles(*collider, x.data(), begin, end, near.data());
+      std::vector<int> expected;
+      for (int i = std::max(begin, first); i <= std::min(end - 1, last); ++i) expected.push_back(i);
+      EXPECT_EQ(std::vector<int>(near.begin(), near.begin() + count), expected) << begin << ".." << end;
+    }
   }
 }
 
