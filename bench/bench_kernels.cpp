@@ -1,12 +1,15 @@
 // Google Benchmark micro-benchmarks of the step's kernels: the spring phase (plain edge list and the
-// spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, and a step of
+// spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, the contact
+// phase alone (per contact), and a step of
 // implicit Euler with the assembled or the matrix-free solve (with its CG iterations). They measure;
 // nothing here asserts a time.
 // Run: build/bench/bench_kernels [--benchmark_filter=Springs]
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "drapelab/contact_model.hpp"
 #include "drapelab/forces.hpp"
@@ -68,44 +71,79 @@ void SpringsFamilies(benchmark::State& bench) {
 }
 BENCHMARK(SpringsFamilies)->Args({65, 1})->Args({129, 1})->Args({257, 1})->Args({129, 2})->Args({257, 2});
 
-// A full step of our solver on a sheet laid over a sphere: the particles above the ball's cap (about
-// a fifth of them) start on its surface, sunk into the contact radius by their weight's sag, the rest
-// of the sheet level with the cap's rim. The stretched cap lifts off as the run goes on, so the mean
-// contact count over the timed steps is reported with the time. On 1 or 2 threads: every phase (body
-// forces, springs, contacts, update and health scan) is threaded.
-void StepWithContacts(benchmark::State& bench) {
-  Sheet sheet(static_cast<int>(bench.range(0)));
-  kernels::set_thread_count(static_cast<int>(bench.range(1)));
-  const double radius = 0.3;                             // m
-  const Eigen::Vector3d center(0.0, 1.0 - radius, 0.0);  // m
-  const double cap = 0.25;                               // m, the cap's horizontal radius
-  Collider ball;
-  ball.name = "ball";
-  ball.shape = ColliderShape::sphere;
-  ball.center = center;
-  ball.radius = radius;
-  SpringDamperSettings settings;
-  settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball}, ContactParameters{1000, 0.2},
-                                                           sheet.model.thickness);
-  auto model = std::make_shared<const ClothModel>(sheet.model);
-  ClothState start = initial_grid_state(*model, sheet.spec, 0.0, 1);
-  for (int i = 0; i < model->particle_count(); ++i) {
-    Eigen::Vector3d p = start.x.col(i);
-    const double rho = std::min(cap, std::hypot(p.x() - center.x(), p.z() - center.z()));  // m, horizontal
-    const double sag = model->mass[i] * 9.81 / 1000.0;  // m: the contact spring holds the weight
-    p.y() = center.y() + std::sqrt(radius * radius - rho * rho) + model->thickness - sag;
-    start.x.col(i) = p;
+// A sheet laid over a sphere: the particles above the ball's cap (about a fifth of them) start on its
+// surface, sunk into the contact radius by their weight's sag, the rest of the sheet level with the
+// cap's rim.
+struct CappedSheet {
+  explicit CappedSheet(int n) : sheet(n) {
+    const double radius = 0.3;                             // m
+    const Eigen::Vector3d center(0.0, 1.0 - radius, 0.0);  // m
+    const double cap = 0.25;                               // m, the cap's horizontal radius
+    Collider ball;
+    ball.name = "ball";
+    ball.shape = ColliderShape::sphere;
+    ball.center = center;
+    ball.radius = radius;
+    contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball}, ContactParameters{1000, 0.2},
+                                                    sheet.model.thickness);
+    model = std::make_shared<const ClothModel>(sheet.model);
+    start = initial_grid_state(*model, sheet.spec, 0.0, 1);
+    for (int i = 0; i < model->particle_count(); ++i) {
+      Eigen::Vector3d p = start.x.col(i);
+      const double rho = std::min(cap, std::hypot(p.x() - center.x(), p.z() - center.z()));  // m, horizontal
+      const double sag = model->mass[i] * 9.81 / 1000.0;  // m: the contact spring holds the weight
+      p.y() = center.y() + std::sqrt(radius * radius - rho * rho) + model->thickness - sag;
+      start.x.col(i) = p;
+    }
   }
-  SpringDamperSolver solver("bench", model, start, settings);
+  Sheet sheet;
+  std::shared_ptr<const ContactModel> contacts;
+  std::shared_ptr<const ClothModel> model;
+  ClothState start;
+};
+
+// A full step of our solver on the capped sheet. The stretched cap lifts off as the run goes on, so
+// the mean contact count over the timed steps is reported with the time. On 1 or 2 threads: every
+// phase (body forces, springs, contacts, update and health scan) is threaded.
+void StepWithContacts(benchmark::State& bench) {
+  const CappedSheet capped(static_cast<int>(bench.range(0)));
+  kernels::set_thread_count(static_cast<int>(bench.range(1)));
+  SpringDamperSettings settings;
+  settings.contacts = capped.contacts;
+  SpringDamperSolver solver("bench", capped.model, capped.start, settings);
   double contacts = 0.0;
   for (auto _ : bench) {
     solver.step(1e-5);
     contacts += solver.contact_totals().front().contact_count;
   }
-  bench.counters["particles"] = model->particle_count();
+  bench.counters["particles"] = capped.model->particle_count();
   bench.counters["mean_contacts"] = contacts / static_cast<double>(bench.iterations());
 }
 BENCHMARK(StepWithContacts)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2})->Args({257, 1})->Args({257, 2});
+
+// The contact phase alone on the same capped sheet, at its starting state: the broad phase of every
+// particle, FCL's closed form for the particles near the ball, the end-of-step normal force and
+// friction of each contact, and the totals. Reports the time per contact and per particle.
+void ContactPhase(benchmark::State& bench) {
+  const CappedSheet capped(static_cast<int>(bench.range(0)));
+  kernels::set_thread_count(static_cast<int>(bench.range(1)));
+  const ClothModel& model = *capped.model;
+  Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, model.particle_count());
+  std::vector<ColliderContactTotals> totals;
+  ContactWorkspace workspace;
+  for (auto _ : bench) {
+    capped.contacts->add_contact_forces(model, 0.0, 1e-5, capped.start.x, capped.start.v, force, totals, nullptr,
+                                        &workspace, ContactNormalScheme::linearly_implicit);
+    benchmark::DoNotOptimize(force.data());
+  }
+  const double contacts = totals.front().contact_count;
+  bench.counters["contacts"] = contacts;
+  bench.counters["ns_per_contact"] =
+      benchmark::Counter(contacts * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  bench.counters["ns_per_particle"] = benchmark::Counter(
+      model.particle_count() * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(ContactPhase)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2});
 
 // A step of implicit Euler at h = 1/240 s on a free sheet (no collider) and its conjugate-gradient
 // iterations: args are the particles per side, the threads, and 1 for the matrix-free solve on spring
