@@ -88,13 +88,13 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
     work.posed[c].hosted = hosted;
     work.posed[c].moving = poses_ ? hosted.moving() : !colliders_[c].motion.is_static();
   }
-  work.block_totals.assign(static_cast<std::size_t>(blocks) * collider_count, ColliderContactTotals{});
   const auto block_count = static_cast<std::size_t>(blocks);
-  if (work.block_active.size() < block_count) work.block_active.resize(block_count);
-  if (work.block_touching.size() < block_count) work.block_touching.resize(block_count);
-  if (work.block_order.size() < block_count) work.block_order.resize(block_count);
-  if (work.block_flagged.size() < block_count) work.block_flagged.resize(block_count);
-  if (work.block_near.size() < block_count) work.block_near.resize(block_count, std::vector<int>(kContactBlock));
+  if (work.blocks.size() < block_count) work.blocks.resize(block_count);
+  for (std::size_t b = 0; b < block_count; ++b) {
+    ContactBlockWork& record = work.blocks[b];
+    record.colliders.assign(collider_count, BlockColliderTotals{});
+    if (record.near.size() < static_cast<std::size_t>(kContactBlock)) record.near.resize(kContactBlock);
+  }
 
   // The friction of one contact whose normal force fn (N) is already in its particle's force, sized
   // with everything the particle carries so far, and the contact's share of its collider's totals.
@@ -111,7 +111,7 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
                                         collider.static_friction, collider.friction);
       force.col(i) += friction;
     }
-    ColliderContactTotals& total = work.block_totals[static_cast<std::size_t>(block) * collider_count + c];
+    ColliderContactTotals& total = work.blocks[static_cast<std::size_t>(block)].colliders[c].totals;
     ++total.contact_count;
     total.normal_force += fn;
     total.friction_force += friction.norm();
@@ -120,12 +120,13 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
 
   const auto contact_block_forces = [&](std::int64_t block) {
     const int begin = static_cast<int>(block * kContactBlock), end = std::min(n, begin + kContactBlock);
-    std::vector<ActiveContact>& block_active = work.block_active[static_cast<std::size_t>(block)];
+    ContactBlockWork& record = work.blocks[static_cast<std::size_t>(block)];
+    std::vector<ActiveContact>& block_active = record.active;
     block_active.clear();
     // 1. Every overlap in the block, collider by collider, each collider's in particle order.
-    std::vector<TouchingContact>& found = work.block_touching[static_cast<std::size_t>(block)];
+    std::vector<TouchingContact>& found = record.touching;
     found.clear();
-    int* near = work.block_near[static_cast<std::size_t>(block)].data();
+    int* near = record.near.data();
     for (std::size_t c = 0; c < collider_count; ++c) {
       const Collider& collider = colliders_[c];
       const PosedCollider& posed = work.posed[c];
@@ -160,7 +161,7 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
     std::array<int, kContactBlock + 1> first{};  // per particle of the block: its first entry in `order`
     for (const TouchingContact& touching : found) ++first[static_cast<std::size_t>(touching.particle - begin) + 1];
     for (int p = 0; p < kContactBlock; ++p) first[p + 1] += first[p];
-    std::vector<int>& order = work.block_order[static_cast<std::size_t>(block)];
+    std::vector<int>& order = record.order;
     order.resize(found.size());
     std::array<int, kContactBlock> next;
     std::copy(first.begin(), first.end() - 1, next.begin());
@@ -191,7 +192,7 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
     contact_block_forces(block);
     if (!follow_up) return;
     const std::int64_t begin = block * kContactBlock, end = std::min<std::int64_t>(n, begin + kContactBlock);
-    work.block_flagged[static_cast<std::size_t>(block)] = follow_up->run(follow_up->context, begin, end);
+    work.blocks[static_cast<std::size_t>(block)].flagged = follow_up->run(follow_up->context, begin, end);
   };
   kernels::for_each_block(blocks, n >= kernels::kParallelParticles, contact_block);
 
@@ -200,20 +201,20 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
   if (active) active->clear();
   for (std::int64_t block = 0; block < blocks; ++block) {
     for (std::size_t c = 0; c < collider_count; ++c) {
-      const ColliderContactTotals& part = work.block_totals[static_cast<std::size_t>(block) * collider_count + c];
+      const ColliderContactTotals& part = work.blocks[static_cast<std::size_t>(block)].colliders[c].totals;
       totals[c].contact_count += part.contact_count;
       totals[c].normal_force += part.normal_force;
       totals[c].friction_force += part.friction_force;
       totals[c].max_depth = std::max(totals[c].max_depth, part.max_depth);
     }
     if (active) {
-      const auto& part = work.block_active[static_cast<std::size_t>(block)];
+      const auto& part = work.blocks[static_cast<std::size_t>(block)].active;
       active->insert(active->end(), part.begin(), part.end());
     }
   }
   if (follow_up)  // blocks in increasing particle order: the first flag found is the lowest
     for (std::int64_t block = 0; block < blocks; ++block)
-      if (work.block_flagged[static_cast<std::size_t>(block)] >= 0) return work.block_flagged[static_cast<std::size_t>(block)];
+      if (work.blocks[static_cast<std::size_t>(block)].flagged >= 0) return work.blocks[static_cast<std::size_t>(block)].flagged;
   return -1;
 }
 

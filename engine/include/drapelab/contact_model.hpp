@@ -54,17 +54,31 @@ struct TouchingContact {
   Eigen::Vector3d surface_velocity = Eigen::Vector3d::Zero();  // m/s, the collider's surface there
 };
 
+// One collider's totals within one block, alone on its cache line (see ContactBlockWork).
+struct alignas(64) BlockColliderTotals {
+  ColliderContactTotals totals;
+};
+
+// One block's share of the contact phase, kept between calls. Each block's record starts a cache line
+// of its own and its totals have lines of their own: the two threads append to their blocks' lists and
+// add to their totals at once, contact by contact, and records that shared a line made the cores trade
+// it on every contact (false sharing, in the middle of the sheet where the two threads' runs meet and
+// a draped cloth's contacts are).
+struct alignas(64) ContactBlockWork {
+  std::vector<int> near;                       // the broad phase's particles for one collider
+  std::vector<TouchingContact> touching;       // overlaps, collider by collider
+  std::vector<int> order;                      // those overlaps' indices, particle by particle
+  std::vector<ActiveContact> active;           // pushing contacts, in particle order
+  std::vector<BlockColliderTotals> colliders;  // per collider
+  std::int64_t flagged = -1;                   // what the follow-up flagged here, or -1
+};
+
 // What the contact phase keeps between calls: per block of particles and per collider, the totals and
 // pushing contacts found there, so that blocks can run on any thread and still be summed in one fixed
 // order (results independent of the thread count). Owned by the caller; grows once.
 struct ContactWorkspace {
-  std::vector<PosedCollider> posed;                  // per collider, at the evaluation's time
-  std::vector<ColliderContactTotals> block_totals;   // blocks x colliders, block-major
-  std::vector<std::vector<ActiveContact>> block_active;  // per block, in particle order
-  std::vector<std::vector<int>> block_near;  // per block: the broad phase's particles for one collider
-  std::vector<std::vector<TouchingContact>> block_touching;  // per block: overlaps, collider by collider
-  std::vector<std::vector<int>> block_order;  // per block: those overlaps' indices, particle by particle
-  std::vector<std::int64_t> block_flagged;    // per block: what the follow-up flagged there, or -1
+  std::vector<PosedCollider> posed;     // per collider, at the evaluation's time
+  std::vector<ContactBlockWork> blocks;  // per block of particles
 };
 
 // Work on a block of particles run right after the block's contact forces, on the same thread while
