@@ -192,15 +192,9 @@ struct ContactSheet {
 };
 
 ContactSheet contact_sheet(Integrator integrator) {
-  GridClothSpec spec;
-  spec.nx = 80;
-  spec.ny = 80;
+  GridClothSpec spec = sheet(80);
   spec.plane = GridPlane::xz;
   spec.center = {0.0, 0.29, 0.0};  // m: the sheet's middle 1 cm inside the ball's top
-  spec.mass = 0.25;
-  spec.stretch = {1000.0, 0.01};
-  spec.shear = {100.0, 0.005};
-  spec.bend = {5.0, 0.001};
   spec.pins = {PinNamed{"corners"}};
   ContactSheet sheet;
   sheet.model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
