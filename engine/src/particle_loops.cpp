@@ -60,8 +60,23 @@ std::int64_t first_unhealthy_in(std::int64_t begin, std::int64_t end, const doub
   return kNone;
 }
 
-// For every block of particles: update(first coordinate, end coordinate), then the health test.
-// Returns the first unhealthy particle (the minimum over blocks: the same for any thread count), or -1.
+// Particles [begin, end) on the calling thread, block by block: update(first coordinate, end
+// coordinate), then the health test. Every particle is updated; returns the first unhealthy one
+// (blocks in increasing order) or kNone.
+template <typename Update>
+std::int64_t update_and_scan_range(std::int64_t begin, std::int64_t end, const double* x, const double* v,
+                                   double max_speed_squared, Update update) {
+  std::int64_t first = kNone;
+  for (std::int64_t block = begin; block < end; block += kBlock) {
+    const std::int64_t block_end = std::min(end, block + kBlock);
+    update(3 * block, 3 * block_end);
+    if (first == kNone) first = first_unhealthy_in(block, block_end, x, v, max_speed_squared);
+  }
+  return first;
+}
+
+// The same over the whole cloth, its blocks shared among the threads. Returns the first unhealthy
+// particle (the minimum over blocks: the same for any thread count), or -1.
 template <typename Update>
 std::int64_t update_and_scan(std::int64_t n, const double* x, const double* v, double max_speed_squared,
                              Update update) {
@@ -69,9 +84,8 @@ std::int64_t update_and_scan(std::int64_t n, const double* x, const double* v, d
   std::int64_t first = kNone;
 #pragma omp parallel for schedule(static) reduction(min : first) if (n >= kParallelParticles)
   for (std::int64_t block = 0; block < blocks; ++block) {
-    const std::int64_t begin = block * kBlock, end = std::min(n, begin + kBlock);
-    update(3 * begin, 3 * end);
-    first = std::min(first, first_unhealthy_in(begin, end, x, v, max_speed_squared));
+    const std::int64_t begin = block * kBlock;
+    first = std::min(first, update_and_scan_range(begin, std::min(n, begin + kBlock), x, v, max_speed_squared, update));
   }
   return first == kNone ? -1 : first;
 }
@@ -105,20 +119,6 @@ void explicit_euler_update(std::int64_t begin, std::int64_t end, const double* i
     x[k] += h * vk;                            // x(n+1) = x(n) + v(n) h
     v[k] = vk + h * (f[k] * inverse_mass[k]);  // v(n+1) = v(n) + a(n) h
   }
-}
-
-// Particles [begin, end) on the calling thread, block by block as the whole-cloth passes take them:
-// every particle updated, and the first unhealthy one (blocks in increasing order) or kNone.
-template <typename Update>
-std::int64_t update_and_scan_range(std::int64_t begin, std::int64_t end, const double* x, const double* v,
-                                   double max_speed_squared, Update update) {
-  std::int64_t first = kNone;
-  for (std::int64_t block = begin; block < end; block += kBlock) {
-    const std::int64_t block_end = std::min(end, block + kBlock);
-    update(3 * block, 3 * block_end);
-    if (first == kNone) first = first_unhealthy_in(block, block_end, x, v, max_speed_squared);
-  }
-  return first;
 }
 
 }  // namespace
@@ -225,14 +225,11 @@ void for_each_block(std::int64_t blocks, bool parallel, void (*body)(const void*
 
 std::int64_t euler_range(bool symplectic, std::int64_t begin, std::int64_t end, const double* inverse_mass,
                          const double* f, double h, double* x, double* v, double max_speed_squared) {
-  const std::int64_t first =
-      symplectic ? update_and_scan_range(begin, end, x, v, max_speed_squared,
-                                         [=](std::int64_t b, std::int64_t e) {
-                                           symplectic_euler_update(b, e, inverse_mass, f, h, x, v);
-                                         })
-                 : update_and_scan_range(begin, end, x, v, max_speed_squared, [=](std::int64_t b, std::int64_t e) {
-                     explicit_euler_update(b, e, inverse_mass, f, h, x, v);
-                   });
+  const auto update = symplectic ? symplectic_euler_update : explicit_euler_update;
+  const std::int64_t first = update_and_scan_range(begin, end, x, v, max_speed_squared,
+                                                   [=](std::int64_t b, std::int64_t e) {
+                                                     update(b, e, inverse_mass, f, h, x, v);
+                                                   });
   return first == kNone ? -1 : first;
 }
 
