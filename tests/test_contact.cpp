@@ -293,13 +293,17 @@ TEST(PenaltyKernels, FrictionSticksWithinTheStaticConeAndSlidesBeyondIt) {
   const double m = 0.01, h = 1e-3, fn = 0.1;  // kg, s, N
   // Needs 0.01 / 1e-3 * 0.002 = 0.02 N to stop: within mu_s fn = 0.03 N, so it sticks exactly.
   const Eigen::Vector3d slow(0.002, 0, 0);
-  const Eigen::Vector3d stick = coulomb_friction_force(slow, m, h, fn, 0.3, 0.2);
-  EXPECT_LT((stick - Eigen::Vector3d(-0.02, 0, 0)).norm(), 1e-15);
+  const FrictionForce stick = coulomb_friction_force(slow, m, h, fn, 0.3, 0.2);
+  EXPECT_LT((stick.force - Eigen::Vector3d(-0.02, 0, 0)).norm(), 1e-15);
+  EXPECT_EQ(stick.magnitude, stick.force.norm());  // bit for bit: the totals sum it
   // Needs 0.05 N: beyond mu_s fn, so it slides with mu_k fn = 0.02 N against the motion.
   const Eigen::Vector3d fast(0, 0, -0.005);
-  const Eigen::Vector3d slide = coulomb_friction_force(fast, m, h, fn, 0.3, 0.2);
-  EXPECT_LT((slide - Eigen::Vector3d(0, 0, 0.02)).norm(), 1e-15);
-  EXPECT_EQ(coulomb_friction_force(fast, m, h, 0.0, 0.3, 0.2).norm(), 0.0);  // no load, no friction
+  const FrictionForce slide = coulomb_friction_force(fast, m, h, fn, 0.3, 0.2);
+  EXPECT_LT((slide.force - Eigen::Vector3d(0, 0, 0.02)).norm(), 1e-15);
+  EXPECT_EQ(slide.magnitude, slide.force.norm());
+  const FrictionForce unloaded = coulomb_friction_force(fast, m, h, 0.0, 0.3, 0.2);  // no load, no friction
+  EXPECT_EQ(unloaded.force.norm(), 0.0);
+  EXPECT_EQ(unloaded.magnitude, 0.0);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,24 @@ kernels::NearCollider near_test(const FclCollider& collider, const Eigen::Isomet
   const double reach = (bounding_radius(collider) + radius) * (1.0 + 1e-9);
   near.reach_squared = reach * reach;
   return near;
+}
+
+// A block's per-collider totals from its overlaps' force magnitudes. The overlaps come collider by
+// collider, each collider's in particle order, so each sum runs in particle order, the order in which a
+// serial loop over the block's particles would add them (and the same on any thread count).
+void sum_block_totals(ContactBlockWork& record) {
+  const std::vector<TouchingContact>& found = record.touching;
+  for (std::size_t e = 0; e < found.size();) {
+    const int collider = found[e].collider;
+    ColliderContactTotals sum;  // in registers: adding to the record contact by contact stalled on its stores
+    for (; e < found.size() && found[e].collider == collider; ++e) {
+      ++sum.contact_count;
+      sum.normal_force += record.applied[e].normal;
+      sum.friction_force += record.applied[e].friction;
+      sum.max_depth = std::max(sum.max_depth, found[e].depth);
+    }
+    record.colliders[static_cast<std::size_t>(collider)].totals = sum;
+  }
 }
 
 }  // namespace
@@ -96,26 +115,23 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
     if (record.near.size() < static_cast<std::size_t>(kContactBlock)) record.near.resize(kContactBlock);
   }
 
-  // The friction of one contact whose normal force fn (N) is already in its particle's force, sized
-  // with everything the particle carries so far, and the contact's share of its collider's totals.
-  const auto finish_contact = [&](std::int64_t block, const TouchingContact& touching, double fn) {
+  // The friction of overlap e of a block, whose normal force fn (N) is already in its particle's force,
+  // sized with everything the particle carries so far; both magnitudes are kept for the block's totals.
+  const auto finish_contact = [&](ContactBlockWork& record, std::size_t e, double fn) {
+    const TouchingContact& touching = record.touching[e];
     const int i = touching.particle;
-    const std::size_t c = static_cast<std::size_t>(touching.collider);
-    const Collider& collider = colliders_[c];
-    Eigen::Vector3d friction = Eigen::Vector3d::Zero();
+    const Collider& collider = colliders_[static_cast<std::size_t>(touching.collider)];
+    double friction_magnitude = 0.0;
     if (fn > 0.0 && collider.static_friction > 0.0) {
       const double mass = model.mass[i];
       const Eigen::Vector3d relative_velocity = v.col(i) - touching.surface_velocity;
       const Eigen::Vector3d trial = relative_velocity + (h / mass) * force.col(i);
-      friction = coulomb_friction_force(trial - trial.dot(touching.normal) * touching.normal, mass, h, fn,
-                                        collider.static_friction, collider.friction);
-      force.col(i) += friction;
+      const FrictionForce friction = coulomb_friction_force(trial - trial.dot(touching.normal) * touching.normal,
+                                                            mass, h, fn, collider.static_friction, collider.friction);
+      force.col(i) += friction.force;
+      friction_magnitude = friction.magnitude;
     }
-    ColliderContactTotals& total = work.blocks[static_cast<std::size_t>(block)].colliders[c].totals;
-    ++total.contact_count;
-    total.normal_force += fn;
-    total.friction_force += friction.norm();
-    total.max_depth = std::max(total.max_depth, touching.depth);
+    record.applied[e] = {fn, friction_magnitude};
   };
 
   const auto contact_block_forces = [&](std::int64_t block) {
@@ -143,39 +159,48 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
         found.push_back({i, static_cast<int>(c), touching->depth, touching->normal, surface_velocity});
       }
     }
+    record.applied.resize(found.size());
     if (normal_scheme == ContactNormalScheme::explicit_penalty) {
       // 2a. In that order, as a serial loop over colliders would: friction sees the normal and friction
       // forces of the colliders before it.
-      for (const TouchingContact& touching : found) {
+      for (std::size_t e = 0; e < found.size(); ++e) {
+        const TouchingContact& touching = found[e];
         const int i = touching.particle;
         const double fn = penalty_normal_force(touching.depth, (v.col(i) - touching.surface_velocity).dot(touching.normal),
                                                parameters_.stiffness, parameters_.damping);
         force.col(i) += fn * touching.normal;
         if (active && fn > 0.0) block_active.push_back({i, touching.normal});
-        finish_contact(block, touching, fn);
+        finish_contact(record, e, fn);
       }
+      sum_block_totals(record);
       return;
     }
     // 2b. End of step: each particle's contacts together (penalty_contact.hpp), then their frictions in
-    // collider order. The overlaps grouped by particle (a counting sort, stable: colliders stay in order).
-    std::array<int, kContactBlock + 1> first{};  // per particle of the block: its first entry in `order`
-    for (const TouchingContact& touching : found) ++first[static_cast<std::size_t>(touching.particle - begin) + 1];
-    for (int p = 0; p < kContactBlock; ++p) first[p + 1] += first[p];
-    std::vector<int>& order = record.order;
+    // collider order. The overlaps are grouped by particle: already so when they come in particle order
+    // (one collider touched, or each collider's overlaps beyond the last one's), else by a counting sort
+    // (stable: a particle's colliders stay in order).
+    std::vector<int>& order = record.order;  // overlap indices, particle by particle
     order.resize(found.size());
-    std::array<int, kContactBlock> next;
-    std::copy(first.begin(), first.end() - 1, next.begin());
-    for (std::size_t e = 0; e < found.size(); ++e)
-      order[static_cast<std::size_t>(next[static_cast<std::size_t>(found[e].particle - begin)]++)] = static_cast<int>(e);
+    const auto by_particle = [](const TouchingContact& a, const TouchingContact& b) { return a.particle < b.particle; };
+    if (std::is_sorted(found.begin(), found.end(), by_particle)) {
+      std::iota(order.begin(), order.end(), 0);
+    } else {
+      std::array<int, kContactBlock + 1> first{};  // per particle of the block: its first entry in `order`
+      for (const TouchingContact& touching : found) ++first[static_cast<std::size_t>(touching.particle - begin) + 1];
+      for (int p = 0; p < kContactBlock; ++p) first[p + 1] += first[p];
+      for (std::size_t e = 0; e < found.size(); ++e)
+        order[static_cast<std::size_t>(first[static_cast<std::size_t>(found[e].particle - begin)]++)] = static_cast<int>(e);
+    }
     std::array<NormalContact, kMaxSimultaneousContacts> normals;
     std::array<double, kMaxSimultaneousContacts> fn;
-    for (int p = 0; p < end - begin; ++p) {
-      const int touching_count = first[p + 1] - first[p];
-      if (touching_count == 0) continue;
+    for (std::size_t group = 0; group < order.size();) {
+      const int i = found[static_cast<std::size_t>(order[group])].particle;
+      std::size_t group_end = group + 1;
+      while (group_end < order.size() && found[static_cast<std::size_t>(order[group_end])].particle == i) ++group_end;
+      const int touching_count = static_cast<int>(group_end - group);
       const int count = std::min(touching_count, kMaxSimultaneousContacts);  // any further ones push nothing
-      const int i = begin + p;
       for (int a = 0; a < count; ++a) {
-        const TouchingContact& touching = found[static_cast<std::size_t>(order[first[p] + a])];
+        const TouchingContact& touching = found[static_cast<std::size_t>(order[group + static_cast<std::size_t>(a)])];
         normals[a] = {touching.normal, touching.depth, touching.surface_velocity};
       }
       linearly_implicit_normal_forces(normals.data(), count, v.col(i), force.col(i), model.mass[i], h,
@@ -185,8 +210,10 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
         if (active && fn[a] > 0.0) block_active.push_back({i, normals[a].normal});
       }
       for (int a = 0; a < touching_count; ++a)
-        finish_contact(block, found[static_cast<std::size_t>(order[first[p] + a])], a < count ? fn[a] : 0.0);
+        finish_contact(record, static_cast<std::size_t>(order[group + static_cast<std::size_t>(a)]), a < count ? fn[a] : 0.0);
+      group = group_end;
     }
+    sum_block_totals(record);
   };
   const auto contact_block = [&](std::int64_t block) {
     contact_block_forces(block);

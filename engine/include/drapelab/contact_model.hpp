@@ -54,6 +54,13 @@ struct TouchingContact {
   Eigen::Vector3d surface_velocity = Eigen::Vector3d::Zero();  // m/s, the collider's surface there
 };
 
+// The force magnitudes one overlap applied (N), kept beside the block's overlaps until the block's
+// totals are summed from them.
+struct ContactForceMagnitudes {
+  double normal = 0.0;    // N, the penalty force
+  double friction = 0.0;  // N, |friction force|
+};
+
 // One collider's totals within one block, alone on its cache line (see ContactBlockWork).
 struct alignas(64) BlockColliderTotals {
   ColliderContactTotals totals;
@@ -67,6 +74,7 @@ struct alignas(64) BlockColliderTotals {
 struct alignas(64) ContactBlockWork {
   std::vector<int> near;                       // the broad phase's particles for one collider
   std::vector<TouchingContact> touching;       // overlaps, collider by collider
+  std::vector<ContactForceMagnitudes> applied;  // per overlap, what it applied
   std::vector<int> order;                      // those overlaps' indices, particle by particle
   std::vector<ActiveContact> active;           // pushing contacts, in particle order
   std::vector<BlockColliderTotals> colliders;  // per collider
