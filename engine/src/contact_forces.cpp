@@ -199,12 +199,20 @@ std::int64_t ContactModel::add_contact_forces(const ClothModel& model, double t,
       while (group_end < order.size() && found[static_cast<std::size_t>(order[group_end])].particle == i) ++group_end;
       const int touching_count = static_cast<int>(group_end - group);
       const int count = std::min(touching_count, kMaxSimultaneousContacts);  // any further ones push nothing
-      for (int a = 0; a < count; ++a) {
-        const TouchingContact& touching = found[static_cast<std::size_t>(order[group + static_cast<std::size_t>(a)])];
-        normals[a] = {touching.normal, touching.depth, touching.surface_velocity};
+      if (count == 1) {  // nearly every contact: the closed form, as linearly_implicit_normal_forces has it
+        const TouchingContact& only = found[static_cast<std::size_t>(order[group])];
+        normals[0].normal = only.normal;
+        fn[0] = linearly_implicit_normal_force(only.depth, (v.col(i) - only.surface_velocity).dot(only.normal),
+                                               force.col(i).dot(only.normal), model.mass[i], h,
+                                               parameters_.stiffness, parameters_.damping);
+      } else {
+        for (int a = 0; a < count; ++a) {
+          const TouchingContact& touching = found[static_cast<std::size_t>(order[group + static_cast<std::size_t>(a)])];
+          normals[a] = {touching.normal, touching.depth, touching.surface_velocity};
+        }
+        linearly_implicit_normal_forces(normals.data(), count, v.col(i), force.col(i), model.mass[i], h,
+                                        parameters_.stiffness, parameters_.damping, fn.data());
       }
-      linearly_implicit_normal_forces(normals.data(), count, v.col(i), force.col(i), model.mass[i], h,
-                                      parameters_.stiffness, parameters_.damping, fn.data());
       for (int a = 0; a < count; ++a) {
         force.col(i) += fn[a] * normals[a].normal;
         if (active && fn[a] > 0.0) block_active.push_back({i, normals[a].normal});
