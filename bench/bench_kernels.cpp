@@ -1,6 +1,6 @@
 // Google Benchmark micro-benchmarks of the step's kernels: the spring phase (plain edge list and the
 // spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, the contact
-// phase alone (per contact), and a step of
+// phase alone (per contact), the adaptive substeps' shape bound (per particle), and a step of
 // implicit Euler with the assembled or the matrix-free solve (with its CG iterations). They measure;
 // nothing here asserts a time.
 // Run: build/bench/bench_kernels [--benchmark_filter=Springs]
@@ -17,6 +17,7 @@
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/spring_families.hpp"
+#include "drapelab/stability.hpp"
 
 namespace drapelab {
 namespace {
@@ -144,6 +145,27 @@ void ContactPhase(benchmark::State& bench) {
       model.particle_count() * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(ContactPhase)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2});
+
+// The adaptive substeps' shape bound (stability.hpp shape_stable_step): every particle's stiffness and
+// damping tensors at the current shape and their largest eigenvalues, evaluated once per step of the
+// scene (not per substep). Args: particles per side, threads, and 1 for the sums over spring families
+// (the solver's choice on a grid) or 0 for the index lists (any cloth). ns_per_particle is per
+// evaluation.
+void ShapeBound(benchmark::State& bench) {
+  Sheet sheet(static_cast<int>(bench.range(0)));
+  kernels::set_thread_count(static_cast<int>(bench.range(1)));
+  const auto families = SpringFamilies::build(sheet.model);
+  const std::vector<SpringFamily>* by_family = bench.range(2) != 0 ? &families->families() : nullptr;
+  ShapeBoundWorkspace workspace;
+  for (auto _ : bench)
+    benchmark::DoNotOptimize(shape_stable_step(sheet.model, sheet.state.x, 0.1, workspace, by_family));
+  bench.counters["ns_per_particle"] =
+      benchmark::Counter(static_cast<double>(sheet.model.particle_count()) * 1e-9,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(ShapeBound)
+    ->Args({65, 1, 0})->Args({65, 1, 1})->Args({65, 2, 1})->Args({129, 1, 0})->Args({129, 1, 1})->Args({129, 2, 0})
+    ->Args({129, 2, 1});
 
 // A step of implicit Euler at h = 1/240 s on a free sheet (no collider) and its conjugate-gradient
 // iterations: args are the particles per side, the threads, and 1 for the matrix-free solve on spring

@@ -15,6 +15,7 @@
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/shape_bound_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
+#include "drapelab/spring_families.hpp"
 #include "drapelab/spring_family_loops.hpp"
 #include "drapelab/spring_jacobian.hpp"
 #include "drapelab/stability.hpp"
@@ -149,16 +150,54 @@ TEST(ShapeStepBound, IsTheLargestParticleRateOverASheetOfManyChunks) {
     expected.damping = std::max(expected.damping, 2.0 * largest(damping[i]) * model.inverse_mass[i]);
   }
   Tensors tensors;
+  // Both ways of summing a particle's springs: the index lists, and the spring families of the grid
+  // (row ends leave empty slots; a particle in the first rows ends no spring of the +2nx family).
+  const auto families = SpringFamilies::build(model);
+  ASSERT_NE(families, nullptr);
   const int threads_before = kernels::thread_count();
-  for (int threads : {1, 2}) {
-    kernels::set_thread_count(threads);
-    const NetworkRates bound = shape_rate_bounds(model, x, 0.0, {}, tensors);
-    EXPECT_GE(bound.stiffness, expected.stiffness * (1.0 - 1e-12)) << threads;
-    EXPECT_NEAR(bound.stiffness, expected.stiffness, 1e-8 * expected.stiffness) << threads;
-    EXPECT_GE(bound.damping, expected.damping * (1.0 - 1e-12)) << threads;
-    EXPECT_NEAR(bound.damping, expected.damping, 1e-8 * expected.damping) << threads;
+  for (const std::vector<SpringFamily>* by_family : {static_cast<const std::vector<SpringFamily>*>(nullptr),
+                                                     &families->families()}) {
+    for (int threads : {1, 2}) {
+      kernels::set_thread_count(threads);
+      SCOPED_TRACE(std::string(by_family ? "families, " : "index lists, ") + std::to_string(threads) + " threads");
+      const NetworkRates bound = shape_rate_bounds(model, x, 0.0, {}, tensors, by_family);
+      EXPECT_GE(bound.stiffness, expected.stiffness * (1.0 - 1e-12));
+      EXPECT_NEAR(bound.stiffness, expected.stiffness, 1e-8 * expected.stiffness);
+      EXPECT_GE(bound.damping, expected.damping * (1.0 - 1e-12));
+      EXPECT_NEAR(bound.damping, expected.damping, 1e-8 * expected.damping);
+    }
   }
   kernels::set_thread_count(threads_before);
+}
+
+// The family sums are the index-list sums in another order: on a crumpled sheet large enough to split
+// among threads, with springs of varied rest lengths (so no family is uniform) and a few particles
+// pinned, the two bounds agree to rounding, and the family bound has the same bits on 1 and 2 threads.
+TEST(ShapeStepBound, SpringFamiliesGiveTheIndexListBoundToRoundingAndTheSameBitsOnAnyThreadCount) {
+  ClothModel model = build_grid_cloth(hanging_sheet(97));  // 9,409 particles
+  std::mt19937_64 random(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double& rest : model.springs.rest_length) rest *= 1.0 + 0.2 * u(random);
+  for (int i = 0; i < model.particle_count(); ++i)
+    if (!model.is_pinned(i)) model.inverse_mass[i] /= std::pow(2.0, u(random));
+  Eigen::Matrix3Xd x = model.rest_positions;
+  for (int i = 0; i < x.cols(); ++i)
+    for (int c = 0; c < 3; ++c) x(c, i) += 0.3 / 96.0 * u(random);
+  const auto families = SpringFamilies::build(model);
+  ASSERT_NE(families, nullptr);
+  Tensors tensors;
+  const ContactRates contact{1000.0, 0.2};
+  const int threads_before = kernels::thread_count();
+  kernels::set_thread_count(1);
+  const NetworkRates lists = shape_rate_bounds(model, x, 0.1, contact, tensors);
+  const NetworkRates one = shape_rate_bounds(model, x, 0.1, contact, tensors, &families->families());
+  kernels::set_thread_count(2);
+  const NetworkRates two = shape_rate_bounds(model, x, 0.1, contact, tensors, &families->families());
+  kernels::set_thread_count(threads_before);
+  EXPECT_NEAR(one.stiffness, lists.stiffness, 1e-12 * lists.stiffness);
+  EXPECT_NEAR(one.damping, lists.damping, 1e-12 * lists.damping);
+  EXPECT_EQ(one.stiffness, two.stiffness);
+  EXPECT_EQ(one.damping, two.damping);
 }
 
 TEST(ShapeStepBound, ContactAndAirAddAsInTheGershgorinBound) {

@@ -43,6 +43,44 @@ inline double largest_eigenvalue(double a, double b, double c, double d, double 
   return isotropic ? q : largest + 1e-9 * std::abs(largest);
 }
 
+// One spring's share of its particles' tensors at separation d = x_a - x_b (m): u u^T (xx, yy, zz, xy,
+// xz, yz) and ks split into the part on u u^T and the part on I (N/m), with a = max(0, 1 - l0 / l).
+// A spring of zero length has no direction: its "u u^T" is the identity, so it counts as stiff and
+// damped in every direction (across = 0 puts its whole ks there).
+struct SpringTerms {
+  double uu[6];
+  double along, isotropic;  // N/m
+};
+inline SpringTerms spring_terms(double dx, double dy, double dz, double rest, double ks) {
+  const double squared = dx * dx + dy * dy + dz * dz;  // m^2
+  const bool has_direction = squared > 0.0;
+  const double inverse_length = has_direction ? 1.0 / std::sqrt(squared) : 0.0;  // 1/m
+  const double ux = dx * inverse_length, uy = dy * inverse_length, uz = dz * inverse_length;
+  const double across = has_direction ? std::max(0.0, 1.0 - rest * inverse_length) : 0.0;
+  return {{has_direction ? ux * ux : 1.0, has_direction ? uy * uy : 1.0, has_direction ? uz * uz : 1.0, ux * uy,
+           ux * uz, uy * uz},
+          ks * (1.0 - across),
+          ks * across};
+}
+
+// The rates of a chunk's particles from their summed tensors t (12 rows: S_i in N/m, then D_i in
+// N*s/m) and inverse masses w (1/kg, 0 when pinned: a pinned particle bounds nothing), into the
+// running maxima, in a vectorised loop over the chunk.
+inline void chunk_rate_maxima(const double (&t)[12][kBoundChunk], const double* w, std::int64_t count,
+                              double contact_stiffness, double contact_damping, double& stiffness_rate,
+                              double& damping_rate) {
+  double stiffness_max = stiffness_rate, damping_max = damping_rate;
+#pragma omp simd reduction(max : stiffness_max, damping_max)
+  for (std::int64_t j = 0; j < count; ++j) {
+    const double stiffness = largest_eigenvalue(t[0][j], t[1][j], t[2][j], t[3][j], t[4][j], t[5][j]);
+    const double damping = largest_eigenvalue(t[6][j], t[7][j], t[8][j], t[9][j], t[10][j], t[11][j]);
+    stiffness_max = std::max(stiffness_max, w[j] == 0.0 ? 0.0 : (2.0 * stiffness + contact_stiffness) * w[j]);
+    damping_max = std::max(damping_max, w[j] == 0.0 ? 0.0 : (2.0 * damping + contact_damping) * w[j]);
+  }
+  stiffness_rate = stiffness_max;
+  damping_rate = damping_max;
+}
+
 }  // namespace
 
 double largest_symmetric_eigenvalue(double a, double b, double c, double d, double e, double f) {
@@ -66,22 +104,11 @@ ShapeRates shape_rate_maxima(std::int64_t n, IncidentSprings adjacency, SpringAr
 #pragma omp for simd schedule(simd : static)
     for (std::int64_t e = 0; e < spring_count; ++e) {
       const std::int64_t a = s.v0[e], b = s.v1[e];
-      const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
-      const double squared = dx * dx + dy * dy + dz * dz;  // m^2
-      // A spring of zero length has no direction: its "u u^T" is the identity, so it counts as stiff
-      // and damped in every direction (across = 0 puts its whole ks there).
-      const bool has_direction = squared > 0.0;
-      const double inverse_length = has_direction ? 1.0 / std::sqrt(squared) : 0.0;  // 1/m
-      const double ux = dx * inverse_length, uy = dy * inverse_length, uz = dz * inverse_length;
-      const double across = has_direction ? std::max(0.0, 1.0 - s.rest_length[e] * inverse_length) : 0.0;
-      uu[0][e] = has_direction ? ux * ux : 1.0;
-      uu[1][e] = has_direction ? uy * uy : 1.0;
-      uu[2][e] = has_direction ? uz * uz : 1.0;
-      uu[3][e] = ux * uy;
-      uu[4][e] = ux * uz;
-      uu[5][e] = uy * uz;
-      along[e] = s.ks[e] * (1.0 - across);
-      isotropic[e] = s.ks[e] * across;
+      const SpringTerms terms_e =
+          spring_terms(x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2], s.rest_length[e], s.ks[e]);
+      for (int c = 0; c < 6; ++c) uu[c][e] = terms_e.uu[c];
+      along[e] = terms_e.along;
+      isotropic[e] = terms_e.isotropic;
     }
     // 2. Chunk by chunk, each particle sums its own springs (no writes to shared sums, one order), then
     // the largest eigenvalues of its two tensors, in a vectorised loop over the chunk's particles.
@@ -102,15 +129,54 @@ ShapeRates shape_rate_maxima(std::int64_t n, IncidentSprings adjacency, SpringAr
         }
         for (int c = 0; c < 12; ++c) t[c][j] = sum[c];
       }
-      const double* w = inverse_mass + begin;  // 1/kg, 0 when pinned (a pinned particle bounds nothing)
-#pragma omp simd reduction(max : stiffness_rate, damping_rate)
-      for (std::int64_t j = 0; j < count; ++j) {
-        const double stiffness = largest_eigenvalue(t[0][j], t[1][j], t[2][j], t[3][j], t[4][j], t[5][j]);
-        const double damping = largest_eigenvalue(t[6][j], t[7][j], t[8][j], t[9][j], t[10][j], t[11][j]);
-        stiffness_rate = std::max(stiffness_rate, w[j] == 0.0 ? 0.0 : (2.0 * stiffness + contact_stiffness) * w[j]);
-        damping_rate = std::max(damping_rate, w[j] == 0.0 ? 0.0 : (2.0 * damping + contact_damping) * w[j]);
-      }
+      chunk_rate_maxima(t, inverse_mass + begin, count, contact_stiffness, contact_damping, stiffness_rate,
+                        damping_rate);
     }
+  }
+  return {stiffness_rate, damping_rate};
+}
+
+ShapeRates family_shape_rate_maxima(std::int64_t n, const std::vector<SpringFamily>& families,
+                                    const double* inverse_mass, const double* x, double contact_stiffness,
+                                    double contact_damping) {
+  double stiffness_rate = 0.0, damping_rate = 0.0;  // 1/s^2, 1/s
+  const std::int64_t chunks = (n + kBoundChunk - 1) / kBoundChunk;
+#pragma omp parallel for schedule(static) reduction(max : stiffness_rate, damping_rate) if (n >= kParallelParticles)
+  for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
+    const std::int64_t begin = chunk * kBoundChunk, count = std::min(n, begin + kBoundChunk) - begin;
+    double t[12][kBoundChunk] = {};  // S_i (xx, yy, zz, xy, xz, yz) in N/m, then D_i in N*s/m
+    // Particle i adds the terms of a spring at separation d (m; either sign: the terms are even in d).
+    const auto add_terms = [&t](std::int64_t j, double dx, double dy, double dz, double rest, double ks, double kd) {
+      const SpringTerms terms = spring_terms(dx, dy, dz, rest, ks);
+      t[0][j] += terms.along * terms.uu[0] + terms.isotropic;
+      t[1][j] += terms.along * terms.uu[1] + terms.isotropic;
+      t[2][j] += terms.along * terms.uu[2] + terms.isotropic;
+      t[3][j] += terms.along * terms.uu[3];
+      t[4][j] += terms.along * terms.uu[4];
+      t[5][j] += terms.along * terms.uu[5];
+      for (int c = 0; c < 6; ++c) t[6 + c][j] += kd * terms.uu[c];
+    };
+    const std::int64_t end = begin + count;
+    for (const SpringFamily& family : families) {
+      const std::int64_t o = family.offset;
+      const double* rest = family.rest.data();
+      const double* ks = family.ks.data();
+      const double* kd = family.kd.data();
+      // Particle i starts slot i's spring (i, i + o), which exists only for i + o < n, and ends slot
+      // i - o's, only for i >= o; an empty slot within those ranges has ks = kd = 0 and adds exact zeros.
+      const std::int64_t starts_end = std::min(end, n - o);
+#pragma omp simd
+      for (std::int64_t i = begin; i < starts_end; ++i)
+        add_terms(i - begin, x[3 * i] - x[3 * (i + o)], x[3 * i + 1] - x[3 * (i + o) + 1],
+                  x[3 * i + 2] - x[3 * (i + o) + 2], rest[i], ks[i], kd[i]);
+      const std::int64_t ends_begin = std::max(begin, o);
+#pragma omp simd
+      for (std::int64_t i = ends_begin; i < end; ++i)
+        add_terms(i - begin, x[3 * (i - o)] - x[3 * i], x[3 * (i - o) + 1] - x[3 * i + 1],
+                  x[3 * (i - o) + 2] - x[3 * i + 2], rest[i - o], ks[i - o], kd[i - o]);
+    }
+    chunk_rate_maxima(t, inverse_mass + begin, count, contact_stiffness, contact_damping, stiffness_rate,
+                      damping_rate);
   }
   return {stiffness_rate, damping_rate};
 }

@@ -212,7 +212,8 @@ void SpringDamperSolver::step(double h) {
 int SpringDamperSolver::substeps_for(double h) {
   PhaseTimer timer(stats_, StepPhase::step_bound);
   const double target =
-      settings_.substep_safety * shape_stable_step(*model_, state_.x, settings_.air_damping, shape_bound_);  // s
+      settings_.substep_safety * shape_stable_step(*model_, state_.x, settings_.air_damping, shape_bound_,
+                                                   spring_families_ ? &spring_families_->families() : nullptr);  // s
   // At most 10^7 substeps, as the scene format allows per frame (a NaN shape gives one: the health
   // check then stops the run).
   const double count = std::ceil(h / target);

@@ -34,8 +34,14 @@ NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, Co
 }
 
 NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
-                               ContactRates contact, ShapeBoundWorkspace& workspace) {
+                               ContactRates contact, ShapeBoundWorkspace& workspace,
+                               const std::vector<SpringFamily>* families) {
   const int count = model.particle_count();
+  if (families) {
+    const kernels::ShapeRates maxima = kernels::family_shape_rate_maxima(
+        count, *families, model.inverse_mass.data(), x.data(), contact.stiffness, contact.damping);
+    return {maxima.stiffness, maxima.damping + air_damping};
+  }
   const SpringSet& s = model.springs;
   if (workspace.first.size() != static_cast<std::size_t>(count) + 1) {
     // Each particle's springs in increasing index (a counting sort), built once per model.
@@ -61,8 +67,9 @@ NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& 
 }
 
 double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
-                         ShapeBoundWorkspace& workspace) {
-  return step_from_rates(shape_rate_bounds(model, x, air_damping, {}, workspace), Integrator::symplectic_euler, 0.0);
+                         ShapeBoundWorkspace& workspace, const std::vector<SpringFamily>* families) {
+  return step_from_rates(shape_rate_bounds(model, x, air_damping, {}, workspace, families),
+                         Integrator::symplectic_euler, 0.0);
 }
 
 namespace {

@@ -6,6 +6,9 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
+
+#include "drapelab/spring_family_loops.hpp"
 
 namespace drapelab::kernels {
 
@@ -40,6 +43,16 @@ struct ShapeRates {
 ShapeRates shape_rate_maxima(std::int64_t n, IncidentSprings adjacency, SpringArrays springs,
                              const double* inverse_mass, const double* x, double contact_stiffness,
                              double contact_damping, std::int64_t spring_count, double* terms);
+
+// The same maxima for a cloth whose springs are spring families (spring_family_loops.hpp: every
+// regular grid), without index lists: chunk by chunk, each particle adds, family by family, the terms
+// of the spring it starts (slot i) and of the one it ends (slot i - offset), each computed where it is
+// needed (twice per spring, in unit-stride vectorised loops, where the index lists made every term a
+// scattered read). Equal to shape_rate_maxima to rounding (the sums run in another order); the same
+// bits for any thread count.
+ShapeRates family_shape_rate_maxima(std::int64_t n, const std::vector<SpringFamily>& families,
+                                    const double* inverse_mass, const double* x, double contact_stiffness,
+                                    double contact_damping);
 
 // The largest eigenvalue of the symmetric 3 x 3 matrix with diagonal (a, b, c) and off-diagonal
 // entries d = (0,1), e = (0,2), f = (1,2): the characteristic cubic's largest root, found from above by

@@ -15,6 +15,7 @@
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/integrators.hpp"
+#include "drapelab/spring_family_loops.hpp"
 
 namespace drapelab {
 
@@ -69,12 +70,17 @@ struct ShapeBoundWorkspace {
   std::vector<std::int32_t> incident;  // spring indices, increasing within each particle
   std::vector<double> terms;           // per spring: u u^T and ks split across it (shape_bound_loops.hpp)
 };
+// `families`, when given, are the model's springs as spring families (spring_families.hpp): the
+// tensors are then summed family by family in unit-stride loops (shape_bound_loops.hpp
+// family_shape_rate_maxima), several times faster on a grid, equal to the index-list sums to rounding;
+// the workspace is then not used.
 NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
-                               ContactRates contact, ShapeBoundWorkspace& workspace);
+                               ContactRates contact, ShapeBoundWorkspace& workspace,
+                               const std::vector<SpringFamily>* families = nullptr);
 // Symplectic Euler's stable step (s) at shape x from those bounds, without the contact (it takes the
 // contact at the step's end): the step adaptive substeps follow.
 double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
-                         ShapeBoundWorkspace& workspace);
+                         ShapeBoundWorkspace& workspace, const std::vector<SpringFamily>* families = nullptr);
 
 // The stable step (s) of each integrator from rates K and C: symplectic Euler's
 // (sqrt(C^2 + 4 K) - C) / K for it, Verlet and leapfrog; 1.39 x that for RK4; the smaller of that and
