@@ -86,9 +86,10 @@ void SpringFamilies::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3X
 
 void SpringFamilies::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                                 const Eigen::Matrix3Xd& weight, const Eigen::Matrix3Xd& mass, double air,
-                                                Eigen::Matrix3Xd& force, bool state_split) {
+                                                Eigen::Matrix3Xd& force, bool state_split,
+                                                const kernels::ForcesFinalHook* after) {
   const kernels::BodyForceInputs body{weight.data(), mass.data(), air};
-  kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data(), &body, state_split);
+  kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data(), &body, state_split, after);
 }
 
 }  // namespace drapelab

@@ -19,8 +19,9 @@ namespace {
 // Below this many slots in all, starting threads costs more than it saves (a parallel region costs a
 // few microseconds; a slot about a nanosecond).
 constexpr std::int64_t kParallelSlots = 16384;
-// Particles per block of the gather, so a block's accumulators and force rows stay in L1.
-constexpr std::int64_t kGatherBlock = 512;
+// Particles per block of the gather, so a block's accumulators and force rows stay in cache; the
+// contact phase's blocks too (particle_loops.hpp).
+constexpr std::int64_t kGatherBlock = kPhaseBlock;
 
 }  // namespace
 
@@ -132,7 +133,8 @@ void split_state_range(const double* x, const double* v, FamilyScratch& scratch,
 }
 
 void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
-                       FamilyScratch& scratch, double* f, const BodyForceInputs* body, bool state_split) {
+                       FamilyScratch& scratch, double* f, const BodyForceInputs* body, bool state_split,
+                       const ForcesFinalHook* after) {
   const std::int64_t n = scratch.particles;
   const std::int64_t family_count = static_cast<std::int64_t>(families.size());
   const std::int64_t max_offset = scratch.padding;
@@ -174,6 +176,9 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
     // 3. The deferred particles at the start of each run (none for the first thread).
     for (std::int64_t begin = run.begin; begin < run.deferred_end; begin += kGatherBlock)
       gather(families, scratch, f, begin, std::min(run.deferred_end, begin + kGatherBlock));
+    // 4. This thread's particles are final: the caller's work on them, with no barrier before it (the
+    // slot loops, the only readers of other threads' particles, ended at the barrier above).
+    if (after) after->run(after->context, run.first_block, run.end_block);
   }
 }
 

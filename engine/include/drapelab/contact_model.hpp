@@ -155,4 +155,44 @@ class ContactModel {
   std::shared_ptr<const ColliderPoseTable> poses_;  // null: analytic poses
 };
 
+// One evaluation of the contact phase (ContactModel::add_contact_forces), in three parts so that a
+// caller may run the blocks inside a parallel region of its own (the spring kernel's, whose threads
+// own the same runs of blocks, particle_loops.hpp kPhaseBlock): the constructor poses every collider
+// and readies the workspace (serial); run_block does one block of particles, on any thread, each
+// block once, touching only that block's particles and record; finish sums the blocks' results in
+// block order (serial). The result is the same whichever thread ran which block.
+class ContactPass {
+ public:
+  // The arguments as for ContactModel::add_contact_forces; `keep_active`: record pushing contacts.
+  // Every reference must outlive the pass.
+  ContactPass(const ContactModel& contacts, const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
+              const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force, ContactWorkspace& workspace,
+              ContactNormalScheme normal, bool keep_active, const ContactBlockFollowUp* follow_up);
+
+  std::int64_t block_count() const { return blocks_; }
+  // Block `block`'s contact forces, then the follow-up on its particles. Safe to call for different
+  // blocks from several threads at once: each writes only its own particles and record.
+  void run_block(std::int64_t block) const;
+  // Once every block has run: each collider's totals (overwritten), the pushing contacts into `active`
+  // when given (cleared first), and the lowest particle the follow-up flagged, else -1.
+  std::int64_t finish(std::vector<ColliderContactTotals>& totals, std::vector<ActiveContact>* active) const;
+
+ private:
+  void block_forces(std::int64_t block) const;
+  void finish_contact(ContactBlockWork& record, std::size_t e, double fn) const;
+
+  const ContactModel& contacts_;
+  const ClothModel& model_;
+  double t_, h_;  // s
+  const Eigen::Matrix3Xd& x_;
+  const Eigen::Matrix3Xd& v_;
+  Eigen::Matrix3Xd& force_;
+  ContactWorkspace& work_;
+  ContactNormalScheme normal_scheme_;
+  bool keep_active_;
+  const ContactBlockFollowUp* follow_up_;
+  int particles_;
+  std::int64_t blocks_;
+};
+
 }  // namespace drapelab

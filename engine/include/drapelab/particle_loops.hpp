@@ -12,6 +12,12 @@ namespace drapelab::kernels {
 // Below this many particles a per-particle pass costs less than starting the threads (a parallel
 // region costs a few microseconds): every threaded particle phase runs on one thread below it.
 inline constexpr std::int64_t kParallelParticles = 4096;
+// Particles per block of the spring kernel's gather (spring_family_loops.hpp) and of the contact phase
+// (contact_model.hpp). One size for both: a thread's run of blocks (thread_run) is then the same
+// particles in both, so the contact phase can run inside the spring kernel's parallel region on the
+// particles each thread has just gathered. Fixed, never derived from the thread count, so every sum
+// runs in the same order on any machine.
+inline constexpr std::int64_t kPhaseBlock = 512;
 
 // x, v, f and every per-coordinate array below are 3 x n, packed as in ClothState: the passes run
 // over the 3n coordinates as one unit-stride array, so a per-particle quantity comes repeated for each

@@ -61,9 +61,21 @@ struct BodyForceInputs {
 // (one pass over the particles and one start of the threads fewer than set_body_forces, then this).
 // `state_split`: the scratch's six state arrays already hold x and v (split_state_range was run over
 // every particle since they last changed), so the loops skip that pass and its barrier.
+// Work run inside the loops' parallel region once a thread's particles have their final forces: on
+// every thread of the region, once, with that thread's run of blocks of kPhaseBlock particles
+// [first_block, end_block) (particle_loops.hpp thread_run's split; all of them on one thread when the
+// region does not split). It may read and write only those particles (the other threads may still be
+// gathering theirs) and must not wait for the other threads. It saves the contact phase a parallel
+// region of its own.
+struct ForcesFinalHook {
+  void (*run)(const void* context, std::int64_t first_block, std::int64_t end_block) = nullptr;
+  const void* context = nullptr;
+};
+// `after`, when given, runs as described above; the forces are then final for its particles only, and
+// for every particle once the call returns.
 void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
                        FamilyScratch& scratch, double* f, const BodyForceInputs* body = nullptr,
-                       bool state_split = false);
+                       bool state_split = false, const ForcesFinalHook* after = nullptr);
 // Particles begin <= i < end of x and v (3 x particles, packed) into the scratch's six state arrays,
 // on the calling thread: for a phase that has just written those particles (the Euler update), so the
 // next force evaluation need not split the whole state again.
