@@ -259,7 +259,6 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
   // thread that computed them and while they are in its cache: the same expressions as the pass
   // above, so the same bits, without a pass (and a start of the threads) of its own. The update's time
   // is then counted in the contact phase.
-  set_body_and_spring_forces(state_.x, state_.v);
   // On the spring fast path the block's new state is also split into the kernel's unit-stride arrays
   // there, so the next force evaluation skips its own pass over the state (and a barrier).
   struct EulerUpdate {
@@ -284,8 +283,48 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
         return flagged;
       },
       &update};
+  if (spring_families_) {
+    const std::int64_t flagged = spring_and_contact_forces_together(h, follow_up);
+    split_state_is_current_ = true;  // every block was split as it was updated
+    return flagged;
+  }
+  set_body_and_spring_forces(state_.x, state_.v);
   const std::int64_t flagged = add_contact_forces(state_.x, state_.v, state_.time, h, &follow_up);
-  split_state_is_current_ = spring_families_ != nullptr;  // every block was split as it was updated
+  split_state_is_current_ = false;
+  return flagged;
+}
+
+std::int64_t SpringDamperSolver::spring_and_contact_forces_together(double h, const ContactBlockFollowUp& follow_up) {
+  const auto start = Clock::now();
+  const ContactNormalScheme normal = contact_at_step_end(settings_.integrator)
+                                         ? ContactNormalScheme::linearly_implicit
+                                         : ContactNormalScheme::explicit_penalty;
+  const ContactPass pass(*settings_.contacts, *model_, state_.time, h, state_.x, state_.v, force_, contact_workspace_,
+                         normal, implicit_stats() != nullptr, &follow_up);
+  // The phase timers split the region where the thread that runs block 0 turns from springs to
+  // contacts (the other thread's turn is within a block's time of it).
+  struct Contacts {
+    const ContactPass* pass;
+    Clock::time_point* turned;
+  };
+  auto turned = Clock::now();
+  const Contacts contacts{&pass, &turned};
+  const kernels::ForcesFinalHook hook{[](const void* context, std::int64_t first_block, std::int64_t end_block) {
+                                        const auto& c = *static_cast<const Contacts*>(context);
+                                        if (first_block == 0 && end_block > 0) *c.turned = Clock::now();
+                                        for (std::int64_t block = first_block; block < end_block; ++block)
+                                          c.pass->run_block(block);
+                                      },
+                                      &contacts};
+  const auto springs_start = Clock::now();
+  spring_families_->set_body_and_spring_forces(state_.x, state_.v, weight_, coordinate_mass_, settings_.air_damping,
+                                               force_, split_state_is_current_, &hook);
+  const std::int64_t flagged = pass.finish(contact_totals_, implicit_stats() ? &active_contacts_ : nullptr);
+  const auto end = Clock::now();
+  using Seconds = std::chrono::duration<double>;
+  stats_.seconds[static_cast<int>(StepPhase::springs)] += Seconds(turned - springs_start).count();
+  stats_.seconds[static_cast<int>(StepPhase::contacts)] +=
+      Seconds(springs_start - start).count() + Seconds(end - turned).count();
   return flagged;
 }
 
