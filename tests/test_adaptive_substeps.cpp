@@ -111,6 +111,32 @@ TEST(ShapeStepBound, HoldsTheLinearisedNetworkOnFlatAndCrumpledSheets) {
   }
 }
 
+// Each particle's own rates, 2 lambda_max(S_i) / m_i and 2 lambda_max(D_i) / m_i, with its tensors summed
+// here from the springs at x and their eigenvalues taken by Eigen (0 for a pinned particle).
+std::vector<NetworkRates> particle_rates(const ClothModel& model, const Eigen::Matrix3Xd& x) {
+  const int n = model.particle_count();
+  std::vector<Eigen::Matrix3d> stiffness(n, Eigen::Matrix3d::Zero()), damping(n, Eigen::Matrix3d::Zero());
+  const SpringSet& s = model.springs;
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    const Eigen::Vector3d d = x.col(s.v0[e]) - x.col(s.v1[e]);
+    const Eigen::Vector3d dir = d.normalized();
+    const double across = std::max(0.0, 1.0 - s.rest_length[e] / d.norm());
+    const Eigen::Matrix3d block =
+        s.ks[e] * ((1.0 - across) * dir * dir.transpose() + across * Eigen::Matrix3d::Identity());  // N/m
+    for (int end : {s.v0[e], s.v1[e]}) {
+      stiffness[end] += block;
+      damping[end] += s.kd[e] * dir * dir.transpose();
+    }
+  }
+  const auto largest = [](const Eigen::Matrix3d& m) {
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues().maxCoeff();
+  };
+  std::vector<NetworkRates> rates(n);
+  for (int i = 0; i < n; ++i)
+    rates[i] = {2.0 * largest(stiffness[i]) * model.inverse_mass[i], 2.0 * largest(damping[i]) * model.inverse_mass[i]};
+  return rates;
+}
+
 // The per-particle pass runs in chunks of particles (its eigenvalues vectorised over a chunk): on a
 // sheet of several chunks, with pins and every particle of its own mass, the bound is the largest
 // 2 lambda_max(S_i) / m_i and 2 lambda_max(D_i) / m_i over the free particles, each tensor summed here
@@ -127,27 +153,11 @@ TEST(ShapeStepBound, IsTheLargestParticleRateOverASheetOfManyChunks) {
   const double spacing = 1.0 / 40.0;  // m
   for (int i = 0; i < x.cols(); ++i)
     for (int c = 0; c < 3; ++c) x(c, i) += 0.4 * spacing * u(random);
-  const int n = model.particle_count();
-  std::vector<Eigen::Matrix3d> stiffness(n, Eigen::Matrix3d::Zero()), damping(n, Eigen::Matrix3d::Zero());
-  const SpringSet& s = model.springs;
-  for (std::size_t e = 0; e < s.size(); ++e) {
-    const Eigen::Vector3d d = x.col(s.v0[e]) - x.col(s.v1[e]);
-    const Eigen::Vector3d dir = d.normalized();
-    const double across = std::max(0.0, 1.0 - s.rest_length[e] / d.norm());
-    const Eigen::Matrix3d block =
-        s.ks[e] * ((1.0 - across) * dir * dir.transpose() + across * Eigen::Matrix3d::Identity());  // N/m
-    for (int end : {s.v0[e], s.v1[e]}) {
-      stiffness[end] += block;
-      damping[end] += s.kd[e] * dir * dir.transpose();
-    }
-  }
+  const std::vector<NetworkRates> rates = particle_rates(model, x);
   NetworkRates expected;
-  const auto largest = [](const Eigen::Matrix3d& m) {
-    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues().maxCoeff();
-  };
-  for (int i = 0; i < n; ++i) {
-    expected.stiffness = std::max(expected.stiffness, 2.0 * largest(stiffness[i]) * model.inverse_mass[i]);
-    expected.damping = std::max(expected.damping, 2.0 * largest(damping[i]) * model.inverse_mass[i]);
+  for (const NetworkRates& rate : rates) {
+    expected.stiffness = std::max(expected.stiffness, rate.stiffness);
+    expected.damping = std::max(expected.damping, rate.damping);
   }
   Tensors tensors;
   // Both ways of summing a particle's springs: the index lists, and the spring families of the grid
@@ -168,6 +178,40 @@ TEST(ShapeStepBound, IsTheLargestParticleRateOverASheetOfManyChunks) {
     }
   }
   kernels::set_thread_count(threads_before);
+}
+
+// The bound is a maximum over particles, which the edges, with the fewest springs, rarely hold: here
+// every particle of the first and last two rows and of the first and last columns (where the families'
+// loops start and stop: a particle there starts or ends no spring of some family) and a few inside
+// bounds the sheet alone, every other particle pinned by a zero inverse mass, so each one's own sum
+// over the spring families is checked against its tensors assembled here.
+TEST(ShapeStepBound, SpringFamiliesSumEveryParticlesOwnSpringsUpToTheSheetsEdges) {
+  const ClothModel base = build_grid_cloth(hanging_sheet(41));
+  std::mt19937_64 random(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::Matrix3Xd x = base.rest_positions;
+  for (int i = 0; i < x.cols(); ++i)
+    for (int c = 0; c < 3; ++c) x(c, i) += 0.4 / 40.0 * u(random);
+  const std::vector<NetworkRates> expected = particle_rates(base, x);
+  const auto families = SpringFamilies::build(base);
+  ASSERT_NE(families, nullptr);
+  Tensors tensors;
+  ClothModel alone = base;
+  int checked = 0;
+  for (int i = 0; i < base.particle_count(); ++i) {
+    const int row = i / 41, column = i % 41;
+    const bool edge = row < 2 || row > 38 || column == 0 || column == 40;
+    if ((!edge && i % 97 != 0) || base.is_pinned(i)) continue;
+    alone.inverse_mass.setZero();
+    alone.inverse_mass[i] = base.inverse_mass[i];
+    const NetworkRates bound = shape_rate_bounds(alone, x, 0.0, {}, tensors, &families->families());
+    EXPECT_GE(bound.stiffness, expected[i].stiffness * (1.0 - 1e-12)) << "particle " << i;
+    EXPECT_NEAR(bound.stiffness, expected[i].stiffness, 1e-8 * expected[i].stiffness) << "particle " << i;
+    EXPECT_GE(bound.damping, expected[i].damping * (1.0 - 1e-12)) << "particle " << i;
+    EXPECT_NEAR(bound.damping, expected[i].damping, 1e-8 * expected[i].damping) << "particle " << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 200);
 }
 
 // The family sums are the index-list sums in another order: on a crumpled sheet large enough to split

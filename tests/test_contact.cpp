@@ -306,5 +306,26 @@ TEST(PenaltyKernels, FrictionSticksWithinTheStaticConeAndSlidesBeyondIt) {
   EXPECT_EQ(unloaded.magnitude, 0.0);
 }
 
+// The contact totals sum each friction's magnitude as returned, so it must be the force's norm to the
+// last bit in both branches; along oblique directions (where a norm rounds) a magnitude taken from
+// another expression, such as mu_k fn for sliding, differs from it in the last bits.
+TEST(PenaltyKernels, FrictionMagnitudeIsTheForcesNormBitForBit) {
+  const double m = 0.01, h = 1e-3, fn = 0.1;  // kg, s, N
+  std::mt19937_64 random(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int sticking = 0, sliding = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Eigen::Vector3d direction = Eigen::Vector3d(u(random), u(random), u(random)).normalized();
+    const double speed = 0.001 + 0.004 * (0.5 + 0.5 * u(random));  // m/s: 0.02 to 0.05 N to stop, either side of 0.03
+    const FrictionForce friction = coulomb_friction_force(speed * direction, m, h, fn, 0.3, 0.2);
+    const bool sticks = speed * m / h <= 0.3 * fn;
+    (sticks ? sticking : sliding) += 1;
+    ASSERT_EQ(friction.magnitude, friction.force.norm()) << "direction " << direction.transpose() << ", speed " << speed;
+    EXPECT_NEAR(friction.magnitude, sticks ? speed * m / h : 0.2 * fn, 1e-15);
+  }
+  EXPECT_GT(sticking, 50);
+  EXPECT_GT(sliding, 50);
+}
+
 }  // namespace
 }  // namespace drapelab

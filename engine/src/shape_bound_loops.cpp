@@ -163,7 +163,9 @@ ShapeRates family_shape_rate_maxima(std::int64_t n, const std::vector<SpringFami
       const double* ks = family.ks.data();
       const double* kd = family.kd.data();
       // Particle i starts slot i's spring (i, i + o), which exists only for i + o < n, and ends slot
-      // i - o's, only for i >= o; an empty slot within those ranges has ks = kd = 0 and adds exact zeros.
+      // i - o's, only for i >= o; an empty slot within those ranges has ks = kd = 0 and adds exact zeros
+      // (for finite positions: a NaN one spreads to its slot partners, and the health check then stops
+      // the run).
       const std::int64_t starts_end = std::min(end, n - o);
 #pragma omp simd
       for (std::int64_t i = begin; i < starts_end; ++i)

@@ -176,8 +176,10 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
     // 3. The deferred particles at the start of each run (none for the first thread).
     for (std::int64_t begin = run.begin; begin < run.deferred_end; begin += kGatherBlock)
       gather(families, scratch, f, begin, std::min(run.deferred_end, begin + kGatherBlock));
-    // 4. This thread's particles are final: the caller's work on them, with no barrier before it (the
-    // slot loops, the only readers of other threads' particles, ended at the barrier above).
+    // 4. This thread's particles are final: the caller's work on them, with no barrier before it. The
+    // slot loops, the only readers of other threads' particles, ended at the barrier above; the deferred
+    // gathers still read other threads' slot rows, which nothing writes after that barrier (a hook must
+    // not write them either).
     if (after) after->run(after->context, run.first_block, run.end_block);
   }
 }

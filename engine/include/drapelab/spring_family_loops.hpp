@@ -64,9 +64,10 @@ struct BodyForceInputs {
 // Work run inside the loops' parallel region once a thread's particles have their final forces: on
 // every thread of the region, once, with that thread's run of blocks of kPhaseBlock particles
 // [first_block, end_block) (particle_loops.hpp thread_run's split; all of them on one thread when the
-// region does not split). It may read and write only those particles (the other threads may still be
-// gathering theirs) and must not wait for the other threads. It saves the contact phase a parallel
-// region of its own.
+// region does not split). It may read and write only those particles' data, x, v, f and the split
+// state (the other threads may still be gathering theirs, reading the slot rows, which it must not
+// write), and must not wait for the other threads. It saves the contact phase a parallel region of
+// its own.
 struct ForcesFinalHook {
   void (*run)(const void* context, std::int64_t first_block, std::int64_t end_block) = nullptr;
   const void* context = nullptr;
