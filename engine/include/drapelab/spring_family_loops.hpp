@@ -45,11 +45,6 @@ struct FamilyScratch {
   }
 };
 
-// f[3i + c] += (sum over families, in order) t_f[c][i] - t_f[c][i - offset_f], where t_f[c][i] is the
-// damped force on the first particle of the spring in slot i,
-//   -[ks (l - l0) + kd (dv . d) / l] d / l,   d = x(i) - x(i + offset),   zero for a zero length (N).
-// x, v, f: 3 x particles, packed as in ClothState (m, m/s, N). Every particle's terms are summed in
-// the same order whatever the thread count, so the result is bitwise identical for any thread count.
 // Gravity and air drag to start f from instead of its contents (particle_loops.hpp set_body_forces:
 // per coordinate, weight in N, mass in kg, air in 1/s).
 struct BodyForceInputs {
@@ -57,10 +52,7 @@ struct BodyForceInputs {
   const double* mass = nullptr;
   double air = 0.0;
 };
-// With `body`, f is first overwritten with the body forces, block by block in the same parallel region
-// (one pass over the particles and one start of the threads fewer than set_body_forces, then this).
-// `state_split`: the scratch's six state arrays already hold x and v (split_state_range was run over
-// every particle since they last changed), so the loops skip that pass and its barrier.
+
 // Work run inside the loops' parallel region once a thread's particles have their final forces: on
 // every thread of the region, once, with that thread's run of blocks of kPhaseBlock particles
 // [first_block, end_block) (particle_loops.hpp thread_run's split; all of them on one thread when the
@@ -72,7 +64,17 @@ struct ForcesFinalHook {
   void (*run)(const void* context, std::int64_t first_block, std::int64_t end_block) = nullptr;
   const void* context = nullptr;
 };
-// `after`, when given, runs as described above; the forces are then final for its particles only, and
+
+// f[3i + c] += (sum over families, in order) t_f[c][i] - t_f[c][i - offset_f], where t_f[c][i] is the
+// damped force on the first particle of the spring in slot i,
+//   -[ks (l - l0) + kd (dv . d) / l] d / l,   d = x(i) - x(i + offset),   zero for a zero length (N).
+// x, v, f: 3 x particles, packed as in ClothState (m, m/s, N). Every particle's terms are summed in
+// the same order whatever the thread count, so the result is bitwise identical for any thread count.
+// With `body`, f is first overwritten with the body forces, block by block in the same parallel region
+// (one pass over the particles and one start of the threads fewer than set_body_forces, then this).
+// `state_split`: the scratch's six state arrays already hold x and v (split_state_range was run over
+// every particle since they last changed), so the loops skip that pass and its barrier.
+// `after`, when given, runs as ForcesFinalHook says; the forces are then final for its particles only, and
 // for every particle once the call returns.
 void add_family_forces(const double* x, const double* v, const std::vector<SpringFamily>& families,
                        FamilyScratch& scratch, double* f, const BodyForceInputs* body = nullptr,
