@@ -43,11 +43,13 @@ struct Sheet {
   Eigen::Matrix3Xd force;
 };
 
-// Wall time per spring (ns): the rate of "giga-springs" per second, inverted.
+// Wall time per item of an iteration (ns): the rate of "giga-items" per second, inverted.
+benchmark::Counter nanoseconds_per(double items) {
+  return benchmark::Counter(items * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 void report_per_spring(benchmark::State& bench, const ClothModel& model) {
-  bench.counters["ns_per_spring"] =
-      benchmark::Counter(static_cast<double>(model.springs.size()) * 1e-9,
-                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  bench.counters["ns_per_spring"] = nanoseconds_per(static_cast<double>(model.springs.size()));
 }
 
 void SpringsPlain(benchmark::State& bench) {
@@ -139,10 +141,8 @@ void ContactPhase(benchmark::State& bench) {
   }
   const double contacts = totals.front().contact_count;
   bench.counters["contacts"] = contacts;
-  bench.counters["ns_per_contact"] =
-      benchmark::Counter(contacts * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  bench.counters["ns_per_particle"] = benchmark::Counter(
-      model.particle_count() * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  bench.counters["ns_per_contact"] = nanoseconds_per(contacts);
+  bench.counters["ns_per_particle"] = nanoseconds_per(model.particle_count());
 }
 BENCHMARK(ContactPhase)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2});
 
@@ -159,9 +159,7 @@ void ShapeBound(benchmark::State& bench) {
   ShapeBoundWorkspace workspace;
   for (auto _ : bench)
     benchmark::DoNotOptimize(shape_stable_step(sheet.model, sheet.state.x, 0.1, workspace, by_family));
-  bench.counters["ns_per_particle"] =
-      benchmark::Counter(static_cast<double>(sheet.model.particle_count()) * 1e-9,
-                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  bench.counters["ns_per_particle"] = nanoseconds_per(sheet.model.particle_count());
 }
 BENCHMARK(ShapeBound)
     ->Args({65, 1, 0})->Args({65, 1, 1})->Args({65, 2, 1})->Args({129, 1, 0})->Args({129, 1, 1})->Args({129, 2, 0})

@@ -132,12 +132,14 @@ void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, c
 std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
                                                     double h, const ContactBlockFollowUp* follow_up) {
   PhaseTimer timer(stats_, StepPhase::contacts);
-  const ContactNormalScheme normal = contact_at_step_end(settings_.integrator)
-                                         ? ContactNormalScheme::linearly_implicit
-                                         : ContactNormalScheme::explicit_penalty;
   return settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
                                                 implicit_stats() ? &active_contacts_ : nullptr, &contact_workspace_,
-                                                normal, follow_up);
+                                                contact_normal_scheme(), follow_up);
+}
+
+ContactNormalScheme SpringDamperSolver::contact_normal_scheme() const {
+  return contact_at_step_end(settings_.integrator) ? ContactNormalScheme::linearly_implicit
+                                                   : ContactNormalScheme::explicit_penalty;
 }
 
 std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
@@ -296,11 +298,8 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
 
 std::int64_t SpringDamperSolver::spring_and_contact_forces_together(double h, const ContactBlockFollowUp& follow_up) {
   const auto start = Clock::now();
-  const ContactNormalScheme normal = contact_at_step_end(settings_.integrator)
-                                         ? ContactNormalScheme::linearly_implicit
-                                         : ContactNormalScheme::explicit_penalty;
   const ContactPass pass(*settings_.contacts, *model_, state_.time, h, state_.x, state_.v, force_, contact_workspace_,
-                         normal, implicit_stats() != nullptr, &follow_up);
+                         contact_normal_scheme(), implicit_stats() != nullptr, &follow_up);
   // The phase timers split the region where the thread that runs block 0 turns from springs to
   // contacts (the other thread's turn is within a block's time of it).
   struct Contacts {

@@ -113,6 +113,8 @@ class SpringDamperSolver final : public Solver {
   void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
   std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t, double h,
                                   const ContactBlockFollowUp* follow_up);
+  // How the integrator takes the penalty normal force: at the step's end for symplectic Euler.
+  ContactNormalScheme contact_normal_scheme() const;
   // Both at the solver's state in one parallel region (the spring fast path with colliders): each
   // thread runs the contact blocks of its own particles as soon as their spring forces are final.
   std::int64_t spring_and_contact_forces_together(double h, const ContactBlockFollowUp& follow_up);
