@@ -12,12 +12,14 @@
 #include <vector>
 
 #include "drapelab/contact_model.hpp"
-#include "drapelab/forces.hpp"
+#include "contact/contact_pass.hpp"
+#include "forces/forces.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "drapelab/spring_families.hpp"
+#include "forces/spring_families.hpp"
 #include "drapelab/stability.hpp"
+#include "integrators/shape_bound.hpp"
 
 namespace drapelab {
 namespace {

@@ -13,12 +13,13 @@
 #include <string>
 
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/shape_bound_loops.hpp"
+#include "integrators/shape_bound_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "drapelab/spring_families.hpp"
-#include "drapelab/spring_family_loops.hpp"
-#include "drapelab/spring_jacobian.hpp"
+#include "forces/spring_families.hpp"
+#include "forces/spring_family_loops.hpp"
+#include "forces/spring_jacobian.hpp"
 #include "drapelab/stability.hpp"
+#include "integrators/shape_bound.hpp"
 
 namespace drapelab {
 namespace {

@@ -9,7 +9,7 @@
 #include "drapelab/collider_pose_table.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/penalty_contact.hpp"
+#include "contact/penalty_contact.hpp"
 
 namespace drapelab {
 namespace {

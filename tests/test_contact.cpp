@@ -10,7 +10,7 @@
 
 #include "drapelab/collider.hpp"
 #include "drapelab/contact_fcl.hpp"
-#include "drapelab/penalty_contact.hpp"
+#include "contact/penalty_contact.hpp"
 
 namespace drapelab {
 namespace {

@@ -9,12 +9,12 @@
 #include <random>
 #include <vector>
 
-#include "drapelab/family_implicit.hpp"
+#include "integrators/family_implicit.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "drapelab/spring_families.hpp"
-#include "drapelab/spring_family_loops.hpp"
+#include "forces/spring_families.hpp"
+#include "forces/spring_family_loops.hpp"
 #include "stiff_sheet.hpp"
 
 namespace drapelab {

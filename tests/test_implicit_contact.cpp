@@ -15,7 +15,7 @@
 #include "drapelab/collision_metrics.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/penalty_contact.hpp"
+#include "contact/penalty_contact.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
 

@@ -10,8 +10,8 @@
 
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "drapelab/spring_force.hpp"
-#include "drapelab/spring_jacobian.hpp"
+#include "forces/spring_force.hpp"
+#include "forces/spring_jacobian.hpp"
 #include "stiff_sheet.hpp"
 
 namespace drapelab {

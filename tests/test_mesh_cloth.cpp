@@ -12,7 +12,7 @@
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/mesh_cloth.hpp"
 #include "drapelab/obj_reader.hpp"
-#include "drapelab/projected_area.hpp"
+#include "metrics/projected_area.hpp"
 
 namespace drapelab {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "drapelab/cloth_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/projected_area.hpp"
+#include "metrics/projected_area.hpp"
 
 namespace drapelab {
 namespace {

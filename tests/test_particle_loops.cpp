@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/particle_loops.hpp"
-#include "drapelab/penalty_contact.hpp"
+#include "integrators/particle_loops.hpp"
+#include "contact/penalty_contact.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "drapelab/spring_family_loops.hpp"
+#include "forces/spring_family_loops.hpp"
 
 namespace drapelab {
 namespace {

@@ -6,12 +6,12 @@
 #include <random>
 #include <string>
 
-#include "drapelab/forces.hpp"
+#include "forces/forces.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/particle_loops.hpp"
-#include "drapelab/spring_family_loops.hpp"
+#include "integrators/particle_loops.hpp"
+#include "forces/spring_family_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "drapelab/spring_force.hpp"
+#include "forces/spring_force.hpp"
 #include "drapelab/stability.hpp"
 
 namespace drapelab {

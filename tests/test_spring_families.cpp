@@ -7,12 +7,12 @@
 #include <memory>
 
 #include "drapelab/disc_cloth.hpp"
-#include "drapelab/forces.hpp"
+#include "forces/forces.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/particle_loops.hpp"
+#include "integrators/particle_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "drapelab/spring_families.hpp"
-#include "drapelab/spring_family_loops.hpp"
+#include "forces/spring_families.hpp"
+#include "forces/spring_family_loops.hpp"
 
 namespace drapelab {
 namespace {

@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "drapelab/spring_force.hpp"
+#include "forces/spring_force.hpp"
 
 namespace drapelab {
 namespace {

@@ -19,7 +19,7 @@
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/number_format.hpp"
-#include "drapelab/spring_family_loops.hpp"
+#include "drapelab/loop_threads.hpp"
 #include "trial_scene.hpp"
 #include "verbs.hpp"
 

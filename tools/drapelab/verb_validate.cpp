@@ -57,9 +57,8 @@ int validate_verb(const ValidateArguments& arguments) {
     if (solver.type != "spring_damper") continue;
     if (solver.adaptive_substeps) {
       // The shape bound at the start; it is re-evaluated at every dt as the cloth moves.
-      ShapeBoundWorkspace workspace;
       const double shape_step =
-          shape_stable_step(model, scene::initial_scene_state(s, model).x, s.cloth.air_damping, workspace);
+          shape_stable_step(model, scene::initial_scene_state(s, model).x, s.cloth.air_damping);
       const double safety = SpringDamperSettings{}.substep_safety;
       std::cout << "    adaptive substeps: " << safety << " x the shape's stable step, " << shape_step
                 << " s at the start (" << std::ceil(solver.dt / (safety * shape_step))

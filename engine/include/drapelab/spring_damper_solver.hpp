@@ -20,14 +20,19 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/contact_model.hpp"
-#include "drapelab/family_implicit.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/solver.hpp"
-#include "drapelab/spring_families.hpp"
 #include "drapelab/stability.hpp"
 
 namespace drapelab {
+
+// The step's private machinery (engine/forces, engine/integrators, engine/contact), held by pointer.
+class SpringFamilies;
+class FamilyImplicitSystem;
+struct ShapeBoundWorkspace;
+struct ContactWorkspace;
+struct ContactBlockFollowUp;
 
 struct SpringDamperSettings {
   Integrator integrator = Integrator::symplectic_euler;
@@ -64,6 +69,7 @@ class SpringDamperSolver final : public Solver {
  public:
   SpringDamperSolver(std::string name, std::shared_ptr<const ClothModel> model, ClothState initial,
                      SpringDamperSettings settings);
+  ~SpringDamperSolver() override;
 
   void step(double h) override;
   const ClothState& state() const override { return state_; }
@@ -149,8 +155,8 @@ class SpringDamperSolver final : public Solver {
   bool split_state_is_current_ = false;
   std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
-  ContactWorkspace contact_workspace_;  // the contact phase's per-block results
-  ShapeBoundWorkspace shape_bound_;  // adaptive substeps: each particle's springs, for the bound
+  std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
+  std::unique_ptr<ShapeBoundWorkspace> shape_bound_;  // adaptive substeps: each particle's springs, for the bound
   StepStats stats_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;

@@ -1,7 +1,7 @@
 // The plain spring phase: adds into `force` (N, 3 x N) and allocates nothing.
-#include "drapelab/forces.hpp"
+#include "forces/forces.hpp"
 
-#include "drapelab/spring_force.hpp"
+#include "forces/spring_force.hpp"
 
 namespace drapelab {
 

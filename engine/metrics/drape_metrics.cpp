@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "drapelab/projected_area.hpp"
+#include "metrics/projected_area.hpp"
 
 namespace drapelab {
 namespace {

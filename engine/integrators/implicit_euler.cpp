@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "drapelab/spring_jacobian.hpp"
+#include "forces/spring_jacobian.hpp"
 
 namespace drapelab {
 namespace {

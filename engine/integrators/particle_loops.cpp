@@ -3,7 +3,7 @@
 // their own caches. Built without contraction into fused multiply-adds, so each pass gives the same
 // bits on every CPU and the update the same bits as the Eigen expression it replaced (the body forces
 // sum weight and drag before the springs, a different order from the old gravity, springs, drag).
-#include "drapelab/particle_loops.hpp"
+#include "integrators/particle_loops.hpp"
 
 #include <algorithm>
 #include <cmath>

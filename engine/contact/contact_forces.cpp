@@ -3,8 +3,9 @@
 // handled in fixed blocks spread over the threads; each block keeps its own totals and contact list,
 // and the blocks are then summed in block order, so no result depends on the thread count.
 #include "drapelab/contact_model.hpp"
-#include "drapelab/particle_loops.hpp"
-#include "drapelab/penalty_contact.hpp"
+#include "contact/contact_pass.hpp"
+#include "integrators/particle_loops.hpp"
+#include "contact/penalty_contact.hpp"
 
 #include <fcl/geometry/shape/halfspace.h>
 

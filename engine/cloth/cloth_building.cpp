@@ -1,5 +1,5 @@
 // Pieces every cloth builder shares (cloth_building.hpp).
-#include "cloth_building.hpp"
+#include "cloth/cloth_building.hpp"
 
 #include <Eigen/Geometry>
 

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "cloth_building.hpp"
+#include "cloth/cloth_building.hpp"
 
 namespace drapelab {
 namespace {

@@ -1,11 +1,11 @@
 // The adaptive substeps' shape bound on plain arrays (shape_bound_loops.hpp). Built without
 // contraction into fused multiply-adds: the same bits on every CPU.
-#include "drapelab/shape_bound_loops.hpp"
+#include "integrators/shape_bound_loops.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "drapelab/particle_loops.hpp"
+#include "integrators/particle_loops.hpp"
 
 namespace drapelab::kernels {
 namespace {

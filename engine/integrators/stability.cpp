@@ -6,7 +6,8 @@
 #include <limits>
 #include <vector>
 
-#include "drapelab/shape_bound_loops.hpp"
+#include "integrators/shape_bound.hpp"
+#include "integrators/shape_bound_loops.hpp"
 
 namespace drapelab {
 
@@ -70,6 +71,11 @@ double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, dou
                          ShapeBoundWorkspace& workspace, const std::vector<SpringFamily>* families) {
   return step_from_rates(shape_rate_bounds(model, x, air_damping, {}, workspace, families),
                          Integrator::symplectic_euler, 0.0);
+}
+
+double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping) {
+  ShapeBoundWorkspace workspace;
+  return shape_stable_step(model, x, air_damping, workspace);
 }
 
 namespace {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "drapelab/projected_area.hpp"
+#include "metrics/projected_area.hpp"
 
 namespace drapelab {
 

@@ -8,8 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "drapelab/forces.hpp"
-#include "drapelab/particle_loops.hpp"
+#include "contact/contact_pass.hpp"
+#include "forces/forces.hpp"
+#include "forces/spring_families.hpp"
+#include "integrators/family_implicit.hpp"
+#include "integrators/shape_bound.hpp"
+#include "integrators/particle_loops.hpp"
 #include "drapelab/stability.hpp"
 
 namespace drapelab {
@@ -55,7 +59,9 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       model_(std::move(model)),
       settings_(std::move(settings)),
       state_(std::move(initial)),
-      force_(3, model_->particle_count()) {
+      force_(3, model_->particle_count()),
+      contact_workspace_(std::make_unique<ContactWorkspace>()),
+      shape_bound_(std::make_unique<ShapeBoundWorkspace>()) {
   const int n = model_->particle_count();
   coordinate_mass_ = model_->mass.transpose().replicate(3, 1);
   coordinate_inverse_mass_ = model_->inverse_mass.transpose().replicate(3, 1);
@@ -133,7 +139,7 @@ std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x, c
                                                     double h, const ContactBlockFollowUp* follow_up) {
   PhaseTimer timer(stats_, StepPhase::contacts);
   return settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
-                                                implicit_stats() ? &active_contacts_ : nullptr, &contact_workspace_,
+                                                implicit_stats() ? &active_contacts_ : nullptr, contact_workspace_.get(),
                                                 contact_normal_scheme(), follow_up);
 }
 
@@ -155,6 +161,9 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() 
       phases.emplace_back(step_phase_name(static_cast<StepPhase>(p)), stats_.seconds[p]);
   return phases;
 }
+
+// Out of line: the private machinery's types are complete only here.
+SpringDamperSolver::~SpringDamperSolver() = default;
 
 const ImplicitSolveStats* SpringDamperSolver::implicit_stats() const {
   if (implicit_) return &implicit_->stats();
@@ -214,7 +223,7 @@ void SpringDamperSolver::step(double h) {
 int SpringDamperSolver::substeps_for(double h) {
   PhaseTimer timer(stats_, StepPhase::step_bound);
   const double target =
-      settings_.substep_safety * shape_stable_step(*model_, state_.x, settings_.air_damping, shape_bound_,
+      settings_.substep_safety * shape_stable_step(*model_, state_.x, settings_.air_damping, *shape_bound_,
                                                    spring_families_ ? &spring_families_->families() : nullptr);  // s
   // At most 10^7 substeps, as the scene format allows per frame (a NaN shape gives one: the health
   // check then stops the run).
@@ -298,7 +307,7 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
 
 std::int64_t SpringDamperSolver::spring_and_contact_forces_together(double h, const ContactBlockFollowUp& follow_up) {
   const auto start = Clock::now();
-  const ContactPass pass(*settings_.contacts, *model_, state_.time, h, state_.x, state_.v, force_, contact_workspace_,
+  const ContactPass pass(*settings_.contacts, *model_, state_.time, h, state_.x, state_.v, force_, *contact_workspace_,
                          contact_normal_scheme(), implicit_stats() != nullptr, &follow_up);
   // The phase timers split the region where the thread that runs block 0 turns from springs to
   // contacts (the other thread's turn is within a block's time of it).

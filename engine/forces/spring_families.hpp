@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "drapelab/cloth_model.hpp"
-#include "drapelab/spring_family_loops.hpp"
+#include "forces/spring_family_loops.hpp"
 
 namespace drapelab {
 

@@ -1,5 +1,5 @@
 // Union area of projected triangles by rasterisation on a square-cell grid.
-#include "drapelab/projected_area.hpp"
+#include "metrics/projected_area.hpp"
 
 #include <Eigen/Geometry>
 

@@ -12,9 +12,9 @@
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/contact_model.hpp"
-#include "drapelab/family_cg_loops.hpp"
+#include "integrators/family_cg_loops.hpp"
 #include "drapelab/implicit_euler.hpp"
-#include "drapelab/spring_families.hpp"
+#include "forces/spring_families.hpp"
 
 namespace drapelab {
 

@@ -1,5 +1,5 @@
 // Grouping springs by index offset, and the fast spring phase (spring_families.hpp).
-#include "drapelab/spring_families.hpp"
+#include "forces/spring_families.hpp"
 
 #include <algorithm>
 #include <map>

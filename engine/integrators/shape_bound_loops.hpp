@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "drapelab/spring_family_loops.hpp"
+#include "forces/spring_family_loops.hpp"
 
 namespace drapelab::kernels {
 

@@ -2,12 +2,12 @@
 // fixed blocks of particles (each thread one contiguous run, particle_loops.hpp's for_each_block); a
 // product is two passes, the slot terms B_s (p_a - p_b) of every family and then each particle's
 // gather of its slots, so no two threads ever write one value.
-#include "drapelab/family_cg_loops.hpp"
+#include "integrators/family_cg_loops.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "drapelab/particle_loops.hpp"
+#include "integrators/particle_loops.hpp"
 
 
 namespace drapelab::kernels {

@@ -2,12 +2,12 @@
 // per call: split the state into unit-stride arrays, compute every family's slot forces, then gather
 // each particle's forces; each loop is split among threads with a static schedule, and every value is
 // computed by the same expression whichever thread computes it, so no sum depends on the thread count.
-#include "drapelab/spring_family_loops.hpp"
+#include "forces/spring_family_loops.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "drapelab/particle_loops.hpp"
+#include "integrators/particle_loops.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>

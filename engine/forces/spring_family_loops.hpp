@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "drapelab/loop_threads.hpp"
+
 namespace drapelab {
 
 // The springs (i, i + offset) of one family, stored densely by first particle: slot i of every array
@@ -84,9 +86,6 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
 // next force evaluation need not split the whole state again.
 void split_state_range(const double* x, const double* v, FamilyScratch& scratch, std::int64_t begin,
                        std::int64_t end);
-// Threads the loops use (OpenMP); always 1 in a build without OpenMP.
-void set_thread_count(int threads);
-int thread_count();
 
 }  // namespace kernels
 }  // namespace drapelab

@@ -8,7 +8,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "cloth_building.hpp"
+#include "cloth/cloth_building.hpp"
 #include "drapelab/collider.hpp"
 
 namespace drapelab {

@@ -1,5 +1,5 @@
 // The end-of-step normal forces of a particle touching several colliders at once (penalty_contact.hpp).
-#include "drapelab/penalty_contact.hpp"
+#include "contact/penalty_contact.hpp"
 
 #include <Eigen/Cholesky>
 

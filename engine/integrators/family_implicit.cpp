@@ -1,6 +1,6 @@
 // Backward Euler on spring families: assembly of the per-spring coefficients, the contacts and the
 // right-hand side, then the matrix-free conjugate gradient (family_implicit.hpp).
-#include "drapelab/family_implicit.hpp"
+#include "integrators/family_implicit.hpp"
 
 namespace drapelab {
 
