@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "../tools/drapelab/step_search.hpp"
+#include "drapelab/runner/step_search.hpp"
 #include "cli_harness.hpp"
 
 namespace {
@@ -285,9 +285,9 @@ TEST(StepSearch, BisectsToNeighbouringStepsPerFrame) {
   for (const int start : {1, 5, 100, 1000}) {
     for (const int threshold : {1, 2, 37, 47, 48, 640}) {
       SyntheticRule rule{threshold, {}};
-      drapelab::cli::StepSearchLimits limits;
+      drapelab::runner::StepSearchLimits limits;
       limits.tolerance = 0.0;
-      const auto outcome = drapelab::cli::search_largest_stable_step(start, limits, std::ref(rule));
+      const auto outcome = drapelab::runner::search_largest_stable_step(start, limits, std::ref(rule));
       ASSERT_TRUE(outcome.stable_k);
       EXPECT_EQ(*outcome.stable_k, threshold) << "start " << start;
       if (threshold > 1) {
@@ -306,9 +306,9 @@ TEST(StepSearch, BisectsToNeighbouringStepsPerFrame) {
 
 TEST(StepSearch, ToleranceStopsEarlyAndLimitsBoundTheSteps) {
   SyntheticRule rule{640, {}};
-  drapelab::cli::StepSearchLimits limits;
+  drapelab::runner::StepSearchLimits limits;
   limits.tolerance = 0.05;
-  const auto loose = drapelab::cli::search_largest_stable_step(100, limits, std::ref(rule));
+  const auto loose = drapelab::runner::search_largest_stable_step(100, limits, std::ref(rule));
   ASSERT_TRUE(loose.stable_k && loose.unstable_k);
   EXPECT_GE(*loose.stable_k, 640);
   EXPECT_LT(*loose.unstable_k, 640);
@@ -318,7 +318,7 @@ TEST(StepSearch, ToleranceStopsEarlyAndLimitsBoundTheSteps) {
   // Nothing stable up to the largest k: no stable step, and nothing beyond the limit was tried.
   SyntheticRule never{2000000, {}};
   limits.largest_k = 1000000;
-  const auto none = drapelab::cli::search_largest_stable_step(100, limits, std::ref(never));
+  const auto none = drapelab::runner::search_largest_stable_step(100, limits, std::ref(never));
   EXPECT_FALSE(none.stable_k);
   EXPECT_EQ(none.unstable_k, 1000000);
   for (const int k : never.tried) EXPECT_LE(k, 1000000);
@@ -326,7 +326,7 @@ TEST(StepSearch, ToleranceStopsEarlyAndLimitsBoundTheSteps) {
   // Everything stable: the search stops at the smallest k allowed (the largest step, --max-dt).
   SyntheticRule always{1, {}};
   limits.smallest_k = 6;
-  const auto capped = drapelab::cli::search_largest_stable_step(100, limits, std::ref(always));
+  const auto capped = drapelab::runner::search_largest_stable_step(100, limits, std::ref(always));
   EXPECT_EQ(capped.stable_k, 6);
   EXPECT_FALSE(capped.unstable_k);
   for (const int k : always.tried) EXPECT_GE(k, 6);
@@ -335,7 +335,7 @@ TEST(StepSearch, ToleranceStopsEarlyAndLimitsBoundTheSteps) {
 TEST(StepSearch, AnInterruptedTrialStopsTheSearch) {
   int calls = 0;
   const auto outcome =
-      drapelab::cli::search_largest_stable_step(100, {}, [&calls](int) -> std::optional<bool> {
+      drapelab::runner::search_largest_stable_step(100, {}, [&calls](int) -> std::optional<bool> {
         return ++calls < 3 ? std::optional<bool>(true) : std::nullopt;
       });
   EXPECT_TRUE(outcome.stopped);

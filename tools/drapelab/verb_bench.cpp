@@ -14,16 +14,18 @@
 #include <sstream>
 #include <thread>
 
-#include "bench_table.hpp"
+#include "drapelab/runner/bench_table.hpp"
 #include "drapelab/runner/output_files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/loop_threads.hpp"
-#include "trial_scene.hpp"
+#include "drapelab/runner/trial_scene.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
+
+using namespace drapelab::runner;  // the run pipeline: this file parses and prints
 namespace {
 
 namespace fs = std::filesystem;

@@ -14,11 +14,13 @@
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
-#include "step_search.hpp"
-#include "trial_scene.hpp"
+#include "drapelab/runner/step_search.hpp"
+#include "drapelab/runner/trial_scene.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
+
+using namespace drapelab::runner;  // the run pipeline: this file parses and prints
 
 namespace {
 

@@ -13,11 +13,13 @@
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/number_format.hpp"
-#include "study_report.hpp"
-#include "trial_scene.hpp"
+#include "drapelab/runner/study_report.hpp"
+#include "drapelab/runner/trial_scene.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
+
+using namespace drapelab::runner;  // the run pipeline: this file parses and prints
 
 namespace fs = std::filesystem;
 

@@ -16,14 +16,16 @@
 
 #include "drapelab/runner/output_files.hpp"
 #include "drapelab/runner/run_scene.hpp"
-#include "sweep_children.hpp"
-#include "sweep_files.hpp"
-#include "sweep_outcome.hpp"
-#include "sweep_plan.hpp"
-#include "sweep_validation.hpp"
+#include "drapelab/runner/sweep_children.hpp"
+#include "drapelab/runner/sweep_files.hpp"
+#include "drapelab/runner/sweep_outcome.hpp"
+#include "drapelab/runner/sweep_plan.hpp"
+#include "drapelab/runner/sweep_validation.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
+
+using namespace drapelab::runner;  // the run pipeline: this file parses and prints
 
 namespace fs = std::filesystem;
 

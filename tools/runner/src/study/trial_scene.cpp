@@ -1,4 +1,4 @@
-#include "trial_scene.hpp"
+#include "drapelab/runner/trial_scene.hpp"
 
 #include <cmath>
 #include <iostream>
@@ -6,7 +6,7 @@
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_loader.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 std::optional<scene::Scene> load_trial_scene(const std::string& file,
                                              std::vector<std::string> overrides, double duration) {
@@ -72,4 +72,4 @@ scene::SolverSpec with_steps_per_frame(scene::SolverSpec spec, double frame_peri
   return spec;
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "sweep_children.hpp"
+#include "drapelab/runner/sweep_children.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 // The final measures of a solver copied into sweep.csv, in column order: the first eight from
 // summary.json's "final" metrics (docs/metrics.md), the rest from the solver's own entry.
@@ -59,4 +59,4 @@ CombinationOutcome finished_outcome(std::size_t index, const ChildExit& exit,
 // non-empty line, else "".
 std::string first_error_line(const std::filesystem::path& log);
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -1,12 +1,12 @@
 // drapelab bench's outputs (bench_table.hpp).
-#include "bench_table.hpp"
+#include "drapelab/runner/bench_table.hpp"
 
 #include <cstdio>
 #include <sstream>
 
 #include "drapelab/runner/output_files.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 namespace {
 
 std::string number(double value, const char* format = "%.4g") {
@@ -76,4 +76,4 @@ void write_bench_files(const std::filesystem::path& folder, const BenchTable& ta
   runner::write_file_atomically(folder / "bench.md", markdown(table));
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -1,10 +1,10 @@
-#include "sweep_plan.hpp"
+#include "drapelab/runner/sweep_plan.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <limits>
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 namespace {
 
@@ -151,4 +151,4 @@ std::string sanitise_for_file_name(const std::string& text) {
   return name.empty() ? "_" : name;
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

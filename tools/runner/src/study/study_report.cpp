@@ -1,11 +1,11 @@
-#include "study_report.hpp"
+#include "drapelab/runner/study_report.hpp"
 
 #include <cstdio>
 #include <sstream>
 
 #include "drapelab/scene/number_format.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 namespace {
 
 std::string exact(const std::optional<double>& value) {
@@ -85,4 +85,4 @@ std::string study_markdown(const StudyHeader& header, const std::vector<StudyRow
   return out.str();
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -1,4 +1,4 @@
-#include "sweep_outcome.hpp"
+#include "drapelab/runner/sweep_outcome.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -8,7 +8,7 @@
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
@@ -193,4 +193,4 @@ CombinationOutcome finished_outcome(std::size_t index, const ChildExit& exit,
   return outcome;
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -1,8 +1,8 @@
-#include "step_search.hpp"
+#include "drapelab/runner/step_search.hpp"
 
 #include <algorithm>
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 StepSearchOutcome search_largest_stable_step(
     int start_k, const StepSearchLimits& limits,
@@ -41,4 +41,4 @@ StepSearchOutcome search_largest_stable_step(
   return outcome;
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -8,7 +8,7 @@
 
 #include "drapelab/scene/scene.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 // Loads the scene with the overrides, plus duration=S when `duration` > 0 (validated like the file:
 // duration x frame_rate must be whole). Prints every error to stderr and returns nothing on bad
@@ -31,4 +31,4 @@ std::optional<int> whole_steps_per_frame(double frame_period, double h);
 scene::SolverSpec with_steps_per_frame(scene::SolverSpec spec, double frame_period,
                                        int steps_per_frame);
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 struct BenchRow {
   std::string scene;
@@ -39,4 +39,4 @@ std::string markdown(const BenchTable& table);
 // bench.csv and bench.md in `folder`, each written atomically.
 void write_bench_files(const std::filesystem::path& folder, const BenchTable& table);
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -1,4 +1,4 @@
-#include "sweep_children.hpp"
+#include "drapelab/runner/sweep_children.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -12,7 +12,7 @@
 
 extern char** environ;
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 namespace {
 
@@ -138,4 +138,4 @@ std::string own_executable_path() {
   return ec ? std::string("drapelab") : path.string();
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

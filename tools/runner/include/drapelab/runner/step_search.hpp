@@ -14,7 +14,7 @@
 #include <functional>
 #include <optional>
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 struct StepSearchLimits {
   int smallest_k = 1;       // from --max-dt: frame_period / smallest_k is the largest step tried
@@ -35,4 +35,4 @@ StepSearchOutcome search_largest_stable_step(
     int start_k, const StepSearchLimits& limits,
     const std::function<std::optional<bool>(int k)>& trial);
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -9,7 +9,7 @@
 
 #include "drapelab/integrators.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 // One (integrator, step) of the study.
 struct StudyRow {
@@ -51,4 +51,4 @@ const std::vector<std::string>& study_csv_columns();
 std::string study_csv(const std::vector<StudyRow>& rows);
 std::string study_markdown(const StudyHeader& header, const std::vector<StudyRow>& rows);
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

@@ -1,8 +1,8 @@
-#include "sweep_files.hpp"
+#include "drapelab/runner/sweep_files.hpp"
 
 #include <nlohmann/json.hpp>
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 using nlohmann::ordered_json;
 
@@ -104,4 +104,4 @@ std::string sweep_json(const SweepRecord& record, const SweepPlan& plan,
   return j.dump(2) + "\n";
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

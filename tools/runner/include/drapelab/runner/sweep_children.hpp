@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 // How a child ended.
 struct ChildExit {
@@ -47,4 +47,4 @@ std::string own_executable_path();
 // How long the sweep sleeps between checks on its children and on Ctrl-C.
 inline constexpr std::chrono::milliseconds kChildPollPeriod{20};
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

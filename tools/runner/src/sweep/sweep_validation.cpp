@@ -1,10 +1,10 @@
-#include "sweep_validation.hpp"
+#include "drapelab/runner/sweep_validation.hpp"
 
 #include <set>
 
 #include "drapelab/scene/scene_loader.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 namespace {
 
@@ -77,4 +77,4 @@ SweepValidation validate_sweep(const std::string& scene_file,
   return validation;
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner

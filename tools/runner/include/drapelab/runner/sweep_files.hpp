@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "sweep_outcome.hpp"
-#include "sweep_plan.hpp"
+#include "drapelab/runner/sweep_outcome.hpp"
+#include "drapelab/runner/sweep_plan.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::runner {
 
 // A CSV cell, quoted (RFC 4180: inside double quotes, a quote doubled) when it holds a comma, a
 // quote, a line break or spaces at an end, or always with `always`.
@@ -44,4 +44,4 @@ struct SweepRecord {
 std::string sweep_json(const SweepRecord& record, const SweepPlan& plan,
                        const std::map<std::size_t, CombinationOutcome>& finished);
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::runner
