@@ -44,7 +44,7 @@ class PoseRecorder final : public Solver {
   }
   const ClothState& state() const override { return inner_->state(); }
   const std::string& name() const override { return inner_->name(); }
-  const std::string& type() const override { return inner_->type(); }
+  drapelab::SolverType type() const override { return inner_->type(); }
   SolverStatus status() const override { return inner_->status(); }
   const std::string& message() const override { return inner_->message(); }
   std::vector<ColliderForce> collider_forces() const override { return inner_->collider_forces(); }

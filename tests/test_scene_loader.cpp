@@ -122,7 +122,7 @@ TEST(SceneLoader, BaseSceneLoadsWithEveryValue) {
   EXPECT_DOUBLE_EQ(s.contact.friction, 0.2);
   ASSERT_EQ(s.solvers.size(), 1u);
   EXPECT_EQ(s.solvers[0].name, "ours");
-  EXPECT_EQ(s.solvers[0].type, "spring_damper");
+  EXPECT_EQ(s.solvers[0].type, drapelab::SolverType::spring_damper);
   EXPECT_EQ(s.solvers[0].integrator, drapelab::Integrator::symplectic_euler);
   EXPECT_EQ(s.solvers[0].steps_per_frame, 16);
   EXPECT_DOUBLE_EQ(s.solvers[0].dt, 1.0 / 960.0);
@@ -241,9 +241,9 @@ TEST(SceneLoader, MissingSolversGiveTheContractsDefaultPair) {
   const auto result = load(without_lines(kBase, 30, 34));
   ASSERT_LOADS(result);
   ASSERT_EQ(result.scene->solvers.size(), 2u);
-  EXPECT_EQ(result.scene->solvers[0].type, "spring_damper");
+  EXPECT_EQ(result.scene->solvers[0].type, drapelab::SolverType::spring_damper);
   EXPECT_EQ(result.scene->solvers[0].name, "spring_damper");
-  EXPECT_EQ(result.scene->solvers[1].type, "bullet_softbody");
+  EXPECT_EQ(result.scene->solvers[1].type, drapelab::SolverType::bullet_softbody);
   EXPECT_EQ(result.scene->solvers[1].name, "bullet_softbody");
 }
 
@@ -636,7 +636,7 @@ TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
 TEST(SceneLoader, BulletDeformableTakesMarginAndVoxelButNoIterations) {
   const auto result = load(with_line(with_line(kBase, 32, "    type: bullet_deformable"), 33, "    margin: 0.006"));
   ASSERT_LOADS(result);
-  EXPECT_EQ(result.scene->solvers[0].type, "bullet_deformable");
+  EXPECT_EQ(result.scene->solvers[0].type, drapelab::SolverType::bullet_deformable);
   EXPECT_DOUBLE_EQ(result.scene->solvers[0].margin, 0.006);
   EXPECT_TRUE(HasError(load(with_line(with_line(kBase, 32, "    type: bullet_deformable"), 33, "    iterations: 4")),
                        at(33), {"solvers.0.iterations is not a known key"}));

@@ -12,7 +12,8 @@ namespace drapelab::bullet {
 namespace {
 
 // A plane becomes a box this thick and wide (m): btStaticPlaneShape goes through Bullet's concave
-// path, whose signed distance is 0 (bullet-notes 1.6), so soft bodies cannot rest on it.
+// path, whose signed distance is 0, so soft bodies cannot rest on it (docs/bullet.md, "Soft-rigid
+// contact through the signed-distance cache").
 constexpr double kPlaneHalfThickness = 5.0;
 constexpr double kPlaneHalfWidth = 500.0;
 

@@ -50,7 +50,9 @@ class BulletDeformableSolver final : public BulletClothSolver {
     gravity_ = std::make_unique<btDeformableGravityForce>(to_bullet(options_.gravity));
     world_->addForce(cloth_.get(), springs_.get());
     world_->addForce(cloth_.get(), gravity_.get());
-    world_->setImplicit(false);  // explicit elastic force, implicit damping (bullet-notes 2.2)
+    // Explicit elastic force, implicit damping
+    // (docs/bullet.md, "What the deformable world computes").
+    world_->setImplicit(false);
     forces_.assign(colliders.size(), ColliderForce{});
   }
 
@@ -77,7 +79,7 @@ class BulletDeformableSolver final : public BulletClothSolver {
 
   const ClothState& state() const override { return state_; }
   const std::string& name() const override { return name_; }
-  const std::string& type() const override { return type_; }
+  SolverType type() const override { return SolverType::bullet_deformable; }
   SolverStatus status() const override { return status_; }
   const std::string& message() const override { return message_; }
   std::vector<ColliderForce> collider_forces() const override { return forces_; }
@@ -91,7 +93,6 @@ class BulletDeformableSolver final : public BulletClothSolver {
   }
 
   std::string name_;
-  std::string type_ = "bullet_deformable";
   std::shared_ptr<const ClothModel> model_;
   BulletDeformableOptions options_;
   ClothState state_;

@@ -43,7 +43,7 @@ class BulletHostedSolver final : public BulletWorldSolver {
   }
   const ClothState& state() const override { return guest_->state(); }
   const std::string& name() const override { return guest_->name(); }
-  const std::string& type() const override { return guest_->type(); }
+  SolverType type() const override { return guest_->type(); }
   SolverStatus status() const override { return guest_->status(); }
   const std::string& message() const override { return guest_->message(); }
   std::vector<ColliderForce> collider_forces() const override { return guest_->collider_forces(); }

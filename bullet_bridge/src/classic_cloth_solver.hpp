@@ -26,7 +26,7 @@ class BulletSoftBodySolver final : public BulletClothSolver {
   void step(double h) override;
   const ClothState& state() const override { return state_; }
   const std::string& name() const override { return name_; }
-  const std::string& type() const override { return type_; }
+  SolverType type() const override { return SolverType::bullet_softbody; }
   SolverStatus status() const override { return status_; }
   const std::string& message() const override { return message_; }
   std::vector<ColliderForce> collider_forces() const override { return forces_; }
@@ -42,7 +42,6 @@ class BulletSoftBodySolver final : public BulletClothSolver {
   void check_health(double h);
 
   std::string name_;
-  std::string type_ = "bullet_softbody";
   std::shared_ptr<const ClothModel> model_;
   BulletSoftBodyOptions options_;
   ClothState state_;

@@ -17,8 +17,9 @@
 namespace drapelab::bullet {
 
 // Built in the rest pose so that Bullet computes our rest lengths (it recomputes them from current
-// positions whenever masses or links change: bullet-notes 1.3), then set exactly to ours and moved to
-// the initial state. `link_stiffness(e)` gives spring e's kLST (the classic solver's only stiffness).
+// positions whenever masses or links change: docs/bullet.md, "Masses, pins and rest lengths"), then
+// set exactly to ours and moved to the initial state. `link_stiffness(e)` gives spring e's kLST
+// (the classic solver's only stiffness).
 std::unique_ptr<btSoftBody> make_soft_body(btSoftBodyWorldInfo& info, const ClothModel& model,
                                            const ClothState& initial,
                                            const std::function<double(std::size_t)>& link_stiffness);

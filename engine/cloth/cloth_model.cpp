@@ -3,8 +3,6 @@
 
 #include <algorithm>
 
-#include "drapelab/solver.hpp"
-
 namespace drapelab {
 
 const char* spring_kind_name(SpringKind kind) {
@@ -12,15 +10,6 @@ const char* spring_kind_name(SpringKind kind) {
     case SpringKind::stretch: return "stretch";
     case SpringKind::shear: return "shear";
     case SpringKind::bend: return "bend";
-  }
-  return "unknown";
-}
-
-const char* solver_status_name(SolverStatus status) {
-  switch (status) {
-    case SolverStatus::ok: return "ok";
-    case SolverStatus::unstable: return "unstable";
-    case SolverStatus::error: return "error";
   }
   return "unknown";
 }

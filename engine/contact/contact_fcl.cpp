@@ -62,7 +62,8 @@ std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& 
                                                              const Eigen::Vector3d& x) const {
   fcl::Transform3d particle_pose = fcl::Transform3d::Identity();
   particle_pose.translation() = x;
-  // The same closed forms fcl::collide dispatches to for these pairs (bullet-notes section 3).
+  // The closed forms fcl::collide dispatches to for these pairs, called directly (docs/bullet.md,
+  // "FCL queries we use").
   const auto& particle = static_cast<const fcl::Sphere<double>&>(*sphere_);
   const fcl::CollisionGeometry<double>& shape = *collider.geometry;
   // One scratch list per thread (the contact phase queries from several), cleared, capacity kept.

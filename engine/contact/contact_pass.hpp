@@ -43,9 +43,9 @@ struct alignas(64) BlockColliderTotals {
 
 // One block's share of the contact phase, kept between calls. Each block's record starts a cache line
 // of its own and its totals have lines of their own: the two threads append to their blocks' lists and
-// add to their totals at once, contact by contact, and records that shared a line made the cores trade
-// it on every contact (false sharing, in the middle of the sheet where the two threads' runs meet and
-// a draped cloth's contacts are).
+// add to their totals at once, contact by contact, and records that shared a line would make the
+// cores trade it on every contact (false sharing, in the middle of the sheet where the two threads'
+// runs meet and a draped cloth's contacts are).
 struct alignas(64) ContactBlockWork {
   std::vector<int> near;                       // the broad phase's particles for one collider
   std::vector<TouchingContact> touching;       // overlaps, collider by collider

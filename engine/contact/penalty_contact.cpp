@@ -11,7 +11,7 @@ namespace drapelab {
 void linearly_implicit_normal_forces(const NormalContact* contacts, int count, const Eigen::Vector3d& velocity,
                                      const Eigen::Vector3d& other_force, double mass, double h, double stiffness,
                                      double damping, double* normal_forces) {
-  if (count == 1) {  // the closed form, so a single contact gives the same bits as before
+  if (count == 1) {  // the closed form: one contact gives linearly_implicit_normal_force's bits
     const NormalContact& only = contacts[0];
     normal_forces[0] =
         linearly_implicit_normal_force(only.depth, (velocity - only.surface_velocity).dot(only.normal),

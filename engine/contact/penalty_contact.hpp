@@ -66,7 +66,7 @@ void linearly_implicit_normal_forces(const NormalContact* contacts, int count, c
                                      double damping, double* normal_forces);
 
 // A friction force and its magnitude, which the sticking case has already computed (a second square
-// root per contact was a tenth of the contact phase).
+// root per contact would cost a tenth of the contact phase).
 struct FrictionForce {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, tangential
   double magnitude = 0.0;                           // N, exactly force.norm()

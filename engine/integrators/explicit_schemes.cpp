@@ -52,8 +52,9 @@ void SpringDamperSolver::rk4_step(double h) {
 // velocity, but damping, friction and the outputs need one; it is estimated as
 //   v(n+1) = (x(n+1) - x(n)) / h + h/2 a(n),
 // the mean velocity over the step advanced by half a step of the last known acceleration (second
-// order; exact for a constant acceleration). The first step, or a step after h changed, starts from a
-// Taylor step x(1) = x(0) + h v(0) + h^2/2 a(0), which makes free fall exact (validation V1).
+// order; exact for a constant acceleration). The first step, or a step after h changed, starts from
+// a Taylor step x(1) = x(0) + h v(0) + h^2/2 a(0), which makes free fall exact
+// (docs/validation.md, V1).
 void SpringDamperSolver::verlet_step(double h) {
   evaluate_forces(state_.x, state_.v, state_.time, h);
   acceleration_of_force(acceleration_);

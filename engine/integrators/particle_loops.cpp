@@ -1,8 +1,8 @@
 // Per-particle passes of an explicit step (particle_loops.hpp). Each is one static-schedule loop:
 // memory-bound work (a few flops per 24-byte column), so two cores mostly double the bandwidth from
 // their own caches. Built without contraction into fused multiply-adds, so each pass gives the same
-// bits on every CPU and the update the same bits as the Eigen expression it replaced (the body forces
-// sum weight and drag before the springs, a different order from the old gravity, springs, drag).
+// bits on every CPU, and the update the bits of its plain expressions v + h (f m^-1) and x + h v.
+// The body-force pass sets f to weight minus drag; the springs then add theirs.
 #include "integrators/particle_loops.hpp"
 
 #include <algorithm>
@@ -142,9 +142,8 @@ namespace {
 // Particles per chunk of the broad phase: the chunk's test results stay in L1 between its two passes.
 constexpr int kNearChunk = 256;
 
-// hit[i - begin] = 1 when particle i of [begin, end) passes the collider's broad-phase test, else 0:
-// the same expressions as before the split into passes, now one vectorised loop.
-// Returns how many passed.
+// hit[i - begin] = 1 when particle i of [begin, end) passes the collider's broad-phase test, else
+// 0, in one vectorised loop. Returns how many passed.
 int near_test(const NearCollider& collider, const double* __restrict x, int begin, int end,
               std::int32_t* __restrict hit) {
   int passed = 0;

@@ -72,9 +72,10 @@ int near_particles(const NearCollider& collider, const double* x, int begin, int
 
 // Runs body(context, block) for block = 0 .. blocks - 1, each thread taking one contiguous run of
 // blocks, as the other passes split the particles: each core then works on the particles already in
-// its own cache (handing blocks out round robin instead made the next pass wait on lines the other
-// core had read, and cost more than it balanced). Threads start only when `parallel` is true; body
-// must write only what its block owns. A function pointer and a context, so nothing is allocated.
+// its own cache (handing blocks out round robin instead would make the next pass wait on lines the
+// other core has read, and cost more than it balances). Threads start only when `parallel` is true;
+// body must write only what its block owns. A function pointer and a context, so nothing is
+// allocated.
 void for_each_block(std::int64_t blocks, bool parallel, void (*body)(const void* context, std::int64_t block),
                     const void* context);
 

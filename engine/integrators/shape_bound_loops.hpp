@@ -47,7 +47,7 @@ ShapeRates shape_rate_maxima(std::int64_t n, IncidentSprings adjacency, SpringAr
 // The same maxima for a cloth whose springs are spring families (spring_family_loops.hpp: every
 // regular grid), without index lists: chunk by chunk, each particle adds, family by family, the terms
 // of the spring it starts (slot i) and of the one it ends (slot i - offset), each computed where it is
-// needed (twice per spring, in unit-stride vectorised loops, where the index lists made every term a
+// needed (twice per spring, in unit-stride vectorised loops, where index lists make every term a
 // scattered read). Equal to shape_rate_maxima to rounding (the sums run in another order); the same
 // bits for any thread count.
 ShapeRates family_shape_rate_maxima(std::int64_t n, const std::vector<SpringFamily>& families,

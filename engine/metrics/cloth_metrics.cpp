@@ -1,4 +1,4 @@
-// Per-frame metrics of shared/metrics.md from (model, state) only.
+// Per-frame metrics (docs/metrics.md, "Per frame (`metrics.csv`)") from (model, state) only.
 #include "drapelab/cloth_metrics.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Area of the union of triangles projected on a plane, by rasterisation: folds overlap, so summing
-// triangle areas would count them twice (metrics.md).
+// triangle areas would count them twice (docs/metrics.md, "Projected area").
 #pragma once
 
 #include <Eigen/Core>

@@ -89,7 +89,7 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
   row.particles = model.particle_count();
   row.springs = static_cast<long long>(model.springs.size());
   row.solver = r.trial.name;
-  row.type = r.trial.type;
+  row.type = solver_type_name(r.trial.type);
   if (r.skipped) {
     row.status = "skipped";
     row.setting = "over " + std::to_string(kLargestDeformable) + " x " + std::to_string(kLargestDeformable) +
@@ -97,8 +97,8 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
     return row;
   }
   const runner::SimulationResult& result = r.fastest.result;
-  row.setting = r.trial.type == "spring_damper"      ? std::string(integrator_name(r.trial.integrator))
-                : r.trial.type == "bullet_softbody" ? std::to_string(r.trial.iterations) + " iterations"
+  row.setting = r.trial.type == SolverType::spring_damper      ? std::string(integrator_name(r.trial.integrator))
+                : r.trial.type == SolverType::bullet_softbody ? std::to_string(r.trial.iterations) + " iterations"
                                                      : "its stable step";
   row.dt = r.trial.dt;
   row.status = solver_status_name(result.status);
@@ -126,7 +126,7 @@ void add_cell_rows(BenchTable& table, const scene::Scene& scene, int n, const Cl
   double ours_cost = 0.0, ours_second_half_cost = 0.0;  // wall s per simulated s
   for (const SolverRuns& r : runs) {
     BenchRow row = bench_row(scene, n, model, r);
-    if (r.trial.type == "spring_damper") {
+    if (r.trial.type == SolverType::spring_damper) {
       ours_cost = row.wall_per_simulated;
       ours_second_half_cost = row.second_half_wall_per_simulated;
     }
@@ -199,11 +199,11 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       for (const auto& spec : scene->solvers) {
         SolverRuns r;
         r.trial = spec;
-        r.skipped = spec.type == "bullet_deformable" && n > kLargestDeformable;
+        r.skipped = spec.type == SolverType::bullet_deformable && n > kLargestDeformable;
         if (!r.skipped) {
           r.add(measure(*scene, r.trial, setup, interrupt));
           // Bullet's classic cloth: halve the step until it holds (its cheapest stable setting).
-          for (int halving = 0; spec.type == "bullet_softbody" && halving < kClassicHalvings && !r.interrupted &&
+          for (int halving = 0; spec.type == SolverType::bullet_softbody && halving < kClassicHalvings && !r.interrupted &&
                                 r.fastest.result.status != SolverStatus::ok;
                ++halving) {
             SolverRuns halved;

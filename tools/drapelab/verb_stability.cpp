@@ -166,8 +166,8 @@ int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>&
   }
 
   const runner::SceneSetup setup = runner::build_scene_setup(*scene);
-  std::string described = spec.type;
-  if (spec.type == "spring_damper")
+  std::string described = solver_type_name(spec.type);
+  if (spec.type == SolverType::spring_damper)
     described += ", " + std::string(integrator_name(spec.integrator));
   std::cout << "stability of solver '" << spec.name << "' (" << described << ") in scene "
             << scene->name << ": " << format_number(scene->duration)
@@ -176,7 +176,7 @@ int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>&
             << " at every frame\n";
   double estimate =
       std::numeric_limits<double>::quiet_NaN();  // s, stability.hpp's sufficient bound
-  if (spec.type == "spring_damper") {
+  if (spec.type == SolverType::spring_damper) {
     estimate = stable_step_estimate(*setup.model, scene->cloth.air_damping, scene->contact_rates(),
                                     spec.integrator);
     std::cout << "stable step estimate (stability.hpp, sufficient): "
@@ -226,8 +226,8 @@ int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>&
     nlohmann::ordered_json j;
     j["scene"] = scene->name;
     j["solver"] = spec.name;
-    j["type"] = spec.type;
-    if (spec.type == "spring_damper") j["integrator"] = integrator_name(spec.integrator);
+    j["type"] = solver_type_name(spec.type);
+    if (spec.type == SolverType::spring_damper) j["integrator"] = integrator_name(spec.integrator);
     j["duration"] = scene->duration;
     j["frame_period"] = frame_period;
     j["stretch_limit"] = kStretchLimit;

@@ -48,13 +48,13 @@ int validate_verb(const ValidateArguments& arguments) {
             << "  colliders: " << s.colliders.size() << "\n"
             << "  stable symplectic step (Gershgorin bound of springs and dampers; the contact, taken at the step's end, does not bound it): " << stable_step << " s\n";
   for (const auto& solver : s.solvers) {
-    std::cout << "  solver " << solver.name << ": " << solver.type;
-    if (solver.type == "spring_damper") std::cout << ", " << integrator_name(solver.integrator);
-    if (solver.type == "bullet_softbody") std::cout << ", " << solver.iterations << " iteration(s)";
-    if (solver.type != "spring_damper")
+    std::cout << "  solver " << solver.name << ": " << solver_type_name(solver.type);
+    if (solver.type == SolverType::spring_damper) std::cout << ", " << integrator_name(solver.integrator);
+    if (solver.type == SolverType::bullet_softbody) std::cout << ", " << solver.iterations << " iteration(s)";
+    if (solver.type != SolverType::spring_damper)
       std::cout << ", margin " << solver.margin << " m, voxel " << solver.voxel_size << " m";
     std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";
-    if (solver.type != "spring_damper") continue;
+    if (solver.type != SolverType::spring_damper) continue;
     if (solver.adaptive_substeps) {
       // The shape bound at the start; it is re-evaluated at every dt as the cloth moves.
       const double shape_step =

@@ -1,5 +1,5 @@
-// Per-frame metrics of shared/metrics.md, computed by one function from (model, state) so every
-// solver is measured the same way, never from a solver's private data.
+// Per-frame metrics (docs/metrics.md, "Per frame (`metrics.csv`)"), computed by one function from
+// (model, state) so every solver is measured the same way, never from a solver's private data.
 #pragma once
 
 #include <Eigen/Core>

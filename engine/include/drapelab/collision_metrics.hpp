@@ -1,5 +1,6 @@
-// Collision metrics of any solver's state, from the same FCL queries as our contact (metrics.md):
-// clearance d_c(x_i) - h of every particle to every collider, h the cloth's thickness.
+// Collision metrics of any solver's state, from the same FCL queries as our contact
+// (docs/metrics.md, "Per frame (`metrics.csv`)"): clearance d_c(x_i) - h of every particle to every
+// collider, h the cloth's thickness.
 #pragma once
 
 #include <vector>

@@ -1,6 +1,7 @@
-// Particle-versus-collider queries with FCL's exact closed-form shape routines. A particle is a sphere
-// of radius r (the cloth's thickness); FCL's sphere-{sphere, capsule, cylinder, box, halfspace}
-// collision gives the exact penetration depth and normal (shared/bullet-notes.md section 3).
+// Particle-versus-collider queries with FCL's exact closed-form shape routines. A particle is a
+// sphere of radius r (the cloth's thickness); FCL's sphere-{sphere, capsule, cylinder, box,
+// halfspace} intersection routines, called directly, give the exact penetration depth and normal
+// (docs/bullet.md, "FCL queries we use" and "FCL accuracy").
 #pragma once
 
 #include <Eigen/Core>
@@ -51,7 +52,8 @@ class ParticleContactQuery {
   std::optional<ParticleContact> contact(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
                                          const Eigen::Vector3d& x) const;
   // Signed distance from the particle's surface to the collider (m): d(x) - r, negative inside the
-  // thickness shell. Exact: FCL's contact depth when overlapping, FCL's distance otherwise.
+  // thickness shell. Exact: FCL's contact depth when overlapping; otherwise FCL's distance, or for
+  // a half-space its own signed distance.
   double clearance(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
                    const Eigen::Vector3d& x) const;
   double radius() const { return radius_; }

@@ -1,4 +1,4 @@
-// The Cusick drape test's measures (metrics.md, "Drape test"): the drape coefficient
+// The Cusick drape test's measures (docs/metrics.md, "Drape test"): the drape coefficient
 // DC = (A_s - A_d) / (A_D - A_d) and the number of nodes (folds) of the shadow's outline.
 //
 // A_s, the shadow, is the union of the cloth's triangles projected along gravity; A_D is the same for

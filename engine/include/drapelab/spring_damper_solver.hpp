@@ -74,7 +74,7 @@ class SpringDamperSolver final : public Solver {
   void step(double h) override;
   const ClothState& state() const override { return state_; }
   const std::string& name() const override { return name_; }
-  const std::string& type() const override { return type_; }
+  SolverType type() const override { return SolverType::spring_damper; }
   SolverStatus status() const override { return status_; }
   const std::string& message() const override { return message_; }
   std::vector<ColliderForce> collider_forces() const override;
@@ -131,7 +131,6 @@ class SpringDamperSolver final : public Solver {
   void check_health(double h, std::optional<std::int64_t> scanned);
 
   std::string name_;
-  std::string type_ = "spring_damper";
   std::shared_ptr<const ClothModel> model_;
   SpringDamperSettings settings_;
   ClothState state_;

@@ -1,5 +1,6 @@
-// Step-size bounds for explicit integration of the damped spring network, from Gershgorin's theorem
-// (validation.md V4): the stiffness and damping matrices' largest eigenvalues over mass satisfy
+// Step-size bounds for explicit integration of the damped spring network
+// (docs/physics.md, "The Gershgorin bound"; docs/validation.md, V4). By Gershgorin's theorem the
+// stiffness and damping matrices' largest eigenvalues over mass satisfy
 //   omega_max^2 <= K = max_i (2 / m_i) sum_j ks_ij     (1/s^2)
 //   c_max       <= C = max_i (2 / m_i) sum_j kd_ij + air_damping   (1/s)
 // A penalty contact adds its stiffness k_c and damping c_c to the diagonal: K += k_c / m_i and

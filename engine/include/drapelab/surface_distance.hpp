@@ -1,4 +1,5 @@
-// Distances between two states of the same cloth seen as triangle surfaces (metrics.md, compare.csv).
+// Distances between two states of the same cloth seen as triangle surfaces (docs/metrics.md,
+// "Comparison between solvers (`compare.csv`)").
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// Scene loader: reads every key of shared/scene-format.md, checks it, fills in defaults.
+// Scene loader: reads every key of docs/scene-reference.md, checks it, fills in defaults.
 #include "drapelab/scene/scene_loader.hpp"
 
 #include <yaml-cpp/yaml.h>

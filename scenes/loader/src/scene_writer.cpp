@@ -121,17 +121,17 @@ std::string resolved_scene_yaml(const Scene& s) {
       << "solvers:\n";
   for (const auto& solver : s.solvers) {
     out << "  - name: " << solver.name << "\n"
-        << "    type: " << solver.type << "\n";
-    if (solver.type == "spring_damper")
+        << "    type: " << solver_type_name(solver.type) << "\n";
+    if (solver.type == SolverType::spring_damper)
       out << "    integrator: " << integrator_name(solver.integrator) << "\n"
           << "    host: " << (solver.bullet_host ? "bullet" : "none") << "  # a plugin in a Bullet world, or bare\n"
           << "    adaptive_substeps: " << (solver.adaptive_substeps ? "true" : "false")
           << "  # split dt into the substeps the shape's stable step needs\n";
-    if (solver.type == "spring_damper" && solver.integrator == Integrator::implicit_euler)
+    if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::implicit_euler)
       out << "    implicit: {tolerance: " << format_number(solver.implicit.tolerance)
           << ", max_iterations: " << solver.implicit.max_iterations << "}  # conjugate gradient\n";
-    if (solver.type != "spring_damper") {
-      if (solver.type == "bullet_softbody") out << "    iterations: " << solver.iterations << "\n";
+    if (solver.type != SolverType::spring_damper) {
+      if (solver.type == SolverType::bullet_softbody) out << "    iterations: " << solver.iterations << "\n";
       out << "    margin: " << format_number(solver.margin) << "  # m, soft collision margin\n"
           << "    voxel_size: " << format_number(solver.voxel_size) << "  # m, sparse SDF cell\n"
           << "    collider_margin: " << format_number(solver.collider_margin) << "  # m\n";

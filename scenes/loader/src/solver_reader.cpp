@@ -5,6 +5,7 @@
 #include <regex>
 #include <set>
 
+#include "drapelab/bullet/parameter_mapping.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
 #include "run_limits.hpp"
@@ -12,20 +13,10 @@
 namespace drapelab::scene {
 namespace {
 
-const std::vector<std::string> kSolverTypes = {"spring_damper", "bullet_softbody", "bullet_deformable"};
 const std::vector<std::string> kCommonKeys = {"name", "type", "dt", "round_dt", "max_speed", "runaway_stretch"};
 const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit", "adaptive_substeps"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size", "collider_margin", "kLST"};
 const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", "collider_margin"};
-
-// Largest ks w over the springs (1/s^2): the classic cloth's mapping holds while ks w h^2 <= 0.1.
-double largest_link_rate(const ClothModel& model) {
-  double largest = 0.0;
-  const SpringSet& s = model.springs;
-  for (std::size_t e = 0; e < s.size(); ++e)
-    largest = std::max(largest, s.ks[e] * (model.inverse_mass[s.v0[e]] + model.inverse_mass[s.v1[e]]));
-  return largest;
-}
 
 class SolverReader {
  public:
@@ -34,28 +25,30 @@ class SolverReader {
 
   std::optional<SolverSpec> read(const YAML::Node& node, const std::string& path) {
     // The type decides which keys are valid, so read it first.
-    std::string type = "spring_damper";
+    SolverType type = SolverType::spring_damper;
     record_key_lines(r_, node, path);
     if (node.IsMap() && node["type"].IsDefined()) {
-      const auto chosen = r_.choice(node["type"], path + ".type", kSolverTypes);
+      std::vector<std::string> names;
+      for (const SolverType known : kSolverTypes) names.emplace_back(solver_type_name(known));
+      const auto chosen = r_.choice(node["type"], path + ".type", names);
       if (!chosen) return std::nullopt;
-      type = *chosen;
+      type = *parse_solver_type(*chosen);
     }
     std::vector<std::string> allowed = kCommonKeys;
-    const auto& own = type == "spring_damper"     ? kSpringDamperKeys
-                      : type == "bullet_softbody" ? kBulletSoftBodyKeys
-                                                  : kBulletDeformableKeys;
+    const auto& own = type == SolverType::spring_damper     ? kSpringDamperKeys
+                      : type == SolverType::bullet_softbody ? kBulletSoftBodyKeys
+                                                            : kBulletDeformableKeys;
     allowed.insert(allowed.end(), own.begin(), own.end());
     MapReader solver(r_, node, path, allowed);
     if (!solver.valid()) return std::nullopt;
     const std::size_t errors_before = r_.error_count();
     SolverSpec spec;
     spec.type = type;
-    spec.name = solver.text("name", spec.type).value_or(spec.type);
+    spec.name = solver.text("name", solver_type_name(type)).value_or(solver_type_name(type));
     static const std::regex pattern("[a-z0-9_-]+");
     if (!std::regex_match(spec.name, pattern))
       r_.error(solver.get("name"), path + ".name", "must use only a-z, 0-9, _ and -, got '" + spec.name + "'");
-    if (type == "spring_damper") {
+    if (type == SolverType::spring_damper) {
       read_integrator(solver, path, spec);
       // A plugin in a Bullet world (default), or stepped bare, without Bullet.
       spec.bullet_host = solver.choice("host", {"bullet", "none"}, "bullet").value_or("bullet") == "bullet";
@@ -106,20 +99,15 @@ class SolverReader {
                "uses " + std::string(integrator_name(spec.integrator)) + ")");
   }
 
-  // Bullet's cloths (bullet-notes 1.7, 2.4): soft margin = thickness, voxel small enough.
+  // Bullet's cloths: soft margin = thickness, voxel small enough
+  // (docs/bullet.md, "Fairness table" and "Mapping our parameters to the classic cloth").
   void read_bullet_options(MapReader& solver, SolverSpec& spec) {
-    if (spec.type == "bullet_softbody")
+    if (spec.type == SolverType::bullet_softbody)
       spec.iterations = static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
     const double thickness = scene_.cloth.grid.thickness;  // every shape's thickness lives in grid
     spec.margin = solver.number("margin", Range::positive(), thickness).value_or(thickness);
     spec.collider_margin = solver.number("collider_margin", Range::positive(), 1e-3).value_or(1e-3);
-    double feature = std::numeric_limits<double>::infinity();  // m, the smallest collider size
-    for (const auto& c : scene_.colliders) {
-      if (c.shape == ColliderShape::sphere || c.shape == ColliderShape::capsule) feature = std::min(feature, c.radius);
-      if (c.shape == ColliderShape::cylinder) feature = std::min({feature, c.radius, c.height});
-      if (c.shape == ColliderShape::box) feature = std::min(feature, 2.0 * c.half_extents.minCoeff());
-    }
-    const double voxel = std::min(spec.margin, feature / 10.0);
+    const double voxel = bullet::default_voxel_size(scene_.colliders, spec.margin);
     spec.voxel_size = solver.number("voxel_size", Range::positive(), voxel).value_or(voxel);
     if (!solver.has("kLST")) return;
     MapReader raw(r_, solver.get("kLST"), solver.path_of("kLST"), {"stretch", "shear", "bend"});
@@ -145,11 +133,11 @@ class SolverReader {
     std::string reason;
     try {
       const ClothModel model = build_scene_cloth(scene_);
-      if (spec.type == "bullet_softbody") {
-        const double rate = largest_link_rate(model);
-        if (rate > 0.0) target = std::sqrt(0.1 / rate);
-        reason = "where ks w h^2 = 0.1, the limit of the stiffness mapping";
-      } else if (spec.type == "bullet_deformable") {
+      if (spec.type == SolverType::bullet_softbody) {
+        target = std::min(target, bullet::largest_mapped_step(model));
+        reason = "where ks w h^2 = " + format_number(bullet::kMaxMappedLinkCompliance) +
+                 ", the limit of the stiffness mapping";
+      } else if (spec.type == SolverType::bullet_deformable) {
         // Its elastic force is explicit and its damping implicit: the springs alone bound the step.
         const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
         if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);

@@ -35,10 +35,10 @@ ordered_json metrics_json(const ClothMetrics& m) {
 
 ordered_json solver_json(const SolverRun& run) {
   ordered_json j;
-  j["type"] = run.spec->type;
+  j["type"] = solver_type_name(run.spec->type);
   j["status"] = solver_status_name(run.status);
   j["message"] = run.message;
-  if (run.spec->type == "spring_damper") j["integrator"] = integrator_name(run.spec->integrator);
+  if (run.spec->type == SolverType::spring_damper) j["integrator"] = integrator_name(run.spec->integrator);
   j["dt"] = run.spec->dt;
   j["steps_per_frame"] = run.spec->steps_per_frame;
   if (!run.spec->note.empty()) j["note"] = run.spec->note;

@@ -8,59 +8,78 @@
 #include "drapelab/spring_damper_solver.hpp"
 
 namespace drapelab::runner {
+namespace {
+
+// Our spring-damper cloth: bare, or a plugin in a Bullet world of its own (the default).
+std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scene::SolverSpec& spec,
+                                           std::shared_ptr<const ClothModel> model, const ClothState& initial,
+                                           std::shared_ptr<const ContactModel> contacts) {
+  SpringDamperSettings settings;
+  settings.integrator = spec.integrator;
+  settings.gravity = scene.gravity;
+  settings.air_damping = scene.cloth.air_damping;
+  settings.max_speed = spec.max_speed;
+  settings.implicit = spec.implicit;
+  settings.adaptive_substeps = spec.adaptive_substeps;
+  if (!spec.bullet_host) {
+    settings.contacts = std::move(contacts);
+    return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
+  }
+  // Hosted: the solver's contacts read the poses the host's Bullet bodies hold (a table the host
+  // fills before every substep), not collider_pose(t); the runner's `contacts`, which the metrics
+  // use, keep the analytic poses.
+  auto poses = std::make_shared<ColliderPoseTable>(scene.colliders.size());
+  if (contacts)
+    settings.contacts = std::make_shared<const ContactModel>(contacts->colliders(), contacts->parameters(),
+                                                             contacts->query().radius(), poses);
+  auto guest = std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
+  return bullet::host_in_bullet_world(std::move(guest), std::move(poses), scene.colliders, scene.gravity,
+                                      spec.collider_margin);
+}
+
+// Bullet's classic cloth on the scene's colliders (docs/bullet.md, "Fairness table").
+std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scene::SolverSpec& spec,
+                                           std::shared_ptr<const ClothModel> model, const ClothState& initial) {
+  bullet::BulletSoftBodyOptions options;
+  options.dt = spec.dt;
+  options.iterations = spec.iterations;
+  options.margin = spec.margin;
+  options.voxel_size = spec.voxel_size;
+  options.collider_margin = spec.collider_margin;
+  options.raw_link_stiffness = spec.link_stiffness;
+  options.gravity = scene.gravity;
+  options.air_damping = scene.cloth.air_damping;
+  options.max_speed = spec.max_speed;
+  return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders, options);
+}
+
+// Bullet's deformable-world cloth on the scene's colliders.
+std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene, const scene::SolverSpec& spec,
+                                              std::shared_ptr<const ClothModel> model, const ClothState& initial) {
+  bullet::BulletDeformableOptions options;
+  options.dt = spec.dt;
+  options.margin = spec.margin;
+  options.voxel_size = spec.voxel_size;
+  options.collider_margin = spec.collider_margin;
+  options.gravity = scene.gravity;
+  options.air_damping = scene.cloth.air_damping;
+  options.max_speed = spec.max_speed;
+  return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial, scene.colliders, options);
+}
+
+}  // namespace
 
 std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
                                     std::shared_ptr<const ClothModel> model, const ClothState& initial,
                                     std::shared_ptr<const ContactModel> contacts) {
-  if (spec.type == "spring_damper") {
-    SpringDamperSettings settings;
-    settings.integrator = spec.integrator;
-    settings.gravity = scene.gravity;
-    settings.air_damping = scene.cloth.air_damping;
-    settings.max_speed = spec.max_speed;
-    settings.implicit = spec.implicit;
-    settings.adaptive_substeps = spec.adaptive_substeps;
-    if (!spec.bullet_host) {
-      settings.contacts = std::move(contacts);
-      return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
-    }
-    // Hosted: the solver's contacts read the poses the host's Bullet bodies hold (a table the host
-    // fills before every substep), not collider_pose(t); the runner's `contacts`, which the metrics
-    // use, keep the analytic poses.
-    auto poses = std::make_shared<ColliderPoseTable>(scene.colliders.size());
-    if (contacts)
-      settings.contacts = std::make_shared<const ContactModel>(contacts->colliders(), contacts->parameters(),
-                                                               contacts->query().radius(), poses);
-    auto guest = std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
-    return bullet::host_in_bullet_world(std::move(guest), std::move(poses), scene.colliders, scene.gravity,
-                                        spec.collider_margin);
+  switch (spec.type) {
+    case SolverType::spring_damper: return make_spring_damper(scene, spec, std::move(model), initial,
+                                                              std::move(contacts));
+    case SolverType::bullet_softbody: return make_classic_cloth(scene, spec, std::move(model), initial);
+    case SolverType::bullet_deformable: return make_deformable_cloth(scene, spec, std::move(model), initial);
   }
-  if (spec.type == "bullet_softbody") {
-    bullet::BulletSoftBodyOptions options;
-    options.dt = spec.dt;
-    options.iterations = spec.iterations;
-    options.margin = spec.margin;
-    options.voxel_size = spec.voxel_size;
-    options.collider_margin = spec.collider_margin;
-    options.raw_link_stiffness = spec.link_stiffness;
-    options.gravity = scene.gravity;
-    options.air_damping = scene.cloth.air_damping;
-    options.max_speed = spec.max_speed;
-    return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders, options);
-  }
-  if (spec.type == "bullet_deformable") {
-    bullet::BulletDeformableOptions options;
-    options.dt = spec.dt;
-    options.margin = spec.margin;
-    options.voxel_size = spec.voxel_size;
-    options.collider_margin = spec.collider_margin;
-    options.gravity = scene.gravity;
-    options.air_damping = scene.cloth.air_damping;
-    options.max_speed = spec.max_speed;
-    return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial, scene.colliders, options);
-  }
-  // The loader knows no other type, so reaching here is a programming error.
-  throw std::logic_error("solver type '" + spec.type + "' has no implementation");
+  // Every type has a case above, so reaching here is a programming error.
+  throw std::logic_error(std::string("solver type '") + solver_type_name(spec.type) + "' has no implementation");
 }
 
 }  // namespace drapelab::runner

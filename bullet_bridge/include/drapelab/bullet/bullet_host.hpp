@@ -1,7 +1,8 @@
 // Our cloth as a plugin in a Bullet rigid-body world: the solver is stepped by Bullet as an action
 // (btActionInterface), inside a btSoftRigidDynamicsWorld whose kinematic colliders are driven exactly
 // like those of Bullet's cloth (the same pre-tick code, the same collider_pose(t)). The cloth does
-// not collide with Bullet's cloth: each solver has its own world (bullet-notes 2.3).
+// not collide with Bullet's cloth: each solver has its own world (docs/bullet.md, "Parallel worlds
+// with the same colliders").
 //
 // The guest touches the colliders Bullet holds: just before each guest step the host writes into
 // `guest_poses` the substep's start and end poses of its Bullet bodies and the velocities it gave them,

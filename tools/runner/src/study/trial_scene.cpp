@@ -25,11 +25,11 @@ std::optional<std::size_t> choose_solver(const scene::Scene& scene, const std::s
                                          bool spring_damper_only, std::string* error) {
   std::string available;
   for (const auto& spec : scene.solvers)
-    available += (available.empty() ? "" : ", ") + spec.name + " (" + spec.type + ")";
+    available += (available.empty() ? "" : ", ") + spec.name + " (" + solver_type_name(spec.type) + ")";
   std::optional<std::size_t> chosen;
   for (std::size_t k = 0; k < scene.solvers.size() && !chosen; ++k) {
     const auto& spec = scene.solvers[k];
-    if (name.empty() ? spec.type == "spring_damper" : spec.name == name) chosen = k;
+    if (name.empty() ? spec.type == SolverType::spring_damper : spec.name == name) chosen = k;
   }
   if (!chosen && name.empty() && !spring_damper_only && !scene.solvers.empty()) chosen = 0;
   if (!chosen) {
@@ -39,8 +39,8 @@ std::optional<std::size_t> choose_solver(const scene::Scene& scene, const std::s
                                 "'; expected one of: " + available;
     return std::nullopt;
   }
-  if (spring_damper_only && scene.solvers[*chosen].type != "spring_damper") {
-    *error = "solver '" + name + "' is a " + scene.solvers[*chosen].type +
+  if (spring_damper_only && scene.solvers[*chosen].type != SolverType::spring_damper) {
+    *error = "solver '" + name + "' is a " + solver_type_name(scene.solvers[*chosen].type) +
              " solver; this verb varies the integrator of a spring_damper solver. The scene's "
              "solvers are: " +
              available;

@@ -1,4 +1,4 @@
-// The resolved scene: every key of shared/scene-format.md with its default filled in. Loaded and
+// The resolved scene: every key of docs/scene-reference.md with its default filled in. Loaded and
 // validated by scene_loader.hpp; written back as resolved.yaml by scene_writer.hpp.
 #pragma once
 
@@ -18,6 +18,7 @@
 #include "drapelab/mesh_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
+#include "drapelab/solver.hpp"
 #include "drapelab/stability.hpp"
 
 namespace drapelab::scene {
@@ -51,7 +52,7 @@ struct ContactSpec {
 
 struct SolverSpec {
   std::string name;                   // label in every output; defaults to the type
-  std::string type = "spring_damper";
+  SolverType type = SolverType::spring_damper;
   Integrator integrator = Integrator::symplectic_euler;
   double dt = 0.0;                    // s, internal step; a frame is steps_per_frame steps
   bool round_dt = false;              // round dt down to a whole number of steps per frame
@@ -66,7 +67,8 @@ struct SolverSpec {
   bool adaptive_substeps = false;
   // spring_damper with implicit_euler only: the conjugate gradient's relative tolerance and cap.
   ImplicitSolveSettings implicit;
-  // bullet_softbody only (bullet-notes 1.7; README, "Bullet's classic cloth"):
+  // Bullet's cloths (docs/bullet.md, "Fairness table"); iterations and link_stiffness are for
+  // bullet_softbody only (docs/bullet.md, "Mapping our parameters to the classic cloth"):
   int iterations = 1;                 // position-solver sweeps per substep
   double margin = 0.0;                // m, soft collision margin (default: the cloth's thickness)
   double voxel_size = 0.0;            // m, sparse SDF cell (default: min(margin, smallest feature / 10))
@@ -105,7 +107,10 @@ struct Scene {
 };
 
 // The scene's cloth as a model (any shape), and its initial state (rest pose, the seeded perturbation
-// along the normals, zero velocity). Grids keep their historical, bit-for-bit initial state.
+// along the normals, zero velocity). A grid is perturbed along its sheet's one normal, exact and
+// the same for every particle (initial_grid_state), so the initial state that grid scenes' golden
+// files rest on does not depend on how vertex normals round; other shapes use their vertex normals
+// (initial_mesh_state).
 ClothModel build_scene_cloth(const Scene& scene);
 ClothState initial_scene_state(const Scene& scene, const ClothModel& model);
 

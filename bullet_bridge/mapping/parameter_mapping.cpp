@@ -1,9 +1,9 @@
-// Our spring constants as the classic solver's link stiffness (bullet-notes 1.7).
+// Our spring constants and colliders as Bullet's parameters (parameter_mapping.hpp).
+#include "drapelab/bullet/parameter_mapping.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include "drapelab/bullet/bullet_softbody_solver.hpp"
 
 namespace drapelab::bullet {
 
@@ -14,14 +14,17 @@ double mapped_link_stiffness(double ks, double w, double h, int iterations) {
   return 1.0 - std::pow(1.0 + ks * w * h * h, -1.0 / iterations);
 }
 
-double largest_link_compliance_ratio(const ClothModel& model, double h) {
-  double largest = 0.0;
+double largest_link_rate(const ClothModel& model) {
+  double largest = 0.0;  // 1/s^2
   const SpringSet& s = model.springs;
-  for (std::size_t e = 0; e < s.size(); ++e) {
-    const double w = model.inverse_mass[s.v0[e]] + model.inverse_mass[s.v1[e]];
-    largest = std::max(largest, s.ks[e] * w * h * h);
-  }
+  for (std::size_t e = 0; e < s.size(); ++e)
+    largest = std::max(largest, s.ks[e] * (model.inverse_mass[s.v0[e]] + model.inverse_mass[s.v1[e]]));
   return largest;
+}
+
+double largest_mapped_step(const ClothModel& model) {
+  const double rate = largest_link_rate(model);
+  return rate > 0.0 ? std::sqrt(kMaxMappedLinkCompliance / rate) : std::numeric_limits<double>::infinity();
 }
 
 double default_voxel_size(const std::vector<Collider>& colliders, double margin) {
