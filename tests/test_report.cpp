@@ -24,7 +24,7 @@
 
 #include "cli_harness.hpp"
 #include "drapelab/report/axis_ticks.hpp"
-#include "drapelab/report/csv_table.hpp"
+#include "drapelab/run_folder/csv.hpp"
 #include "drapelab/report/html_page.hpp"
 #include "drapelab/report/svg_plot.hpp"
 
@@ -185,7 +185,7 @@ void expect_finite_geometry(xmlNode* svg) {
     for (const char* name : {"x", "y", "x1", "x2", "y1", "y2", "cx", "cy", "width", "height"}) {
       const std::string value = attribute(node, name);
       if (value.empty()) continue;
-      const auto number = drapelab::report::parse_number(value);
+      const auto number = drapelab::run_folder::parse_number(value);
       EXPECT_TRUE(number && std::isfinite(*number)) << name << "=\"" << value << "\"";
     }
     const std::string points = attribute(node, "points");
@@ -522,7 +522,7 @@ TEST_F(ReportCli, ChromiumShowsTheReportWithoutConsoleErrors) {
 // ---- the parts on their own -------------------------------------------------------------------
 
 TEST(ReportParts, CsvReadsQuotedCellsAndEmptyCellsAsNaN) {
-  const auto table = drapelab::report::parse_csv("a,b,c\r\n1,\"x, \"\"y\"\"\",\n\n2.5,z\n");
+  const auto table = drapelab::run_folder::parse_csv("a,b,c\r\n1,\"x, \"\"y\"\"\",\n\n2.5,z\n");
   ASSERT_EQ(table.header, (std::vector<std::string>{"a", "b", "c"}));
   ASSERT_EQ(table.rows.size(), 2u);
   EXPECT_EQ(table.rows[0][1], "x, \"y\"");
@@ -530,8 +530,8 @@ TEST(ReportParts, CsvReadsQuotedCellsAndEmptyCellsAsNaN) {
   EXPECT_TRUE(std::isnan(table.number(1, table.column("c"))));  // a short row is padded
   EXPECT_EQ(table.number(1, table.column("a")), 2.5);
   EXPECT_TRUE(std::isnan(table.number(0, table.column("missing"))));
-  EXPECT_FALSE(drapelab::report::parse_number("1.5x").has_value());
-  EXPECT_EQ(*drapelab::report::parse_number(" +1e-3 "), 1e-3);
+  EXPECT_FALSE(drapelab::run_folder::parse_number("1.5x").has_value());
+  EXPECT_EQ(*drapelab::run_folder::parse_number(" +1e-3 "), 1e-3);
 }
 
 TEST(ReportParts, TicksAreNiceAndCoverTheData) {

@@ -15,7 +15,7 @@
 #include <thread>
 
 #include "drapelab/runner/bench_table.hpp"
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/number_format.hpp"

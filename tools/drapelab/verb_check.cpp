@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "drapelab/runner/golden.hpp"
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/scene_loader.hpp"
 #include "verbs.hpp"
@@ -72,15 +72,15 @@ std::optional<int> run_for_check(const CheckArguments& arguments, const std::vec
   runner::RunOptions options;
   options.out_dir = folder;
   options.force = true;
-  options.scene_text = runner::read_file(arguments.scene);
+  options.scene_text = run_folder::read_file(arguments.scene);
   options.command_line = "drapelab check " + arguments.scene;
   options.interrupt = &interrupt;
-  return runner::run_scene(*result.scene, options, std::cerr);
+  return runner::run_scene(*result.scene, options, std::cerr).exit_code;
 }
 
 int update_golden(const CheckArguments& arguments, const std::atomic<bool>& interrupt) {
   std::optional<runner::Golden> previous;
-  if (fs::exists(arguments.golden)) previous = runner::golden_from_json(runner::read_file(arguments.golden), nullptr);
+  if (fs::exists(arguments.golden)) previous = runner::golden_from_json(run_folder::read_file(arguments.golden), nullptr);
   RunFolder folder(arguments.out);
   scene::Scene scene;
   const auto code = run_for_check(arguments, arguments.overrides, folder.path(), interrupt, &scene);
@@ -100,7 +100,7 @@ int update_golden(const CheckArguments& arguments, const std::atomic<bool>& inte
     std::cout << arguments.golden << ": new golden file\n";
   }
   fs::create_directories(fs::absolute(arguments.golden).parent_path());
-  runner::write_file_atomically(arguments.golden, runner::golden_to_json(golden));
+  run_folder::write_file_atomically(arguments.golden, runner::golden_to_json(golden));
   if (*code != runner::kExitOk) std::cout << "note: the recorded run did not end ok (exit " << *code << ")\n";
   return runner::kExitOk;
 }
@@ -119,7 +119,7 @@ int check_verb(const CheckArguments& arguments, const std::atomic<bool>& interru
     return kExitBadInput;
   }
   std::string problem;
-  const auto golden = runner::golden_from_json(runner::read_file(arguments.golden), &problem);
+  const auto golden = runner::golden_from_json(run_folder::read_file(arguments.golden), &problem);
   if (!golden) {
     std::cerr << "error: " << arguments.golden << ": " << problem << "\n";
     return kExitBadInput;

@@ -1,11 +1,11 @@
-// drapelab run SCENE --out DIR: simulate and write the run folder (shared/outputs.md).
+// drapelab run SCENE --out DIR: simulate and write the run folder (docs/outputs.md).
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/scene_loader.hpp"
 #include "verbs.hpp"
@@ -29,16 +29,13 @@ void add_run_options(CLI::App& verb, RunArguments& arguments) {
 
 namespace {
 
-void print_outcome(const std::filesystem::path& out) {
-  const auto summary = nlohmann::ordered_json::parse(runner::read_file(out / "summary.json"), nullptr, false);
-  if (summary.is_discarded()) return;
-  for (const auto& [name, solver] : summary["solvers"].items()) {
+void print_outcome(const runner::RunResult& result, const std::filesystem::path& out) {
+  for (const auto& solver : result.solvers) {
     std::ostringstream line;
     line.precision(4);
-    line << "  " << name << " (" << solver["type"].get<std::string>() << "): "
-         << solver["status"].get<std::string>() << ", " << solver["steps"].get<long long>() << " steps, "
-         << solver["ms_per_step"].get<double>() << " ms per step, "
-         << solver["wall_seconds_per_simulated_second"].get<double>() << " s per simulated second";
+    line << "  " << solver.name << " (" << solver_type_name(solver.type) << "): " << solver_status_name(solver.status)
+         << ", " << solver.steps << " steps, " << solver.ms_per_step() << " ms per step, "
+         << solver.wall_seconds_per_simulated_second() << " s per simulated second";
     std::cout << line.str() << "\n";
   }
   std::cout << "outputs in " << out.string() << "/:\n";
@@ -63,15 +60,15 @@ int run_verb(const RunArguments& arguments, const std::string& command_line, con
   runner::RunOptions options;
   options.out_dir = arguments.out;
   options.force = arguments.force;
-  options.scene_text = runner::read_file(arguments.scene);
+  options.scene_text = run_folder::read_file(arguments.scene);
   options.command_line = command_line;
   options.interrupt = &interrupt;
   if (!arguments.quiet)
     std::cout << "running " << loaded.scene->name << " (" << loaded.scene->frame_count() << " frames) into "
               << arguments.out << "\n";
-  const int code = runner::run_scene(*loaded.scene, options, std::cerr);
-  if (code != kExitBadInput && !arguments.quiet) print_outcome(arguments.out);
-  return code;
+  const runner::RunResult result = runner::run_scene(*loaded.scene, options, std::cerr);
+  if (result.exit_code != kExitBadInput && !arguments.quiet) print_outcome(result, arguments.out);
+  return result.exit_code;
 }
 
 }  // namespace drapelab::cli

@@ -9,7 +9,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/number_format.hpp"
@@ -242,8 +242,8 @@ int study_verb(const StudyArguments& arguments, const std::string& command_line,
         line << " (" << result.message.substr(0, result.message.find(". Try:")) << ")";
       std::cout << line.str() << std::endl;
       // Rewritten after every row, so the files are whole whenever the study stops.
-      runner::write_file_atomically(out / "study.csv", study_csv(rows));
-      runner::write_file_atomically(out / "study.md", study_markdown(header, rows));
+      run_folder::write_file_atomically(out / "study.csv", study_csv(rows));
+      run_folder::write_file_atomically(out / "study.md", study_markdown(header, rows));
     }
   }
   std::cout << "\n"

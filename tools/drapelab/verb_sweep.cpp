@@ -14,7 +14,7 @@
 #include <sstream>
 #include <thread>
 
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/sweep_children.hpp"
 #include "drapelab/runner/sweep_files.hpp"
@@ -130,8 +130,8 @@ class SweepFolder {
   // Both files, replaced atomically: valid whenever the sweep stops.
   void write() const {
     try {
-      runner::write_file_atomically(out_ / "sweep.csv", sweep_csv(plan_, finished_));
-      runner::write_file_atomically(out_ / "sweep.json", sweep_json(record_, plan_, finished_));
+      run_folder::write_file_atomically(out_ / "sweep.csv", sweep_csv(plan_, finished_));
+      run_folder::write_file_atomically(out_ / "sweep.json", sweep_json(record_, plan_, finished_));
     } catch (const std::exception& e) {
       std::cerr << "warning: " << e.what() << "; trying again after the next run\n";
     }

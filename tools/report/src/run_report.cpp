@@ -10,7 +10,8 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "drapelab/report/csv_table.hpp"
+#include "drapelab/run_folder/csv.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/report/html_page.hpp"
 #include "drapelab/report/report.hpp"
 #include "drapelab/report/svg_plot.hpp"
@@ -19,6 +20,12 @@ namespace drapelab::report {
 
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
+// The run folder's files, read through the one module that owns their formats.
+using run_folder::CsvTable;
+using run_folder::parse_csv;
+using run_folder::parse_number;
+using run_folder::read_csv_file;
+using run_folder::read_file_bytes;
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include "drapelab/cloth_metrics.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/csv.hpp"
 
 namespace drapelab::runner {
 
@@ -30,9 +30,9 @@ class FrameTables {
   void flush();  // at the end of each frame
 
  private:
-  CsvTable metrics_;
-  CsvTable compare_;
-  CsvTable contacts_;
+  run_folder::CsvWriter metrics_;
+  run_folder::CsvWriter compare_;
+  run_folder::CsvWriter contacts_;
 };
 
 }  // namespace drapelab::runner

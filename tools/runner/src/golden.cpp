@@ -7,7 +7,8 @@
 #include <set>
 #include <sstream>
 
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/csv.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/scene/number_format.hpp"
 
 namespace drapelab::runner {
@@ -15,47 +16,25 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream stream(line);
-  std::string cell;
-  while (std::getline(stream, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-std::optional<double> parse_cell(const std::string& cell) {
-  if (cell.empty()) return std::nullopt;
-  double value = 0.0;
-  const auto [end, code] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
-  if (code != std::errc() || end != cell.data() + cell.size()) return std::nullopt;
-  return value;
-}
-
 // Adds the rows of one CSV table at the chosen frames; `key_columns` name the row (joined by '/').
 void read_table(const std::filesystem::path& path, const std::vector<std::string>& key_columns,
                 const std::set<int>& frames, std::map<int, GoldenRows>& out) {
-  std::stringstream text(read_file(path));
-  std::string line;
-  if (!std::getline(text, line)) return;
-  const std::vector<std::string> header = split_csv_line(line);
+  const run_folder::CsvTable table = run_folder::parse_csv(run_folder::read_file(path));
+  const std::vector<std::string>& header = table.header;
   const std::set<std::string> skipped = {"solver", "frame", "time", "collider", "solver_a", "solver_b"};
-  std::size_t frame_column = header.size();
+  const auto frame_column = table.column("frame");
+  if (!frame_column) return;
   std::vector<std::size_t> keys;
-  for (std::size_t c = 0; c < header.size(); ++c) {
-    if (header[c] == "frame") frame_column = c;
+  for (std::size_t c = 0; c < header.size(); ++c)
     for (const auto& key : key_columns)
       if (header[c] == key) keys.push_back(c);
-  }
-  while (std::getline(text, line)) {
-    const std::vector<std::string> cells = split_csv_line(line);
-    if (cells.size() != header.size() || frame_column == header.size()) continue;
-    const int frame = std::stoi(cells[frame_column]);
+  for (const auto& cells : table.rows) {
+    const int frame = std::stoi(cells[*frame_column]);
     if (!frames.count(frame)) continue;
     std::string row;
     for (std::size_t k : keys) row += (row.empty() ? "" : "/") + cells[k];
     for (std::size_t c = 0; c < header.size(); ++c)
-      if (!skipped.count(header[c])) out[frame][row][header[c]] = parse_cell(cells[c]);
+      if (!skipped.count(header[c])) out[frame][row][header[c]] = run_folder::parse_number(cells[c]);
   }
 }
 

@@ -34,6 +34,7 @@ ordered_json metrics_json(const ClothMetrics& m) {
 }
 
 ordered_json solver_json(const SolverRun& run) {
+  const SolverOutcome outcome = outcome_of(run);
   ordered_json j;
   j["type"] = solver_type_name(run.spec->type);
   j["status"] = solver_status_name(run.status);
@@ -45,9 +46,8 @@ ordered_json solver_json(const SolverRun& run) {
   j["steps"] = run.steps;
   j["frames_recorded"] = run.frames_recorded;
   j["wall_seconds"] = run.wall_seconds;
-  j["ms_per_step"] = run.steps > 0 ? 1e3 * run.wall_seconds / static_cast<double>(run.steps) : 0.0;
-  const double simulated = static_cast<double>(run.steps) * run.spec->dt;
-  j["wall_seconds_per_simulated_second"] = simulated > 0.0 ? run.wall_seconds / simulated : 0.0;
+  j["ms_per_step"] = outcome.ms_per_step();
+  j["wall_seconds_per_simulated_second"] = outcome.wall_seconds_per_simulated_second();
   const auto phases = run.solver->phase_seconds();
   if (!phases.empty()) {
     ordered_json timings = ordered_json::object();
@@ -69,6 +69,19 @@ ordered_json solver_json(const SolverRun& run) {
 }
 
 }  // namespace
+
+SolverOutcome outcome_of(const SolverRun& run) {
+  SolverOutcome outcome;
+  outcome.name = run.spec->name;
+  outcome.type = run.spec->type;
+  outcome.status = run.status;
+  outcome.message = run.message;
+  outcome.steps = run.steps;
+  outcome.dt = run.spec->dt;
+  outcome.frames_recorded = run.frames_recorded;
+  outcome.wall_seconds = run.wall_seconds;
+  return outcome;
+}
 
 std::string summary_json(const scene::Scene& scene, const ClothModel& model,
                          const std::vector<SolverRun>& runs, const RunInfo& info) {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/files.hpp"
 
 namespace drapelab::runner {
 namespace {
@@ -72,8 +72,8 @@ void write_bench_files(const std::filesystem::path& folder, const BenchTable& ta
       csv << ",,,,,,,,";
     csv << "\n";
   }
-  runner::write_file_atomically(folder / "bench.csv", csv.str());
-  runner::write_file_atomically(folder / "bench.md", markdown(table));
+  run_folder::write_file_atomically(folder / "bench.csv", csv.str());
+  run_folder::write_file_atomically(folder / "bench.md", markdown(table));
 }
 
 }  // namespace drapelab::runner

@@ -1,22 +1,12 @@
 #include "drapelab/runner/sweep_files.hpp"
 
+#include "drapelab/run_folder/csv.hpp"
+
 #include <nlohmann/json.hpp>
 
 namespace drapelab::runner {
 
 using nlohmann::ordered_json;
-
-std::string csv_cell(const std::string& text, bool always) {
-  const bool needs = always || text.find_first_of(",\"\n\r") != std::string::npos ||
-                     (!text.empty() && (text.front() == ' ' || text.back() == ' '));
-  if (!needs) return text;
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
 
 std::string sweep_csv(const SweepPlan& plan,
                       const std::map<std::size_t, CombinationOutcome>& finished) {
@@ -28,20 +18,20 @@ std::string sweep_csv(const SweepPlan& plan,
   for (const auto& name : sweep_solver_measures()) header.push_back(name);
   header.emplace_back("run_folder");
   std::string text;
-  for (std::size_t k = 0; k < header.size(); ++k) text += (k ? "," : "") + csv_cell(header[k]);
+  for (std::size_t k = 0; k < header.size(); ++k) text += (k ? "," : "") + run_folder::csv_cell(header[k]);
   text += "\n";
   for (const auto& [index, outcome] : finished) {  // std::map: in combination order
     const auto values = plan.values(index);
     for (const auto& row : outcome.rows) {
       std::vector<std::string> cells{std::to_string(index)};
-      for (const auto& value : values) cells.push_back(csv_cell(value));
-      cells.push_back(csv_cell(row.solver));
-      cells.push_back(csv_cell(row.type));
+      for (const auto& value : values) cells.push_back(run_folder::csv_cell(value));
+      cells.push_back(run_folder::csv_cell(row.solver));
+      cells.push_back(run_folder::csv_cell(row.type));
       cells.push_back(row.status);
       cells.push_back(outcome.exit_code ? std::to_string(*outcome.exit_code) : "");
-      cells.push_back(csv_cell(row.message, true));
+      cells.push_back(run_folder::csv_cell(row.message, true));
       for (const auto& measure : row.measures) cells.push_back(measure);
-      cells.push_back(csv_cell(outcome.folder));
+      cells.push_back(run_folder::csv_cell(outcome.folder));
       for (std::size_t k = 0; k < cells.size(); ++k) text += (k ? "," : "") + cells[k];
       text += "\n";
     }

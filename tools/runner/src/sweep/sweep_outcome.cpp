@@ -4,7 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "drapelab/runner/output_files.hpp"
+#include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
 
@@ -72,7 +72,7 @@ std::optional<std::vector<SweepRow>> rows_from_summary(const fs::path& summary_f
                                                        bool interrupted) {
   std::error_code ec;
   if (!fs::is_regular_file(summary_file, ec)) return std::nullopt;
-  const auto summary = ordered_json::parse(runner::read_file(summary_file), nullptr, false);
+  const auto summary = ordered_json::parse(run_folder::read_file(summary_file), nullptr, false);
   if (summary.is_discarded() || !member(summary, "solvers").is_object()) return std::nullopt;
   const ordered_json run = member(summary, "run");
   std::vector<SweepRow> rows;

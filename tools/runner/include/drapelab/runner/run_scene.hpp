@@ -2,11 +2,14 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "drapelab/scene/scene.hpp"
+#include "drapelab/solver.hpp"
 
 namespace drapelab::runner {
 
@@ -18,13 +21,38 @@ struct RunOptions {
   const std::atomic<bool>* interrupt = nullptr;  // set by Ctrl-C: stop after the current step
 };
 
-// Exit codes of shared/outputs.md.
+// Exit codes (docs/outputs.md, "Exit codes").
 inline constexpr int kExitOk = 0;           // every solver ok
 inline constexpr int kExitUnstable = 1;     // a solver became unstable or failed
 inline constexpr int kExitBadInput = 2;     // bad input: nothing was run
 inline constexpr int kExitInterrupted = 130;  // Ctrl-C: files hold every frame recorded so far
 
-// Runs the scene; progress and problems go to `log`. Returns an exit code above.
-int run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream& log);
+// What one solver did in a run, as summary.json records it.
+struct SolverOutcome {
+  std::string name;
+  SolverType type = SolverType::spring_damper;
+  SolverStatus status = SolverStatus::ok;
+  std::string message;        // why not ok: which particle, which step, what to try
+  std::int64_t steps = 0;
+  double dt = 0.0;            // s
+  int frames_recorded = 0;    // rows in metrics.csv, frame 0 included
+  double wall_seconds = 0.0;  // s, stepping only
+
+  double ms_per_step() const { return steps > 0 ? 1e3 * wall_seconds / static_cast<double>(steps) : 0.0; }
+  double wall_seconds_per_simulated_second() const {
+    const double simulated = static_cast<double>(steps) * dt;  // s
+    return simulated > 0.0 ? wall_seconds / simulated : 0.0;
+  }
+};
+
+struct RunResult {
+  int exit_code = kExitOk;             // one of the codes above
+  std::string state;                   // finished | interrupted; empty when refused (bad input)
+  int frames_done = 0;                 // the last frame recorded
+  std::vector<SolverOutcome> solvers;  // in the scene's order
+};
+
+// Runs the scene into options.out_dir; progress and problems go to `log`.
+RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream& log);
 
 }  // namespace drapelab::runner

@@ -1,7 +1,7 @@
 // One solver of a scene simulated in-process, without an output folder: what the stability and
-// study verbs run many times with different steps and integrators. The solver is built and stepped
-// exactly as run_scene does (same setup, same factory, frame by frame, the same per-frame metrics
-// and runaway test), so a trial here behaves like that solver in `drapelab run`.
+// study verbs run many times with different steps and integrators. The solver is built by the same
+// factory from the same setup and runs through the same frame loop as in run_scene (same per-frame
+// metrics, same checks), so a trial here behaves like that solver in `drapelab run`.
 #pragma once
 
 #include <atomic>

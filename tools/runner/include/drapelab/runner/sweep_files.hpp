@@ -14,9 +14,6 @@
 
 namespace drapelab::runner {
 
-// A CSV cell, quoted (RFC 4180: inside double quotes, a quote doubled) when it holds a comma, a
-// quote, a line break or spaces at an end, or always with `always`.
-std::string csv_cell(const std::string& text, bool always = false);
 
 // sweep.csv: a header, then the rows of every finished combination in combination order, each
 // combination's solvers in summary.json's order. Columns: combination, one per varied key (named

@@ -1,4 +1,5 @@
-#include "drapelab/report/csv_table.hpp"
+// Reading CSV files back (csv.hpp).
+#include "drapelab/run_folder/csv.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -6,7 +7,9 @@
 #include <limits>
 #include <sstream>
 
-namespace drapelab::report {
+#include "drapelab/run_folder/files.hpp"
+
+namespace drapelab::run_folder {
 
 std::optional<std::size_t> CsvTable::column(const std::string& name) const {
   for (std::size_t k = 0; k < header.size(); ++k)
@@ -93,18 +96,10 @@ CsvTable parse_csv(const std::string& text) {
   return table;
 }
 
-std::optional<std::string> read_file_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 std::optional<CsvTable> read_csv_file(const std::filesystem::path& path) {
   const auto text = read_file_bytes(path);
   if (!text) return std::nullopt;
   return parse_csv(*text);
 }
 
-}  // namespace drapelab::report
+}  // namespace drapelab::run_folder

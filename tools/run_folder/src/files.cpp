@@ -1,27 +1,14 @@
-// Run folder files: CSV tables, atomic replacement, and the folder's safety checks.
-#include "drapelab/runner/output_files.hpp"
+// Run folder files: names, atomic replacement, and the folder's safety checks (files.hpp).
+#include "drapelab/run_folder/files.hpp"
 
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
 
-namespace drapelab::runner {
+namespace drapelab::run_folder {
 
 namespace fs = std::filesystem;
-
-CsvTable::CsvTable(const fs::path& path, const std::vector<std::string>& columns)
-    : out_(path, std::ios::binary | std::ios::trunc), columns_(columns.size()) {
-  if (!out_) throw std::runtime_error("cannot write " + path.string());
-  row(columns);
-  flush();
-}
-
-void CsvTable::row(const std::vector<std::string>& cells) {
-  for (std::size_t k = 0; k < cells.size(); ++k) out_ << (k ? "," : "") << cells[k];
-  out_ << '\n';
-}
-
-void CsvTable::flush() { out_.flush(); }
 
 void write_file_atomically(const fs::path& path, const std::string& text) {
   const fs::path temporary = path.string() + ".partial";
@@ -34,18 +21,22 @@ void write_file_atomically(const fs::path& path, const std::string& text) {
   fs::rename(temporary, path);
 }
 
-std::string read_file(const fs::path& path) {
+std::string read_file(const fs::path& path) { return read_file_bytes(path).value_or(""); }
+
+std::optional<std::string> read_file_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
   std::stringstream buffer;
   buffer << in.rdbuf();
   return buffer.str();
 }
 
 const std::vector<std::string>& run_output_names() {
-  static const std::vector<std::string> names = {"scene.yaml",   "resolved.yaml", "metrics.csv",
-                                                 "compare.csv",  "contacts.csv",  "summary.json",
-                                                 "summary.json.partial", "meshes",
-                                                 "render"};  // drapelab render's default folder: stale after a re-run
+  // render/: drapelab render's default folder, stale after a re-run.
+  static const std::vector<std::string> names = {kSceneYaml,   kResolvedYaml,  kMetricsCsv,
+                                                 kCompareCsv,  kContactsCsv,   kSummaryJson,
+                                                 std::string(kSummaryJson) + ".partial",
+                                                 kMeshesFolder, kRenderFolder};
   return names;
 }
 
@@ -55,7 +46,7 @@ std::optional<std::string> prepare_run_folder(const fs::path& folder, const std:
   if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
     return folder.string() + " exists and is not a folder; choose another --out";
   if (fs::is_directory(folder, ec) && !fs::is_empty(folder, ec) && !force) {
-    const fs::path previous = folder / "resolved.yaml";
+    const fs::path previous = folder / kResolvedYaml;
     if (!fs::exists(previous))
       return folder.string() + " is not empty and holds no drapelab run; choose an empty or new --out "
                                "folder, or add --force to write the run beside its files";
@@ -70,4 +61,4 @@ std::optional<std::string> prepare_run_folder(const fs::path& folder, const std:
   return std::nullopt;
 }
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::run_folder

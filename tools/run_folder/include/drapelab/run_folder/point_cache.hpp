@@ -1,0 +1,46 @@
+// The run folder's meshes/: per-solver PC2 point caches (Blender's Mesh Cache modifier reads them onto
+// rest.obj; vertex order is particle order) and the names of the per-frame OBJ files.
+// PC2: "POINTCACHE2\0", int32 version 1, int32 points, float32 start frame, float32 sample rate
+// (frames), int32 samples, then per sample points x 3 float32, little endian.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drapelab::run_folder {
+
+// "SOLVER.pc2" and "SOLVER_NNNN.obj" (frame with four digits), inside meshes/.
+std::string point_cache_name(const std::string& solver);
+std::string obj_frame_name(const std::string& solver, int frame);
+
+// Writes a point cache a frame at a time. The sample count in the header is rewritten after every
+// frame, so the file is valid whenever it is read.
+class Pc2Writer {
+ public:
+  Pc2Writer(const std::filesystem::path& path, int point_count);
+  ~Pc2Writer();
+  Pc2Writer(const Pc2Writer&) = delete;
+  Pc2Writer& operator=(const Pc2Writer&) = delete;
+  void append(const Eigen::Matrix3Xd& x);  // m, 3 x points
+  int sample_count() const { return samples_; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int points_ = 0;
+  int samples_ = 0;
+};
+
+struct Pc2Header {
+  int points = 0;
+  int samples = 0;  // whole samples in the file: the header's count, capped by the file's size
+};
+// The header of a PC2 file; nullopt when the file cannot be read or is not PC2 version 1.
+std::optional<Pc2Header> read_pc2_header(const std::filesystem::path& path);
+// Sample `frame` of a point cache of `points` points (m, 3 x points); nullopt when it cannot be read.
+std::optional<Eigen::Matrix3Xd> read_pc2_frame(const std::filesystem::path& path, int points, int frame);
+
+}  // namespace drapelab::run_folder

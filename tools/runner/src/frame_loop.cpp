@@ -1,0 +1,104 @@
+// The frame loop: step every running solver through a frame, then measure and check each.
+#include "frame_loop.hpp"
+
+#include <chrono>
+
+#include "drapelab/scene/number_format.hpp"
+
+namespace drapelab::runner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+bool interrupted(const std::atomic<bool>* interrupt) {
+  return interrupt && interrupt->load(std::memory_order_relaxed);
+}
+
+// Steps one solver through a frame; stops early when it leaves `ok` or on Ctrl-C.
+void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* interrupt) {
+  const auto start = Clock::now();
+  for (int s = 0; s < run.spec->steps_per_frame; ++s) {
+    run.solver->step(run.spec->dt);
+    ++run.steps;
+    if (run.solver->status() != SolverStatus::ok || interrupted(interrupt)) break;
+  }
+  run.wall_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  if (run.solver->status() == SolverStatus::ok) return;
+  run.status = run.solver->status();
+  run.message = run.solver->message();
+  run.stopped_by = StopCause::solver;
+  run.stopped_at_frame = frame;
+}
+
+// The metrics of one state: cloth metrics, plus clearance from FCL when there are colliders (the
+// same queries for every solver).
+FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, const ClothState& state,
+                           int frame, double time) {
+  FrameMeasure measure;
+  measure.frame = frame;
+  measure.time = time;
+  measure.metrics = frame_metrics(setup, scene, state);
+  if (setup.contacts) {
+    measure.collisions = compute_collision_metrics(*setup.model, state, *setup.contacts, time);
+    measure.metrics.min_clearance = measure.collisions->min_clearance;
+    measure.metrics.max_penetration = measure.collisions->max_penetration;
+    measure.metrics.contact_count = measure.collisions->contact_count;
+  }
+  return measure;
+}
+
+// Which stretch check refuses a measured frame (none when it passes); a NaN stretch is refused too:
+// a stretch spring far beyond its rest length means the state has exploded even if every number is
+// still finite.
+StopCause stretch_check(const scene::SolverSpec& spec, const ClothMetrics& metrics, double stretch_limit) {
+  if (!(metrics.max_stretch <= spec.runaway_stretch)) return StopCause::runaway_stretch;
+  if (!(metrics.max_stretch < stretch_limit)) return StopCause::stretch_limit;
+  return StopCause::none;
+}
+
+void stop_for_stretch(SolverRun& run, const ClothModel& model, const FrameMeasure& measure, double stretch_limit) {
+  const bool runaway = measure.failed == StopCause::runaway_stretch;
+  run.status = SolverStatus::unstable;
+  run.stopped_by = measure.failed;
+  run.stopped_at_frame = measure.frame;
+  run.message = describe_most_stretched_spring(model, run.solver->state()) +
+                (runaway ? " (more than runaway_stretch = " + format_number(run.spec->runaway_stretch)
+                         : " (at least the stretch limit " + format_number(stretch_limit)) +
+                ") at frame " + std::to_string(measure.frame) + ", step " + std::to_string(run.steps) +
+                (runaway ? ". Try: a smaller dt, stiffer stretch springs, or more damping." : "");
+}
+
+}  // namespace
+
+FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup, std::vector<SolverRun>& runs,
+                            const FrameLoopOptions& options, FrameObserver& observer) {
+  FrameLoopEnd end;
+  for (int frame = 0; frame <= scene.frame_count(); ++frame) {
+    if (frame > 0)
+      for (auto& run : runs)
+        if (run.running()) advance_one_frame(run, frame, options.interrupt);
+    if (frame > 0 && interrupted(options.interrupt)) {
+      end.interrupted = true;
+      break;
+    }
+    const double time = frame / scene.frame_rate;  // s
+    for (auto& run : runs) {
+      if (!run.running()) continue;
+      FrameMeasure measure = measure_frame(scene, setup, run.solver->state(), frame, time);
+      measure.failed = stretch_check(*run.spec, measure.metrics, options.stretch_limit);
+      run.last_metrics = measure.metrics;
+      run.rest.add(time, measure.metrics.kinetic_energy, measure.metrics.gravity_energy, setup.model->total_mass());
+      ++run.frames_recorded;
+      observer.measured(run, measure);
+      if (measure.failed != StopCause::none) stop_for_stretch(run, *setup.model, measure, options.stretch_limit);
+    }
+    observer.frame_done(frame, time, runs);
+    end.last_frame = frame;
+    bool any_running = false;
+    for (const auto& run : runs) any_running = any_running || run.running();
+    if (!any_running) break;
+  }
+  return end;
+}
+
+}  // namespace drapelab::runner

@@ -1,0 +1,56 @@
+// The one frame loop of every in-process run: drapelab run (run_scene) and the trials of the
+// stability, study and bench verbs (simulate_solver). Each frame, every running solver takes its own
+// steps_per_frame steps of dt; then each is measured the same way (cloth metrics, clearance with
+// colliders) and checked (its status, the scene's runaway_stretch, an optional stretch limit). A
+// solver that stops, stops alone; the others go on.
+#pragma once
+
+#include <atomic>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "drapelab/cloth_metrics.hpp"
+#include "drapelab/collision_metrics.hpp"
+#include "drapelab/runner/scene_setup.hpp"
+#include "drapelab/scene/scene.hpp"
+#include "solver_run.hpp"
+
+namespace drapelab::runner {
+
+// One solver's state at one recorded frame, as measured.
+struct FrameMeasure {
+  int frame = 0;      // 0 = the initial state
+  double time = 0.0;  // s
+  ClothMetrics metrics;                        // clearance filled in when there are colliders
+  std::optional<CollisionMetrics> collisions;  // per collider, when there are colliders
+  StopCause failed = StopCause::none;          // the stretch check this frame failed, if any
+};
+
+// What the loop's caller does with each frame: write rows, keep results.
+class FrameObserver {
+ public:
+  virtual ~FrameObserver() = default;
+  // Every measured frame of every running solver, in solver order, the frame that fails a stretch
+  // check included (measure.failed says so; the solver is stopped right after).
+  virtual void measured(const SolverRun& run, const FrameMeasure& measure) = 0;
+  // Once per frame, after every solver's frame was measured and checked.
+  virtual void frame_done(int /*frame*/, double /*time*/, const std::vector<SolverRun>& /*runs*/) {}
+};
+
+struct FrameLoopOptions {
+  // A measured max stretch not below this stops the solver as unstable, like runaway_stretch.
+  double stretch_limit = std::numeric_limits<double>::infinity();
+  const std::atomic<bool>* interrupt = nullptr;  // Ctrl-C: stop after the current step
+};
+
+struct FrameLoopEnd {
+  int last_frame = 0;        // the last frame measured
+  bool interrupted = false;  // stopped by options.interrupt (a partly stepped frame is not measured)
+};
+
+// Runs `runs` (built from `setup`) through scene.duration, frame by frame.
+FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup, std::vector<SolverRun>& runs,
+                            const FrameLoopOptions& options, FrameObserver& observer);
+
+}  // namespace drapelab::runner
