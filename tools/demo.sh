@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Quickstart 1: install what is missing, build in Release, run the default scene, list the outputs,
-# render it (when this build has drapelab render) and write its HTML report, whose path comes last.
+# render its frames and render/video.mp4 (ffmpeg) and write its HTML report, whose path comes last.
 # Usage: tools/demo.sh [SCENE] [OUT_DIR]   (default: scenes/sphere_drape.yaml into out/sphere_drape)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -28,4 +28,7 @@ fi
 report=$("$drapelab" report "$out")
 echo
 echo "drapelab is at build/tools/drapelab/drapelab; the run is in $out/ (see README.md, 'What a run writes')."
+if [[ -f $out/render/video.mp4 ]]; then
+  echo "video: $out/render/video.mp4"
+fi
 echo "report: $report"

@@ -13,10 +13,12 @@ packages=(
   nlohmann-json3-dev                             # summary.json
   libosmesa6-dev libgl-dev                       # drapelab render: offscreen OpenGL (Mesa; no display or GPU)
   libfreetype-dev fonts-dejavu-core              # drapelab render: label text and its font
+  ffmpeg                                         # drapelab render: render/video.mp4 from the frames
   libgtest-dev libgmock-dev                      # tests
   libxml2-dev libpng-dev                         # tests (HTML report, screenshot); PNG files of drapelab render
   chromium                                       # tests: open the HTML report headless
   libbenchmark-dev                               # micro-benchmarks (bench/)
+  clang-format                                   # the format check of tools/test.sh (.clang-format)
 )
 
 if [[ "${1:-}" == "--print" ]]; then

@@ -189,9 +189,10 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
   for (const std::string& file : scenes)
     for (int n : sizes) {
       const std::string resolution = "cloth.resolution=[" + std::to_string(n) + ", " + std::to_string(n) + "]";
-      const auto scene = load_trial_scene(file, {resolution, kSolvers}, duration);
+      std::shared_ptr<const ClothModel> model;
+      const auto scene = load_trial_scene(file, {resolution, kSolvers}, duration, &model);
       if (!scene) return kExitBadInput;  // the loader printed why
-      const runner::SceneSetup setup = runner::build_scene_setup(*scene);
+      const runner::SceneSetup setup = runner::build_scene_setup(*scene, model);
       // First each solver's setting and its first run, then the repeats, round by round across the
       // solvers, so that a slow spell of the machine falls on all of them alike.
       std::vector<SolverRuns> runs;

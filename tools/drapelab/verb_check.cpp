@@ -75,6 +75,7 @@ std::optional<int> run_for_check(const CheckArguments& arguments, const std::vec
   options.scene_text = run_folder::read_file(arguments.scene);
   options.command_line = "drapelab check " + arguments.scene;
   options.interrupt = &interrupt;
+  options.model = result.model;
   return runner::run_scene(*result.scene, options, std::cerr).exit_code;
 }
 

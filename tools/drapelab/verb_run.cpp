@@ -63,6 +63,7 @@ int run_verb(const RunArguments& arguments, const std::string& command_line, con
   options.scene_text = run_folder::read_file(arguments.scene);
   options.command_line = command_line;
   options.interrupt = &interrupt;
+  options.model = loaded.model;
   if (!arguments.quiet)
     std::cout << "running " << loaded.scene->name << " (" << loaded.scene->frame_count() << " frames) into "
               << arguments.out << "\n";

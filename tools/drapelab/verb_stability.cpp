@@ -1,5 +1,5 @@
 // drapelab stability SCENE: the largest step for which one solver of the scene stays stable for the
-// whole duration. Stable = the solver's status stays ok and the max stretch (metrics.md: over
+// whole duration. Stable = the solver's status stays ok and the max stretch (docs/metrics.md: over
 // stretch springs, |x_a - x_b| / L - 1) stays below 1 at every recorded frame. Steps are
 // frame_period / k for whole k (a scene's step must divide the frame period), so the search bisects
 // on k (step_search.hpp).
@@ -133,7 +133,8 @@ void add_stability_options(CLI::App& verb, StabilityArguments& arguments) {
 }
 
 int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>& interrupt) {
-  const auto scene = load_trial_scene(arguments.scene, arguments.overrides, arguments.duration);
+  std::shared_ptr<const ClothModel> model;  // the loader's, so the cloth is built once
+  const auto scene = load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
   if (!scene) return kExitBadInput;
   std::string problem;
   const auto index = choose_solver(*scene, arguments.solver, false, &problem);
@@ -165,7 +166,7 @@ int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>&
     }
   }
 
-  const runner::SceneSetup setup = runner::build_scene_setup(*scene);
+  const runner::SceneSetup setup = runner::build_scene_setup(*scene, model);
   std::string described = solver_type_name(spec.type);
   if (spec.type == SolverType::spring_damper)
     described += ", " + std::string(integrator_name(spec.integrator));

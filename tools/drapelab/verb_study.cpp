@@ -104,7 +104,8 @@ void add_study_options(CLI::App& verb, StudyArguments& arguments) {
 
 int study_verb(const StudyArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt) {
-  const auto scene = load_trial_scene(arguments.scene, arguments.overrides, arguments.duration);
+  std::shared_ptr<const ClothModel> model;  // the loader's, so the cloth is built once
+  const auto scene = load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
   if (!scene) return kExitBadInput;
   std::string problem;
   const auto index = choose_solver(*scene, arguments.solver, true, &problem);
@@ -152,7 +153,7 @@ int study_verb(const StudyArguments& arguments, const std::string& command_line,
     return kExitBadInput;
   }
 
-  const runner::SceneSetup setup = runner::build_scene_setup(*scene);
+  const runner::SceneSetup setup = runner::build_scene_setup(*scene, model);
   runner::SimulationOptions options;
   options.stretch_limit = kStretchLimit;
   options.interrupt = &interrupt;

@@ -33,7 +33,7 @@ int validate_verb(const ValidateArguments& arguments) {
     std::cout << scene::resolved_scene_yaml(s);
     return 0;
   }
-  const ClothModel model = scene::build_scene_cloth(s);
+  const ClothModel& model = *result.model;
   // s: symplectic Euler takes its contact force at the step's end, so its springs alone bound it.
   const double stable_step =
       stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), Integrator::symplectic_euler);

@@ -65,6 +65,7 @@ class SceneBuilder {
   }
 
   std::vector<std::string> notes;
+  std::shared_ptr<const ClothModel> model;  // the scene's cloth, null when it cannot be built
 
  private:
   void check_frame_count(MapReader& top) {
@@ -172,13 +173,20 @@ class SceneBuilder {
 
   void read_solvers(MapReader& top) {
     // Colliders and contact are read by now: the automatic steps depend on them.
-    const bool cloth_ok = cloth_reader_.geometry_ok() && r_.error_count() == 0;
+    // The cloth is built here, once: the automatic steps measure it, and the run uses it (model).
+    if (cloth_reader_.geometry_ok() && r_.error_count() == 0) {
+      try {
+        model = std::make_shared<const ClothModel>(build_scene_cloth(scene_));
+      } catch (const std::invalid_argument&) {
+        model = nullptr;  // reported elsewhere (mass missing, bad pins)
+      }
+    }
     if (top.has("solvers")) {
-      scene_.solvers = scene::read_solvers(r_, top.get("solvers"), scene_, cloth_ok, notes);
+      scene_.solvers = scene::read_solvers(r_, top.get("solvers"), scene_, model.get(), notes);
     } else {
       // The contract's default: our solver and Bullet's classic cloth, side by side.
       const YAML::Node defaults = YAML::Load("[{type: spring_damper}, {type: bullet_softbody}]");
-      scene_.solvers = scene::read_solvers(r_, defaults, scene_, cloth_ok, notes);
+      scene_.solvers = scene::read_solvers(r_, defaults, scene_, model.get(), notes);
     }
   }
 
@@ -208,6 +216,7 @@ LoadResult load_from_text(const std::string& text, const std::string& display_na
   if (!result.errors.empty()) return result;
   scene.source = source;
   result.notes = builder.notes;
+  result.model = builder.model;
   result.scene = std::move(scene);
   return result;
 }

@@ -20,8 +20,8 @@ const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", 
 
 class SolverReader {
  public:
-  SolverReader(SceneReader& r, const Scene& scene, bool cloth_ok, std::vector<std::string>& notes)
-      : r_(r), scene_(scene), cloth_ok_(cloth_ok), notes_(notes) {}
+  SolverReader(SceneReader& r, const Scene& scene, const ClothModel* model, std::vector<std::string>& notes)
+      : r_(r), scene_(scene), model_(model), notes_(notes) {}
 
   std::optional<SolverSpec> read(const YAML::Node& node, const std::string& path) {
     // The type decides which keys are valid, so read it first.
@@ -128,39 +128,35 @@ class SolverReader {
   // scenes/ stays stable with one evaluation per 60 Hz frame; the evaluation costs about five substeps).
   double automatic_step(SolverSpec& spec) {
     const double frame_period = scene_.frame_period();
-    if (!cloth_ok_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
+    if (!model_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
+    const ClothModel& model = *model_;
     double target = frame_period;
     std::string reason;
-    try {
-      const ClothModel model = build_scene_cloth(scene_);
-      if (spec.type == SolverType::bullet_softbody) {
-        target = std::min(target, bullet::largest_mapped_step(model));
-        reason = "where ks w h^2 = " + format_number(bullet::kMaxMappedLinkCompliance) +
-                 ", the limit of the stiffness mapping";
-      } else if (spec.type == SolverType::bullet_deformable) {
-        // Its elastic force is explicit and its damping implicit: the springs alone bound the step.
-        const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
-        if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);
-        reason = "0.9 x the stable step of its explicit springs";
-      } else if (spec.adaptive_substeps) {
-        target = 1.0 / 120.0;
-        reason = "1/120 s: the solver splits each step into the substeps its current shape needs";
-      } else if (spec.integrator == Integrator::implicit_euler) {
-        target = 1.0 / 240.0;
-        reason = "implicit Euler's default of 1/240 s";
-      } else {
-        double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(), spec.integrator);
-        double factor = 0.9;
-        if (bound == 0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step at all
-          bound = symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
-          factor = 0.1;
-        }
-        target = factor * bound;
-        reason = format_number(factor) + " x the " + integrator_name(spec.integrator) + " stable step estimate " +
-                 format_number(bound) + " s";
+    if (spec.type == SolverType::bullet_softbody) {
+      target = std::min(target, bullet::largest_mapped_step(model));
+      reason = "where ks w h^2 = " + format_number(bullet::kMaxMappedLinkCompliance) +
+               ", the limit of the stiffness mapping";
+    } else if (spec.type == SolverType::bullet_deformable) {
+      // Its elastic force is explicit and its damping implicit: the springs alone bound the step.
+      const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
+      if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);
+      reason = "0.9 x the stable step of its explicit springs";
+    } else if (spec.adaptive_substeps) {
+      target = 1.0 / 120.0;
+      reason = "1/120 s: the solver splits each step into the substeps its current shape needs";
+    } else if (spec.integrator == Integrator::implicit_euler) {
+      target = 1.0 / 240.0;
+      reason = "implicit Euler's default of 1/240 s";
+    } else {
+      double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(), spec.integrator);
+      double factor = 0.9;
+      if (bound == 0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step at all
+        bound = symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
+        factor = 0.1;
       }
-    } catch (const std::invalid_argument&) {
-      return frame_period;  // reported elsewhere (mass missing, bad pins)
+      target = factor * bound;
+      reason = format_number(factor) + " x the " + integrator_name(spec.integrator) + " stable step estimate " +
+               format_number(bound) + " s";
     }
     const double steps = std::max(1.0, std::ceil(frame_period / target));
     spec.note = "dt chosen automatically: " + format_number(steps) + " steps per frame (" + reason + ")";
@@ -205,21 +201,21 @@ class SolverReader {
 
   SceneReader& r_;
   const Scene& scene_;
-  bool cloth_ok_;
+  const ClothModel* model_;  // the scene's cloth, null when refused
   std::vector<std::string>& notes_;
 };
 
 }  // namespace
 
 std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list, const Scene& scene,
-                                     bool cloth_ok, std::vector<std::string>& notes) {
+                                     const ClothModel* model, std::vector<std::string>& notes) {
   std::vector<SolverSpec> solvers;
   if (!list.IsSequence() || list.size() == 0) {
     reader.error(list, "solvers", "must be a non-empty list of solvers, got " + describe_scalar(list));
     return solvers;
   }
   record_item_lines(reader, list, "solvers");
-  SolverReader solver_reader(reader, scene, cloth_ok, notes);
+  SolverReader solver_reader(reader, scene, model, notes);
   std::set<std::string> names;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string path = "solvers." + std::to_string(k);

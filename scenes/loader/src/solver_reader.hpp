@@ -12,9 +12,10 @@
 namespace drapelab::scene {
 
 // `scene` holds everything read before the solvers (run settings, cloth, colliders, contact), which
-// the automatic steps and Bullet's defaults depend on; `cloth_ok` says the cloth can be built.
+// the automatic steps and Bullet's defaults depend on; `model` is its cloth as built, null when the
+// cloth is refused.
 // Things chosen on the user's behalf (an automatic or rounded dt) are added to `notes`.
 std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list, const Scene& scene,
-                                     bool cloth_ok, std::vector<std::string>& notes);
+                                     const ClothModel* model, std::vector<std::string>& notes);
 
 }  // namespace drapelab::scene

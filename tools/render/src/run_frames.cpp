@@ -133,7 +133,7 @@ RunFrames load_run_frames(const fs::path& dir) {
   RunFrames run;
   run.dir = dir;
   run.scene = std::move(*loaded.scene);
-  run.model = scene::build_scene_cloth(run.scene);
+  run.model = loaded.model ? *loaded.model : scene::build_scene_cloth(run.scene);
 
   const auto summary = nlohmann::ordered_json::parse(read_text(summary_file), nullptr, false);
   if (summary.is_discarded() || !summary.contains("solvers") || !summary["solvers"].is_object())

@@ -1,4 +1,4 @@
-// The per-frame tables of a run: metrics.csv, compare.csv and contacts.csv (shared/outputs.md).
+// The per-frame tables of a run: metrics.csv, compare.csv and contacts.csv (docs/outputs.md).
 #pragma once
 
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Summary-level measures of how a solver comes to rest (shared/metrics.md), from its recorded frames:
+// How a solver comes to rest, from its recorded frames (docs/metrics.md, "Summary-level measures"):
 //   settle time  the first frame time after which kinetic energy stays below 1e-6 of the largest
 //                gravity energy released so far (E_g(0) - E_g(t), maximised over the run);
 //   rest jitter  the mass-weighted RMS speed sqrt(2 KE / M) averaged (as a mean square) over the

@@ -83,7 +83,7 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
   run_folder::write_file_atomically(out / run_folder::kSceneYaml, options.scene_text);
   run_folder::write_file_atomically(out / run_folder::kResolvedYaml, resolved);
 
-  const SceneSetup setup = build_scene_setup(scene);
+  const SceneSetup setup = build_scene_setup(scene, options.model);
   const ClothModel& model = *setup.model;
   std::vector<SolverRun> runs;
   runs.reserve(scene.solvers.size());

@@ -12,9 +12,9 @@ Eigen::Vector3d up_of(const scene::Scene& scene) {
 
 }  // namespace
 
-SceneSetup build_scene_setup(const scene::Scene& scene) {
+SceneSetup build_scene_setup(const scene::Scene& scene, std::shared_ptr<const ClothModel> model) {
   SceneSetup setup;
-  setup.model = std::make_shared<const ClothModel>(scene::build_scene_cloth(scene));
+  setup.model = model ? std::move(model) : std::make_shared<const ClothModel>(scene::build_scene_cloth(scene));
   setup.initial = scene::initial_scene_state(scene, *setup.model);
   if (!scene.colliders.empty())
     setup.contacts = std::make_shared<const ContactModel>(

@@ -8,8 +8,8 @@
 
 namespace drapelab::runner {
 
-std::optional<scene::Scene> load_trial_scene(const std::string& file,
-                                             std::vector<std::string> overrides, double duration) {
+std::optional<scene::Scene> load_trial_scene(const std::string& file, std::vector<std::string> overrides,
+                                             double duration, std::shared_ptr<const ClothModel>* model) {
   if (duration > 0.0) overrides.push_back("duration=" + format_number(duration));
   const auto loaded = scene::load_scene_file(file, overrides);
   if (!loaded.ok()) {
@@ -18,6 +18,7 @@ std::optional<scene::Scene> load_trial_scene(const std::string& file,
     return std::nullopt;
   }
   for (const auto& note : loaded.notes) std::cerr << "note: " << note << "\n";
+  if (model) *model = loaded.model;
   return *loaded.scene;
 }
 

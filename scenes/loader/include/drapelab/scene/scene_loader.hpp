@@ -3,10 +3,12 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "drapelab/cloth_model.hpp"
 #include "drapelab/scene/scene.hpp"
 
 namespace drapelab::scene {
@@ -15,6 +17,9 @@ struct LoadResult {
   std::optional<Scene> scene;       // set only when there is no error
   std::vector<std::string> errors;  // "scene.yaml:14: cloth.springs.stretch.ks must be > 0, got -3"
   std::vector<std::string> notes;   // things the loader did on request (dt rounded, ...)
+  // The scene's cloth, built once while loading (the automatic steps measure it); pass it on to
+  // build_scene_setup so that a run builds it only once. Set whenever `scene` is.
+  std::shared_ptr<const ClothModel> model;
   bool ok() const { return scene.has_value(); }
 };
 

@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "drapelab/cloth_model.hpp"
 #include "drapelab/scene/scene.hpp"
 #include "drapelab/solver.hpp"
 
@@ -19,6 +21,7 @@ struct RunOptions {
   std::string scene_text;                      // the scene file as given, copied to scene.yaml
   std::string command_line;                    // recorded in summary.json
   const std::atomic<bool>* interrupt = nullptr;  // set by Ctrl-C: stop after the current step
+  std::shared_ptr<const ClothModel> model;       // the loader's cloth (built from the scene when null)
 };
 
 // Exit codes (docs/outputs.md, "Exit codes").

@@ -22,9 +22,10 @@ struct SceneSetup {
   std::shared_ptr<const DrapeMeter> drape;       // null without metrics.drape_support
 };
 
-// Builds the cloth (any shape), its initial state (scene.cloth.perturbation, scene.seed), the contact
-// model (scene.contact, the cloth's thickness as the particles' radius) and the drape meter.
-SceneSetup build_scene_setup(const scene::Scene& scene);
+// Builds the cloth (any shape) unless `model` is given (the loader's, scene::LoadResult::model, built
+// from this very scene), its initial state (scene.cloth.perturbation, scene.seed), the contact model
+// (scene.contact, the cloth's thickness as the particles' radius) and the drape meter.
+SceneSetup build_scene_setup(const scene::Scene& scene, std::shared_ptr<const ClothModel> model = nullptr);
 
 // The per-frame metrics of a state that need no colliders: ClothMetrics, plus the drape coefficient
 // and node count when the scene names a drape support.

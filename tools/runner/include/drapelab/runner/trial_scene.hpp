@@ -6,15 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/cloth_model.hpp"
 #include "drapelab/scene/scene.hpp"
 
 namespace drapelab::runner {
 
 // Loads the scene with the overrides, plus duration=S when `duration` > 0 (validated like the file:
 // duration x frame_rate must be whole). Prints every error to stderr and returns nothing on bad
-// input.
-std::optional<scene::Scene> load_trial_scene(const std::string& file,
-                                             std::vector<std::string> overrides, double duration);
+// input. `model`, when given, receives the cloth the loader built (for build_scene_setup).
+std::optional<scene::Scene> load_trial_scene(const std::string& file, std::vector<std::string> overrides,
+                                             double duration, std::shared_ptr<const ClothModel>* model = nullptr);
 
 // The solver named `name`; without a name, the first spring_damper solver, else the first solver.
 // With `spring_damper_only`, other types are refused; so is a solver with adaptive substeps (the
