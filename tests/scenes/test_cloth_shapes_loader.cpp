@@ -7,7 +7,7 @@
 
 #include "drapelab/scene/scene_loader.hpp"
 #include "drapelab/scene/scene_writer.hpp"
-#include "scene_text_helpers.hpp"
+#include "fixtures/scene_text.hpp"
 
 namespace drapelab {
 namespace {
@@ -15,9 +15,9 @@ namespace {
 namespace fs = std::filesystem;
 using scene::load_scene_file;
 using scene::load_scene_text;
-using testing::all_errors;
-using testing::at_line;
-using testing::HasError;
+using fixtures::all_errors;
+using fixtures::at_line;
+using fixtures::HasError;
 
 constexpr const char* kName = "shapes.yaml";
 
@@ -71,45 +71,45 @@ TEST(ClothShapes, MaterialGivesWeightAndSpringsAndExplicitKeysWin) {
   // Bending from the rigidity 1e-5 N m at the disc's 1.5 cm ring spacing.
   EXPECT_NEAR(c.bend.ks, 16.0 * 1e-5 / (0.015 * 0.015 * 0.09), 1e-9);
   EXPECT_DOUBLE_EQ(c.bend.kd, 5e-5 * c.bend.ks);
-  const auto denim = load(testing::with_line(kDisc, 8, "  material: denim"));
+  const auto denim = load(fixtures::with_line(kDisc, 8, "  material: denim"));
   ASSERT_LOADS(denim);
   EXPECT_GT(denim.scene->cloth.grid.bend.ks, 5.0 * c.bend.ks);
   // Explicit keys override the preset, key by key.
-  const auto mixed = load(testing::insert_after(kDisc, 8, "  mass: 0.02\n  springs: {stretch: {ks: 700}}"));
+  const auto mixed = load(fixtures::insert_after(kDisc, 8, "  mass: 0.02\n  springs: {stretch: {ks: 700}}"));
   ASSERT_LOADS(mixed);
   EXPECT_FALSE(mixed.scene->cloth.grid.areal_density);
   EXPECT_DOUBLE_EQ(*mixed.scene->cloth.grid.mass, 0.02);
   EXPECT_DOUBLE_EQ(mixed.scene->cloth.grid.stretch.ks, 700.0);
   EXPECT_DOUBLE_EQ(mixed.scene->cloth.grid.stretch.kd, 5e-5 * 1000.0) << "kd stays the preset's";
-  EXPECT_TRUE(HasError(load(testing::with_line(kDisc, 8, "  material: coton")), at(8),
+  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 8, "  material: coton")), at(8),
                        {"cloth.material must be one of", "did you mean 'cotton'"}));
-  EXPECT_TRUE(HasError(load(testing::without_lines(kDisc, 8, 8)), at(4), {"cloth.mass is required", "material"}));
+  EXPECT_TRUE(HasError(load(fixtures::without_lines(kDisc, 8, 8)), at(4), {"cloth.mass is required", "material"}));
 }
 
 TEST(ClothShapes, DrapeSupportMustBeARoundColliderOrARadius) {
-  const auto radius = load(testing::with_line(kDisc, 12, "  drape_support: 0.05"));
+  const auto radius = load(fixtures::with_line(kDisc, 12, "  drape_support: 0.05"));
   ASSERT_LOADS(radius);
   EXPECT_TRUE(radius.scene->drape_support->collider.empty());
   EXPECT_EQ(radius.scene->drape_support->disc.center, Eigen::Vector3d(0, 0.5, 0)) << "under the cloth's centre";
-  EXPECT_TRUE(HasError(load(testing::with_line(kDisc, 12, "  drape_support: tabel")), at(12),
+  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 12, "  drape_support: tabel")), at(12),
                        {"metrics.drape_support", "did you mean table"}));
-  EXPECT_TRUE(HasError(load(testing::with_line(kDisc, 12, "  drape_support: -1")), at(12),
+  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 12, "  drape_support: -1")), at(12),
                        {"metrics.drape_support must be > 0"}));
   const std::string box = "  - {name: table, type: box, center: [0, 0.25, 0], half_extents: [0.1, 0.2, 0.1]}";
-  EXPECT_TRUE(HasError(load(testing::with_line(kDisc, 10, box)), at(12), {"'table' is a box", "no circular"}));
+  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 10, box)), at(12), {"'table' is a box", "no circular"}));
   const std::string tilted =
       "  - {name: table, type: cylinder, center: [0, 0.25, 0], radius: 0.09, height: 0.49, rotation: [90, 0, 0]}";
-  EXPECT_TRUE(HasError(load(testing::with_line(kDisc, 10, tilted)), at(12), {"axis is along gravity"}));
+  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 10, tilted)), at(12), {"axis is along gravity"}));
 }
 
 TEST(ClothShapes, ShapeKeysBelongToTheirShape) {
-  EXPECT_TRUE(HasError(load(testing::insert_after(kDisc, 6, "  resolution: [5, 5]")), at(7),
+  EXPECT_TRUE(HasError(load(fixtures::insert_after(kDisc, 6, "  resolution: [5, 5]")), at(7),
                        {"cloth.resolution is not a known key"}));
-  EXPECT_TRUE(HasError(load(testing::insert_after(kDisc, 8, "  pins: [[0, 1]]")), at(9),
+  EXPECT_TRUE(HasError(load(fixtures::insert_after(kDisc, 8, "  pins: [[0, 1]]")), at(9),
                        {"cloth.pins.0 selects no particle", "grid coordinates [i, j] need shape: grid"}));
-  EXPECT_TRUE(HasError(load(testing::insert_after(kDisc, 8, "  pins: [corners]")), at(9),
+  EXPECT_TRUE(HasError(load(fixtures::insert_after(kDisc, 8, "  pins: [corners]")), at(9),
                        {"cloth.pins.0 must be one of", "center", "rim"}));
-  const auto pinned = load(testing::insert_after(kDisc, 8, "  pins: [rim, center]"));
+  const auto pinned = load(fixtures::insert_after(kDisc, 8, "  pins: [rim, center]"));
   ASSERT_LOADS(pinned);
   const ClothModel model = scene::build_scene_cloth(*pinned.scene);
   int count = 0;

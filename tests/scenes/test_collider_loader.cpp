@@ -11,12 +11,12 @@
 
 #include "drapelab/collider.hpp"
 #include "drapelab/scene/scene_loader.hpp"
-#include "scene_text_helpers.hpp"
+#include "fixtures/scene_text.hpp"
 #include "drapelab/scene/scene_writer.hpp"
 
 namespace {
 
-using namespace drapelab::testing;  // scene_text_helpers.hpp
+using namespace drapelab::fixtures;  // fixtures/scene_text.hpp
 
 using drapelab::Collider;
 using drapelab::ColliderKeyframe;

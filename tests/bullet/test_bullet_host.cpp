@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "bullet_test_sheet.hpp"
+#include "fixtures/bullet_test_sheet.hpp"
 #include "drapelab/bullet/bullet_diagnostics.hpp"
 #include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/grid_cloth.hpp"
@@ -14,7 +14,7 @@ namespace drapelab {
 namespace {
 
 GridClothSpec pinned_sheet(int n, double size, Eigen::Vector3d center, double mass) {
-  GridClothSpec spec = testing::bullet_test_sheet(n, size, center, mass);
+  GridClothSpec spec = fixtures::bullet_test_sheet(n, size, center, mass);
   spec.pins = {PinNamed{"corners"}};
   return spec;
 }

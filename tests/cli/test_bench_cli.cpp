@@ -6,10 +6,12 @@
 #include <cmath>
 #include <filesystem>
 
-#include "cli_harness.hpp"
+#include "fixtures/cli.hpp"
 
-namespace drapelab::testing {
+namespace drapelab {
 namespace {
+
+using namespace fixtures;  // fixtures/cli.hpp
 
 namespace fs = std::filesystem;
 
@@ -95,4 +97,4 @@ TEST_F(BenchCli, BadSizeIsRefused) {
 }
 
 }  // namespace
-}  // namespace drapelab::testing
+}  // namespace drapelab

@@ -15,13 +15,13 @@
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_loader.hpp"
-#include "scene_text_helpers.hpp"
+#include "fixtures/scene_text.hpp"
 #include "drapelab/scene/scene_writer.hpp"
 #include "drapelab/stability.hpp"
 
 namespace {
 
-using namespace drapelab::testing;  // scene_text_helpers.hpp
+using namespace drapelab::fixtures;  // fixtures/scene_text.hpp
 
 namespace fs = std::filesystem;
 using drapelab::scene::load_scene_file;

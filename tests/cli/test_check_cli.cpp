@@ -4,10 +4,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_harness.hpp"
+#include "fixtures/cli.hpp"
 
-namespace drapelab::testing {
+namespace drapelab {
 namespace {
+
+using namespace fixtures;  // fixtures/cli.hpp
 
 const char* kScene = R"(# a small cloth dropped on a sphere
 name: check_me
@@ -93,4 +95,4 @@ TEST_F(CheckCli, BadInputExitsWithTwo) {
 }
 
 }  // namespace
-}  // namespace drapelab::testing
+}  // namespace drapelab

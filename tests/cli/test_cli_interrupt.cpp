@@ -10,10 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "cli_harness.hpp"
+#include "fixtures/cli.hpp"
 
-namespace drapelab::testing {
+namespace drapelab {
 namespace {
+
+using namespace fixtures;  // fixtures/cli.hpp
 
 namespace fs = std::filesystem;
 
@@ -86,4 +88,4 @@ TEST_F(CliInterrupt, CtrlCDuringABenchKeepsTheMeasuredRowsAndExits130) {
 }
 
 }  // namespace
-}  // namespace drapelab::testing
+}  // namespace drapelab

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "cli_harness.hpp"
+#include "fixtures/cli.hpp"
 #include "drapelab/report/axis_ticks.hpp"
 #include "drapelab/report/csv_table.hpp"
 #include "drapelab/report/html_page.hpp"
@@ -31,9 +31,9 @@
 namespace {
 
 namespace fs = std::filesystem;
-using drapelab::testing::read_text;
-using drapelab::testing::run_drapelab;
-using drapelab::testing::write_text;
+using drapelab::fixtures::read_text;
+using drapelab::fixtures::run_drapelab;
+using drapelab::fixtures::write_text;
 
 // A 7 x 7 sheet 0.05 m above a sphere, 0.2 s at 60 frames/s: it lands at about 0.1 s and the
 // contact, clearance and distance columns all get values. Two solvers: ours and Bullet's classic.
@@ -283,7 +283,7 @@ long distinct_colours(const fs::path& path) {
 
 // ---- the tests -----------------------------------------------------------------------------
 
-class ReportCli : public drapelab::testing::TempDirTest {
+class ReportCli : public drapelab::fixtures::TempDirTest {
  protected:
   // The tiny drape run into dir()/run, made with the CLI.
   fs::path make_run() {
@@ -472,13 +472,13 @@ Screenshot screenshot(const fs::path& page, const fs::path& work) {
   Screenshot shot;
   shot.png = work / (page.stem().string() + "_screenshot.png");
   const fs::path log = work / (page.stem().string() + "_chromium.log");
-  const std::string command = "timeout 60 " + drapelab::testing::shell_quote(kChromium) +
+  const std::string command = "timeout 60 " + drapelab::fixtures::shell_quote(kChromium) +
                               " --headless --no-sandbox --disable-gpu --user-data-dir=" +
-                              drapelab::testing::shell_quote((work / "chromium_profile").string()) +
-                              " --screenshot=" + drapelab::testing::shell_quote(shot.png.string()) +
+                              drapelab::fixtures::shell_quote((work / "chromium_profile").string()) +
+                              " --screenshot=" + drapelab::fixtures::shell_quote(shot.png.string()) +
                               " --window-size=1200,2400 --enable-logging=stderr --v=0 " +
-                              drapelab::testing::shell_quote("file://" + fs::absolute(page).string()) + " >/dev/null 2>" +
-                              drapelab::testing::shell_quote(log.string());
+                              drapelab::fixtures::shell_quote("file://" + fs::absolute(page).string()) + " >/dev/null 2>" +
+                              drapelab::fixtures::shell_quote(log.string());
   const int status = std::system(command.c_str());
   shot.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   shot.log = fs::exists(log) ? read_text(log) : "";
@@ -488,7 +488,7 @@ Screenshot screenshot(const fs::path& page, const fs::path& work) {
 // Console lines: anything the page's scripts printed, uncaught exceptions, failed resource loads.
 std::vector<std::string> console_errors(const std::string& log) {
   std::vector<std::string> errors;
-  for (const auto& line : drapelab::testing::split_lines(log))
+  for (const auto& line : drapelab::fixtures::split_lines(log))
     if (line.find("CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos) errors.push_back(line);
   return errors;
 }

@@ -1,29 +1,26 @@
-// `drapelab stability` and `drapelab study` end to end on tiny scenes written by the tests, and the
-// step search of the stability verb on its own with a synthetic stability rule.
+// `drapelab stability` and `drapelab study` end to end on tiny scenes written by the tests (the step
+// search alone: test_step_search.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/step_search.hpp"
-#include "cli_harness.hpp"
+#include "fixtures/cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using drapelab::testing::read_text;
-using drapelab::testing::run_drapelab;
-using drapelab::testing::split_csv;
-using drapelab::testing::split_lines;
-using drapelab::testing::write_text;
+using drapelab::fixtures::read_text;
+using drapelab::fixtures::run_drapelab;
+using drapelab::fixtures::split_csv;
+using drapelab::fixtures::split_lines;
+using drapelab::fixtures::write_text;
 
 // One undamped spring: a 1 x 2 chain, the top particle pinned, the lower one (m = 0.01 kg) hanging
 // on a stretch spring of ks = 9000 N/m under gravity. Its only mode has omega = sqrt(ks / m) =
@@ -73,7 +70,7 @@ const std::string kSheet =
     "solvers:\n"
     "  - {name: ours, type: spring_damper, dt: 0.00026041666666666666, host: none}\n";
 
-class StudyCli : public drapelab::testing::TempDirTest {
+class StudyCli : public drapelab::fixtures::TempDirTest {
  protected:
   fs::path scene(const std::string& name, const std::string& text) {
     const fs::path path = dir() / name;
@@ -269,78 +266,6 @@ TEST_F(StudyCli, StudyOfImplicitEulerReportsConjugateGradientIterations) {
   EXPECT_GT(std::stod(rows[0].at("cg_iterations_mean")),
             0.0);  // the solve ran (a warm start may need none)
   EXPECT_TRUE(rows[1].at("cg_iterations_mean").empty());  // leapfrog has no linear solve
-}
-
-// The search alone, with a rule whose answer is known: stable iff k >= threshold.
-struct SyntheticRule {
-  int threshold = 0;
-  std::vector<int> tried;
-  std::optional<bool> operator()(int k) {
-    tried.push_back(k);
-    return k >= threshold;
-  }
-};
-
-TEST(StepSearch, BisectsToNeighbouringStepsPerFrame) {
-  for (const int start : {1, 5, 100, 1000}) {
-    for (const int threshold : {1, 2, 37, 47, 48, 640}) {
-      SyntheticRule rule{threshold, {}};
-      drapelab::runner::StepSearchLimits limits;
-      limits.tolerance = 0.0;
-      const auto outcome = drapelab::runner::search_largest_stable_step(start, limits, std::ref(rule));
-      ASSERT_TRUE(outcome.stable_k);
-      EXPECT_EQ(*outcome.stable_k, threshold) << "start " << start;
-      if (threshold > 1) {
-        ASSERT_TRUE(outcome.unstable_k);
-        EXPECT_EQ(*outcome.unstable_k, threshold - 1);
-      } else {
-        EXPECT_FALSE(
-            outcome.unstable_k);  // k = 1 (one step per frame) is the largest step there is
-      }
-      std::set<int> distinct(rule.tried.begin(), rule.tried.end());
-      EXPECT_EQ(distinct.size(), rule.tried.size()) << "a k was tried twice";
-      EXPECT_EQ(rule.tried.front(), start);
-    }
-  }
-}
-
-TEST(StepSearch, ToleranceStopsEarlyAndLimitsBoundTheSteps) {
-  SyntheticRule rule{640, {}};
-  drapelab::runner::StepSearchLimits limits;
-  limits.tolerance = 0.05;
-  const auto loose = drapelab::runner::search_largest_stable_step(100, limits, std::ref(rule));
-  ASSERT_TRUE(loose.stable_k && loose.unstable_k);
-  EXPECT_GE(*loose.stable_k, 640);
-  EXPECT_LT(*loose.unstable_k, 640);
-  EXPECT_LE(static_cast<double>(*loose.stable_k) / *loose.unstable_k - 1.0, 0.05);
-  EXPECT_GT(*loose.stable_k - *loose.unstable_k, 1);  // stopped before neighbours
-
-  // Nothing stable up to the largest k: no stable step, and nothing beyond the limit was tried.
-  SyntheticRule never{2000000, {}};
-  limits.largest_k = 1000000;
-  const auto none = drapelab::runner::search_largest_stable_step(100, limits, std::ref(never));
-  EXPECT_FALSE(none.stable_k);
-  EXPECT_EQ(none.unstable_k, 1000000);
-  for (const int k : never.tried) EXPECT_LE(k, 1000000);
-
-  // Everything stable: the search stops at the smallest k allowed (the largest step, --max-dt).
-  SyntheticRule always{1, {}};
-  limits.smallest_k = 6;
-  const auto capped = drapelab::runner::search_largest_stable_step(100, limits, std::ref(always));
-  EXPECT_EQ(capped.stable_k, 6);
-  EXPECT_FALSE(capped.unstable_k);
-  for (const int k : always.tried) EXPECT_GE(k, 6);
-}
-
-TEST(StepSearch, AnInterruptedTrialStopsTheSearch) {
-  int calls = 0;
-  const auto outcome =
-      drapelab::runner::search_largest_stable_step(100, {}, [&calls](int) -> std::optional<bool> {
-        return ++calls < 3 ? std::optional<bool>(true) : std::nullopt;
-      });
-  EXPECT_TRUE(outcome.stopped);
-  EXPECT_EQ(calls, 3);
-  EXPECT_EQ(outcome.stable_k, 50);
 }
 
 }  // namespace

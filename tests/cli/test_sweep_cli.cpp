@@ -1,7 +1,6 @@
-// `drapelab sweep` end to end on a tiny scene written by the tests (every combination once, in
+// `drapelab sweep` end to end on a tiny scene written by the tests: every combination once, in
 // odometer order, failed runs as rows, unknown keys refused before anything runs, the same table
-// whatever --jobs, Ctrl-C), and its parts on their own: splitting --vary values, the combination
-// order, folder names, and telling a misspelt key from a bad value in the scene loader's errors.
+// whatever --jobs, Ctrl-C (its parts alone: test_sweep_plan.cpp).
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -21,40 +20,18 @@
 #include <thread>
 #include <vector>
 
-#include "drapelab/runner/sweep_plan.hpp"
-#include "drapelab/runner/sweep_validation.hpp"
-#include "cli_harness.hpp"
-#include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/cli.hpp"
+#include "fixtures/sweep_scene.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using drapelab::testing::interrupt_drapelab_when;
-using drapelab::testing::read_text;
-using drapelab::testing::run_drapelab;
-using drapelab::testing::write_text;
-
-// A 5 x 5 sheet pinned at its corners: 0.1 s at 60 frames/s (6 frames), 64 steps per frame, well
-// inside the stable step (drapelab validate: 2.2e-3 s). At one step per frame (dt = 1/60 s) it
-// blows up within the run.
-const std::string kSheet =
-    "name: sweep_sheet\n"
-    "duration: 0.1\n"
-    "frame_rate: 60\n"
-    "seed: 3\n"
-    "cloth:\n"
-    "  size: [0.2, 0.2]\n"
-    "  resolution: [5, 5]\n"
-    "  mass: 0.05\n"
-    "  perturbation: 0.001\n"
-    "  springs:\n"
-    "    stretch: {ks: 100, kd: 0.1}\n"
-    "    shear: {ks: 10, kd: 0.01}\n"
-    "    bend: {ks: 1, kd: 0.001}\n"
-    "  pins: [corners]\n"
-    "solvers:\n"
-    "  - {name: ours, type: spring_damper, dt: 0.00026041666666666666, host: none}\n";
-const std::string kUnstableDt = "0.016666666666666666";  // s: one step per frame
+using drapelab::fixtures::interrupt_drapelab_when;
+using drapelab::fixtures::kSweepSheet;
+using drapelab::fixtures::kSweepUnstableDt;
+using drapelab::fixtures::read_text;
+using drapelab::fixtures::run_drapelab;
+using drapelab::fixtures::write_text;
 
 // RFC 4180 CSV: quoted cells may hold commas and doubled quotes (sweep.csv's message and values).
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -113,11 +90,11 @@ Table read_table(const fs::path& file) {
   return table;
 }
 
-class SweepCli : public drapelab::testing::TempDirTest {
+class SweepCli : public drapelab::fixtures::TempDirTest {
  protected:
   fs::path scene() {
     const fs::path path = dir() / "sheet.yaml";
-    if (!fs::exists(path)) write_text(path, kSheet);
+    if (!fs::exists(path)) write_text(path, kSweepSheet);
     return path;
   }
 };
@@ -187,7 +164,7 @@ TEST_F(SweepCli, FailedRunsAreRowsAndExitOne) {
   // ks = -1 is out of range (bad input, refused before running); dt = 1/60 s blows up (unstable).
   const auto result =
       run_drapelab({"sweep", scene().string(), "--vary", "cloth.springs.bend.ks=1,-1", "--vary",
-                    "solvers.0.dt=0.00026041666666666666," + kUnstableDt, "--out", out.string()});
+                    "solvers.0.dt=0.00026041666666666666," + kSweepUnstableDt, "--out", out.string()});
   EXPECT_EQ(result.exit_code, 1) << result.output;
   const Table table = read_table(out / "sweep.csv");
   ASSERT_EQ(table.rows.size(), 4u) << read_text(out / "sweep.csv");
@@ -240,7 +217,7 @@ TEST_F(SweepCli, SameTableWhateverTheJobCount) {
     const fs::path out = dir() / ("jobs" + std::to_string(jobs));
     const auto result =
         run_drapelab({"sweep", scene().string(), "--vary", "cloth.springs.stretch.ks=50,100,200",
-                      "--vary", "solvers.0.dt=0.00026041666666666666," + kUnstableDt, "--out",
+                      "--vary", "solvers.0.dt=0.00026041666666666666," + kSweepUnstableDt, "--out",
                       out.string(), "--jobs", std::to_string(jobs)});
     EXPECT_EQ(result.exit_code, 1) << result.output;  // the unstable rows
     tables[jobs] = read_table(out / "sweep.csv");
@@ -371,72 +348,6 @@ TEST_F(SweepCli, ACrashedRunIsARowAndTheSweepGoesOn) {
       << table.rows[0].at("message");
   EXPECT_EQ(table.rows[1].at("status"), "ok");
   EXPECT_EQ(table.rows[1].at("solver"), "ours");
-}
-
-// ---- the parts on their own ----
-
-TEST(SweepPlan, SplitsValuesOnCommasOutsideBracketsAndQuotes) {
-  std::string error;
-  using List = std::vector<std::string>;
-  EXPECT_EQ(drapelab::runner::split_values("1, 10,100", &error).value_or(List{}),
-            (List{"1", "10", "100"}));
-  EXPECT_EQ(drapelab::runner::split_values("[5,5],[7,7]", &error).value_or(List{}),
-            (List{"[5,5]", "[7,7]"}));
-  EXPECT_EQ(drapelab::runner::split_values("{ks: 1, kd: 0},[1,[2,3]]", &error).value_or(List{}),
-            (List{"{ks: 1, kd: 0}", "[1,[2,3]]"}));
-  EXPECT_EQ(drapelab::runner::split_values("'a,b',\"c,d\"", &error).value_or(List{}),
-            (List{"'a,b'", "\"c,d\""}));
-  for (const std::string bad : {"[5,5", "5]", "1,,2", "1,", "", "'open"}) {
-    EXPECT_FALSE(drapelab::runner::split_values(bad, &error)) << bad;
-    EXPECT_FALSE(error.empty());
-  }
-  const auto varied = drapelab::runner::parse_vary("cloth.resolution=[5,5],[7,7]", &error);
-  ASSERT_TRUE(varied) << error;
-  EXPECT_EQ(varied->key, "cloth.resolution");
-  EXPECT_EQ(varied->values, (List{"[5,5]", "[7,7]"}));
-  for (const std::string bad : {"no_equals", "=1,2", "a..b=1", ".a=1"})
-    EXPECT_FALSE(drapelab::runner::parse_vary(bad, &error)) << bad;
-}
-
-TEST(SweepPlan, CountsLikeAnOdometerAndNamesFolders) {
-  const drapelab::runner::SweepPlan plan({{"a", {"1", "2"}}, {"b.c", {"x", "[5, 5]", "z"}}});
-  ASSERT_EQ(plan.count(), 6u);
-  const std::vector<std::vector<std::string>> expected{{"1", "x"}, {"1", "[5, 5]"}, {"1", "z"},
-                                                       {"2", "x"}, {"2", "[5, 5]"}, {"2", "z"}};
-  for (std::size_t k = 0; k < 6; ++k) EXPECT_EQ(plan.values(k), expected[k]) << k;
-  EXPECT_EQ(plan.overrides(4), (std::vector<std::string>{"a=2", "b.c=[5, 5]"}));
-  EXPECT_EQ(plan.folder_name(1), "001_a=1_b.c=5_5");
-  EXPECT_EQ(drapelab::runner::sanitise_for_file_name("{ks: 1, kd: 0.5}"), "ks_1_kd_0.5");
-  EXPECT_EQ(drapelab::runner::sanitise_for_file_name("../x/y"),
-            ".._x_y");  // no '/' ever reaches a path
-  EXPECT_EQ(drapelab::runner::sanitise_for_file_name("[]"), "_");
-  // Eleven hundred combinations: four digits, in order.
-  const drapelab::runner::SweepPlan big({{"k", std::vector<std::string>(1100, "v")}});
-  EXPECT_EQ(big.folder_name(7).substr(0, 5), "0007_");
-  EXPECT_LE(drapelab::runner::SweepPlan({{std::string(300, 'k'), {"v"}}}).folder_name(0).size(),
-            drapelab::runner::kMaxFolderName);
-}
-
-TEST(SweepValidation, TellsAMisspeltKeyFromABadValue) {
-  // Real loader messages for the same scene: only the first three name a key that does not exist.
-  struct Case {
-    std::string key, value;
-    bool key_error;
-  };
-  const std::vector<Case> cases{
-      {"cloth.sprngs.bend.ks", "1", true},    {"cloth.springs.bend.kz", "1", true},
-      {"solvers.3.dt", "0.001", true},        {"duration.x", "1", true},
-      {"cloth.springs.bend.ks", "-1", false}, {"cloth.springs.bend", "{ks: 1, kq: 2}", false},
-      {"cloth.resolution", "[5]", false}};
-  for (const auto& c : cases) {
-    const auto loaded =
-        drapelab::scene::load_scene_text(kSheet, "sheet.yaml", {c.key + "=" + c.value});
-    ASSERT_FALSE(loaded.ok()) << c.key;
-    bool found = false;
-    for (const auto& error : loaded.errors)
-      found = found || drapelab::runner::is_key_path_error(error, c.key, c.value);
-    EXPECT_EQ(found, c.key_error) << c.key << "=" << c.value << ": " << loaded.errors.front();
-  }
 }
 
 }  // namespace

@@ -16,17 +16,17 @@
 #include <string>
 #include <vector>
 
-#include "cli_harness.hpp"
+#include "fixtures/cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using drapelab::testing::CommandResult;
-using drapelab::testing::read_text;
-using drapelab::testing::run_drapelab;
-using drapelab::testing::split_csv;
-using drapelab::testing::split_lines;
-using drapelab::testing::write_text;
+using drapelab::fixtures::CommandResult;
+using drapelab::fixtures::read_text;
+using drapelab::fixtures::run_drapelab;
+using drapelab::fixtures::split_csv;
+using drapelab::fixtures::split_lines;
+using drapelab::fixtures::write_text;
 using nlohmann::json;
 
 // A 9 x 9 sheet pinned at its corners, 0.1 s at 60 frames/s (6 frames after frame 0), 16 steps per
@@ -137,7 +137,7 @@ std::size_t count_lines_starting_with(const std::string& text, const std::string
   return count;
 }
 
-class Cli : public drapelab::testing::TempDirTest {
+class Cli : public drapelab::fixtures::TempDirTest {
  protected:
   fs::path scene(const std::string& name, const std::string& text) {
     const fs::path path = dir() / name;

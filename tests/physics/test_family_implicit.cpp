@@ -15,7 +15,7 @@
 #include "drapelab/spring_damper_solver.hpp"
 #include "forces/spring_families.hpp"
 #include "forces/spring_family_loops.hpp"
-#include "stiff_sheet.hpp"
+#include "fixtures/stiff_sheet.hpp"
 
 namespace drapelab {
 namespace {

@@ -22,14 +22,14 @@
 #include <string>
 #include <vector>
 
-#include "cli_harness.hpp"
+#include "fixtures/cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using drapelab::testing::read_text;
-using drapelab::testing::run_drapelab;
-using drapelab::testing::write_text;
+using drapelab::fixtures::read_text;
+using drapelab::fixtures::run_drapelab;
+using drapelab::fixtures::write_text;
 
 // The cloth starts 5 cm above the ball: it lands at t = 0.1 s and drapes for the last 0.1 s. Seven
 // frames at 30 frames per second (0 to 6).
@@ -148,7 +148,7 @@ class RenderCli : public ::testing::Test {
     fs::remove_all(*root_);
     fs::create_directories(*root_);
     write_text(*root_ / "scene.yaml", kScene);
-    run_result_ = new drapelab::testing::CommandResult(
+    run_result_ = new drapelab::fixtures::CommandResult(
         run_drapelab({"run", (*root_ / "scene.yaml").string(), "--out", run_dir().string(), "--meshes", "pc2", "-q"}));
   }
   static void TearDownTestSuite() {
@@ -172,7 +172,7 @@ class RenderCli : public ::testing::Test {
 
  private:
   static inline fs::path* root_ = nullptr;
-  static inline drapelab::testing::CommandResult* run_result_ = nullptr;
+  static inline drapelab::fixtures::CommandResult* run_result_ = nullptr;
   std::string saved_path_;
 };
 
