@@ -12,6 +12,7 @@
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -29,15 +30,10 @@ FloorScene floor_scene(double tilt) {
   const Eigen::Matrix3d turn = euler_rotation({0.0, 0.0, tilt});
   FloorScene scene;
   GridClothSpec& spec = scene.cloth;
-  spec.nx = spec.ny = 11;
-  spec.size = {0.5, 0.5};
-  spec.center = turn * Eigen::Vector3d(0.0, 0.012, 0.0);
+  spec = fixtures::with_springs(fixtures::flat_sheet(11, 0.5, turn * Eigen::Vector3d(0.0, 0.012, 0.0), 0.1),
+                                {{200.0, 0.02}, {20.0, 0.002}, {2.0, 0.0002}});
   spec.rotation = {0.0, 0.0, tilt};
-  spec.mass = 0.1;
   spec.thickness = 0.01;
-  spec.stretch = {200.0, 0.02};
-  spec.shear = {20.0, 0.002};
-  spec.bend = {2.0, 0.0002};
   Collider& floor = scene.floor;
   floor.name = "floor";
   floor.shape = ColliderShape::box;

@@ -6,17 +6,14 @@
 #include <cstdio>
 #include <memory>
 
-#include "fixtures/bullet_test_sheet.hpp"
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_diagnostics.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "fixtures/chains.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
-
-GridClothSpec sheet(int n, double size, Eigen::Vector3d center, double mass) {
-  return fixtures::bullet_test_sheet(n, size, center, mass);
-}
 
 std::unique_ptr<Solver> deformable(const std::shared_ptr<const ClothModel>& model, const ClothState& initial,
                                    std::vector<Collider> colliders, double dt, double margin, double air_damping = 0.0) {
@@ -29,7 +26,7 @@ std::unique_ptr<Solver> deformable(const std::shared_ptr<const ClothModel>& mode
 }
 
 TEST(BulletDeformable, ClothHasOurNodesMassesPinsAndRestLengths) {
-  GridClothSpec spec = sheet(6, 0.5, {0, 1, 0}, 0.36);
+  GridClothSpec spec = fixtures::bullet_test_sheet(6, 0.5, {0, 1, 0}, 0.36);
   spec.pins = {PinNamed{"top_corners"}};
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState initial = initial_grid_state(*model, spec, 0.002, 9);
@@ -47,7 +44,7 @@ TEST(BulletDeformable, ClothHasOurNodesMassesPinsAndRestLengths) {
 }
 
 TEST(BulletDeformable, FreeFallIsSymplecticEuler) {
-  GridClothSpec spec = sheet(4, 0.3, {0, 2, 0}, 0.05);
+  GridClothSpec spec = fixtures::bullet_test_sheet(4, 0.3, {0, 2, 0}, 0.05);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState initial = initial_grid_state(*model, spec, 0.0, 0);
   const double h = 1.0 / 600;
@@ -61,16 +58,7 @@ TEST(BulletDeformable, FreeFallIsSymplecticEuler) {
 
 // V2: the deformable world uses our spring force, so the chain rests at Hooke's statics.
 TEST(BulletDeformable, HangingChainMatchesHookesLaw) {
-  GridClothSpec spec;
-  spec.nx = 1;
-  spec.ny = 11;
-  spec.plane = GridPlane::xy;
-  spec.size = {0.1, 0.5};
-  spec.center = {0, 0.75, 0};
-  spec.mass = 0.11;
-  spec.stretch = {100.0, 0.05};
-  spec.shear = spec.bend = {0.0, 0.0};
-  spec.pins = {PinNamed{"top_corners"}};
+  const GridClothSpec spec = fixtures::hanging_chain(0.05);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const double h = 1e-3;
   auto solver = deformable(model, initial_grid_state(*model, spec, 0.0, 0), {}, h, 0.01, 3.0);
@@ -84,7 +72,7 @@ TEST(BulletDeformable, HangingChainMatchesHookesLaw) {
 
 TEST(BulletDeformable, ClothRestsOnASphereOneMarginOff) {
   const double radius = 0.2, margin = 0.01;
-  GridClothSpec spec = sheet(15, 0.5, {0, 0.5 + radius + 0.05, 0}, 0.05);
+  GridClothSpec spec = fixtures::bullet_test_sheet(15, 0.5, {0, 0.5 + radius + 0.05, 0}, 0.05);
   spec.stretch = {200.0, 0.01};
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   Collider ball;

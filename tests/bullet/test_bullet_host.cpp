@@ -4,10 +4,10 @@
 
 #include <memory>
 
-#include "fixtures/bullet_test_sheet.hpp"
 #include "drapelab/bullet/bullet_diagnostics.hpp"
 #include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "fixtures/sheets.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 
 namespace drapelab {

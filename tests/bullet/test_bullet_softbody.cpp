@@ -7,23 +7,20 @@
 #include <memory>
 #include <random>
 
-#include "fixtures/bullet_test_sheet.hpp"
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_diagnostics.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
 #include "drapelab/collision_metrics.hpp"
 #include "drapelab/contact_fcl.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "fixtures/chains.hpp"
+#include "fixtures/sheets.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 
 namespace drapelab {
 namespace {
 
 using bullet::BulletSoftBodyOptions;
-
-GridClothSpec sheet(int n, double size, Eigen::Vector3d center, double mass) {
-  return fixtures::bullet_test_sheet(n, size, center, mass);
-}
 
 BulletSoftBodyOptions options_for(double dt, double margin) {
   BulletSoftBodyOptions options;
@@ -34,7 +31,7 @@ BulletSoftBodyOptions options_for(double dt, double margin) {
 }
 
 TEST(BulletBridge, ClothHasOurNodesMassesPinsRestLengthsAndLinks) {
-  GridClothSpec spec = sheet(7, 0.6, {0, 1, 0}, 0.49);
+  GridClothSpec spec = fixtures::bullet_test_sheet(7, 0.6, {0, 1, 0}, 0.49);
   spec.pins = {PinNamed{"corners"}};
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState initial = initial_grid_state(*model, spec, 0.003, 5);  // perturbed start
@@ -113,7 +110,7 @@ TEST(BulletBridge, ColliderSignedDistanceAgreesWithFcl) {
 }
 
 TEST(BulletBridge, FreeFallFollowsSymplecticEulerLikeOurs) {
-  GridClothSpec spec = sheet(5, 0.4, {0, 2, 0}, 0.1);
+  GridClothSpec spec = fixtures::bullet_test_sheet(5, 0.4, {0, 2, 0}, 0.1);
   spec.stretch = spec.shear = spec.bend = {0.0, 0.0};  // no spring acts: a free fall
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState initial = initial_grid_state(*model, spec, 0.0, 0);
@@ -139,16 +136,7 @@ TEST(BulletBridge, FreeFallFollowsSymplecticEulerLikeOurs) {
 // V2 for Bullet's position solver: it has no spring constant, so the chain's extension measures how
 // far the mapped link stiffness is from Hooke's law. Within 5 % where ks w h^2 <= 0.1.
 TEST(BulletBridge, HangingChainStaysWithinFivePercentOfHookeWhereTheMappingHolds) {
-  GridClothSpec spec;
-  spec.nx = 1;
-  spec.ny = 11;
-  spec.plane = GridPlane::xy;
-  spec.size = {0.1, 0.5};
-  spec.center = {0, 0.75, 0};
-  spec.mass = 0.11;
-  spec.stretch = {100.0, 0.0};
-  spec.shear = spec.bend = {0.0, 0.0};
-  spec.pins = {PinNamed{"top_corners"}};
+  const GridClothSpec spec = fixtures::hanging_chain(0.0);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const double w = 2.0 / 0.01;                      // 1/kg, two free particles of 10 g
   for (double ratio : {0.01, 0.1}) {                // ks w h^2
@@ -170,7 +158,7 @@ TEST(BulletBridge, HangingChainStaysWithinFivePercentOfHookeWhereTheMappingHolds
 
 TEST(BulletBridge, ClothRestsOnASphereOneMarginOff) {
   const double radius = 0.2, margin = 0.01;
-  GridClothSpec spec = sheet(15, 0.5, {0, 0.5 + radius + 0.05, 0}, 0.05);
+  GridClothSpec spec = fixtures::bullet_test_sheet(15, 0.5, {0, 0.5 + radius + 0.05, 0}, 0.05);
   spec.stretch = {200.0, 0.0};
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   Collider ball;
@@ -208,7 +196,7 @@ TEST(BulletBridge, KinematicCollidersArePosedLikeEverySolverSeesThem) {
   ball.center = {0.5, 0.2, 0};
   ball.motion.velocity = {0, 1, 0};
   ball.motion.angular_velocity = {0, 90, 0};
-  GridClothSpec spec = sheet(5, 0.2, {0, 2, 0}, 0.01);
+  GridClothSpec spec = fixtures::bullet_test_sheet(5, 0.2, {0, 2, 0}, 0.01);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const double h = 1e-3;
   bullet::BulletDeformableOptions deformable_options;

@@ -10,6 +10,7 @@
 #include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "contact/penalty_contact.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -43,10 +44,7 @@ TEST(ColliderPoseTable, EndsAreExactAndBetweenThemTheMotionIsRigidWithConstantVe
 // Two particles: one touching the ball where the table puts it, one touching it where the scene's
 // (static) definition puts it. Only the first is pushed, and the damper sees the table's velocity.
 TEST(ColliderPoseTable, ContactModelPushesWhereTheTablePutsTheCollider) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = 2;
-  spec.size = {1.0, 1.0};
-  spec.mass = 0.004;
+  GridClothSpec spec = fixtures::flat_sheet(2, 1.0, {0.0, 1.0, 0.0}, 0.004);
   spec.thickness = 0.01;
   const ClothModel model = build_grid_cloth(spec);
   Collider ball;

@@ -12,28 +12,13 @@
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
+#include "fixtures/colliders.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
 
 constexpr double kGravity = 9.81;  // m/s^2
-
-Collider sphere_collider(const Eigen::Vector3d& center, double radius) {
-  Collider c;
-  c.name = "ball";
-  c.shape = ColliderShape::sphere;
-  c.center = center;
-  c.radius = radius;
-  return c;
-}
-
-Collider floor_collider(double friction = 0.3) {
-  Collider c;
-  c.name = "floor";
-  c.shape = ColliderShape::plane;
-  c.friction = c.static_friction = friction;
-  return c;
-}
 
 struct Simulation {
   std::shared_ptr<const ClothModel> model;
@@ -74,19 +59,6 @@ Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> coll
   return s;
 }
 
-GridClothSpec sheet(int n, double size, Eigen::Vector3d center, double mass) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.size = {size, size};
-  spec.center = center;
-  spec.mass = mass;
-  spec.thickness = 0.005;
-  spec.stretch = {1000.0, 0.01};
-  spec.shear = {100.0, 0.005};
-  spec.bend = {5.0, 0.001};
-  return spec;
-}
-
 double total_normal_force(const SpringDamperSolver& solver) {
   double sum = 0.0;
   for (const auto& total : solver.contact_totals()) sum += total.normal_force;
@@ -97,10 +69,11 @@ double total_normal_force(const SpringDamperSolver& solver) {
 // the normal forces add up to M g.
 TEST(ContactPhysics, RestingClothNormalForcesBalanceItsWeightAndSagIsMgOverK) {
   for (double stiffness : {100.0, 1000.0}) {
-    const GridClothSpec spec = sheet(11, 0.5, {0, 0.005, 0}, 0.1);  // particles resting at clearance 0
+    // Particles resting at clearance 0.
+    const GridClothSpec spec = fixtures::soft_sheet(11, 0.5, {0, 0.005, 0}, 0.1);
     const double particle_mass = 0.1 / 121;                          // kg
     const double damping = std::sqrt(stiffness * particle_mass);     // N*s/m: damping ratio 1/2
-    Simulation s = make_simulation(spec, {floor_collider()}, {stiffness, damping}, 2.0);
+    Simulation s = make_simulation(spec, {fixtures::floor_collider()}, {stiffness, damping}, 2.0);
     s.run_for(2.0);
     const double weight = 0.1 * kGravity;  // N
     EXPECT_NEAR(total_normal_force(*s.solver), weight, 0.01 * weight) << stiffness;
@@ -118,9 +91,9 @@ void check_v8_sphere_drape(bool adaptive) {
   const double radius = 0.3, thickness = 0.005, stiffness = 1000.0;
   std::vector<double> penetrations;
   for (double k : {stiffness, 3.0 * stiffness}) {
-    const GridClothSpec spec = sheet(41, 1.0, {0, 0.5 + radius + 0.2, 0}, 0.25);
+    const GridClothSpec spec = fixtures::soft_sheet(41, 1.0, {0, 0.5 + radius + 0.2, 0}, 0.25);
     const double damping = std::sqrt(k * 0.25 / 1681);  // N*s/m: contact damping ratio about 1/2
-    Simulation s = make_simulation(spec, {sphere_collider({0, 0.5, 0}, radius)}, {k, damping}, 2.0, nullptr,
+    Simulation s = make_simulation(spec, {fixtures::ball_collider({0, 0.5, 0}, radius)}, {k, damping}, 2.0, nullptr,
                                    Integrator::symplectic_euler, adaptive);
     s.run_for(4.0);
     const CollisionMetrics c = s.collisions();
@@ -164,7 +137,8 @@ TEST(ContactPhysics, ClothRestsFlatOnACylindersCap) {
   table.height = 0.8;  // top at y = 0.8
   const double stiffness = 1000.0;
   const double damping = std::sqrt(stiffness * 0.1 / 625);  // N*s/m: contact damping ratio about 1/2
-  Simulation s = make_simulation(sheet(25, 0.6, {0, 0.85, 0}, 0.1), {table}, {stiffness, damping}, 1.0);
+  Simulation s =
+      make_simulation(fixtures::soft_sheet(25, 0.6, {0, 0.85, 0}, 0.1), {table}, {stiffness, damping}, 1.0);
   s.run_for(2.0);
   const auto& x = s.solver->state().x;
   const double particle_weight = (0.1 / 625) * kGravity;  // N
@@ -185,9 +159,9 @@ struct InclineRun {
 };
 
 InclineRun slide_on_incline(double degrees, Integrator integrator = Integrator::symplectic_euler) {
-  Collider incline = floor_collider(0.3);
+  Collider incline = fixtures::floor_collider();  // friction 0.3
   incline.rotation = {0, 0, degrees};  // the floor turned about z: the slope descends towards -x
-  GridClothSpec spec = sheet(5, 0.1, {0, 0, 0}, 0.01);
+  GridClothSpec spec = fixtures::soft_sheet(5, 0.1, {0, 0, 0}, 0.01);
   const auto model = build_grid_cloth(spec);
   // Lay the patch on the slope, resting at the thickness.
   const Eigen::Matrix3d turn = euler_rotation({0, 0, degrees});
@@ -237,9 +211,9 @@ TEST(ContactPhysics, V9StickingThresholdIsTheFrictionAngle) {
 // A sphere rising at 0.5 m/s through a cloth pinned at its corners: the contact keeps every
 // particle outside the sphere (penetration below half the thickness) while it lifts the cloth.
 TEST(ContactPhysics, MovingSphereNeverPushesThroughThePinnedCloth) {
-  GridClothSpec spec = sheet(21, 1.0, {0, 1.0, 0}, 0.1);
+  GridClothSpec spec = fixtures::soft_sheet(21, 1.0, {0, 1.0, 0}, 0.1);
   spec.pins = {PinNamed{"corners"}};
-  Collider ball = sphere_collider({0, 0.6, 0}, 0.15);
+  Collider ball = fixtures::ball_collider({0, 0.6, 0}, 0.15);
   ball.motion.velocity = {0, 0.5, 0};
   Simulation s = make_simulation(spec, {ball}, {2000.0, 0.01}, 0.5);
   double worst = 0.0;

@@ -18,6 +18,8 @@
 #include "contact/penalty_contact.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
+#include "fixtures/colliders.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -234,18 +236,7 @@ TEST(ImplicitContactParticle, WithinTheExplicitLimitBothLandTheSame) {
 }
 
 // A 0.5 m sheet of 21 x 21 light particles (0.11 g) lying flat at y = 0.005 m, the contact thickness.
-GridClothSpec light_sheet() {
-  GridClothSpec spec;
-  spec.nx = spec.ny = 21;
-  spec.size = {0.5, 0.5};
-  spec.center = {0.0, 0.005, 0.0};
-  spec.mass = 0.05;  // kg
-  spec.thickness = 0.005;
-  spec.stretch = {1000.0, 0.01};
-  spec.shear = {100.0, 0.005};
-  spec.bend = {5.0, 0.001};
-  return spec;
-}
+GridClothSpec light_sheet() { return fixtures::soft_sheet(21, 0.5, {0.0, 0.005, 0.0}, 0.05); }
 constexpr ContactParameters kHeavyContact{1000.0, 2.0};  // N/m, N*s/m: 2 m / c = 0.11 ms per particle
 
 TEST(ImplicitContactStep, SymplecticEulerStepIgnoresTheContactAndVerletsKeepsIt) {
@@ -273,10 +264,7 @@ struct FloorRun {
 FloorRun rest_on_floor(Integrator integrator, double seconds) {
   const GridClothSpec spec = light_sheet();
   auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-  Collider floor;
-  floor.name = "floor";
-  floor.shape = ColliderShape::plane;
-  floor.friction = floor.static_friction = 0.3;
+  const Collider floor = fixtures::floor_collider();  // friction 0.3
   auto contacts = std::make_shared<const ContactModel>(std::vector<Collider>{floor}, kHeavyContact, spec.thickness);
   SpringDamperSettings settings;
   settings.air_damping = 0.1;

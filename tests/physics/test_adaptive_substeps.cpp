@@ -20,24 +20,15 @@
 #include "forces/spring_jacobian.hpp"
 #include "drapelab/stability.hpp"
 #include "integrators/shape_bound.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
 
 using Tensors = ShapeBoundWorkspace;
 
-GridClothSpec hanging_sheet(int n) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.plane = GridPlane::xy;
-  spec.center = {0, 1, 0};
-  spec.mass = 0.2;  // kg
-  spec.stretch = {1000.0, 0.01};
-  spec.shear = {100.0, 0.005};
-  spec.bend = {5.0, 0.001};
-  spec.pins = {PinNamed{"top_corners"}};
-  return spec;
-}
+// The sheet of every test here: n x n particles, 0.2 kg, soft springs, hanging from two corners.
+GridClothSpec hanging_sheet(int n) { return fixtures::hanging_sheet(n, 0.2, fixtures::kSoftSprings); }
 
 // The largest eigenvalues of M^-1/2 K M^-1/2 and M^-1/2 D M^-1/2 over the free particles, from the
 // assembled linearised stiffness K (spring_jacobian_for_solve) and damping D of the springs at x.

@@ -8,6 +8,7 @@
 
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -15,14 +16,7 @@ namespace {
 const Eigen::Vector3d kUp = Eigen::Vector3d::UnitY();
 
 // A flat 0.3 m square specimen at height 0.5 m, 61 x 61 particles, over a support of radius 0.09 m.
-ClothModel specimen() {
-  GridClothSpec spec;
-  spec.nx = spec.ny = 61;
-  spec.size = {0.3, 0.3};
-  spec.center = {0.0, 0.5, 0.0};
-  spec.mass = 0.05;
-  return build_grid_cloth(spec);
-}
+ClothModel specimen() { return build_grid_cloth(fixtures::flat_sheet(61, 0.3, {0.0, 0.5, 0.0}, 0.05)); }
 
 // Maps the square onto a star: the particle at angle theta and fraction f of the way from the centre
 // to the square's edge goes to radius f R(theta), R(theta) = radius (1 + depth cos(lobes theta)),

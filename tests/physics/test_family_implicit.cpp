@@ -15,7 +15,8 @@
 #include "drapelab/spring_damper_solver.hpp"
 #include "forces/spring_families.hpp"
 #include "forces/spring_family_loops.hpp"
-#include "fixtures/stiff_sheet.hpp"
+#include "fixtures/colliders.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -34,7 +35,7 @@ double max_abs(const Eigen::Matrix3Xd& m) { return m.cwiseAbs().maxCoeff(); }
 struct BothSystems {
   // 11 x 8 by default: offsets 11 + 1 and 2 x 11, rows shorter than the columns.
   explicit BothSystems(int nx = 11, int ny = 8) {
-    spec = stiff_sheet(nx, ny);
+    spec = fixtures::stiff_sheet(nx, ny);
     model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
     families = SpringFamilies::build(*model);
     const int n = model->particle_count();
@@ -158,7 +159,7 @@ TEST(FamilyImplicit, StopsAtItsToleranceAndCountsLikeEigen) {
 // The solver picks the matrix-free solve on a grid and the assembled one without the fast path; both
 // runs of a stiff sheet swinging from its pins at 1/60 s agree to the CG tolerance.
 TEST(FamilyImplicit, SolverRunsAgreeWithTheAssembledPath) {
-  GridClothSpec spec = stiff_sheet(15, 15);
+  GridClothSpec spec = fixtures::stiff_sheet(15, 15);
   spec.plane = GridPlane::xz;  // horizontal, held at two corners: it swings down like a pendulum
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   auto run = [&](bool fast) {
@@ -190,16 +191,9 @@ TEST(FamilyImplicit, SolverRunsAgreeWithTheAssembledPath) {
 // A 97 x 97 sheet (above the threading threshold) pressed onto a sphere: implicit steps with contacts
 // give the same bits on one and two threads.
 TEST(FamilyImplicit, OneAndTwoThreadsGiveIdenticalBits) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = 97;
-  spec.center = {0.0, 0.79, 0.0};  // 1 cm into the top of the ball
-  spec.mass = 0.25;
+  const GridClothSpec spec = fixtures::flat_sheet(97, 1.0, {0.0, 0.79, 0.0}, 0.25);  // 1 cm into the top of the ball
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-  Collider ball;
-  ball.name = "ball";
-  ball.shape = ColliderShape::sphere;
-  ball.center = {0, 0.5, 0};
-  ball.radius = 0.3;
+  const Collider ball = fixtures::ball_collider();
   SpringDamperSettings settings;
   settings.integrator = Integrator::implicit_euler;
   settings.implicit = {1e-6, 500};

@@ -8,7 +8,7 @@
 
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "fixtures/stiff_sheet.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -23,7 +23,7 @@ double max_strain(const ClothModel& model, const ClothState& state) {
 }
 
 TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
-  GridClothSpec spec = stiff_sheet(15, 15);
+  GridClothSpec spec = fixtures::stiff_sheet(15, 15);
   spec.plane = GridPlane::xz;  // horizontal, held at two corners: it swings down like a pendulum
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const double h = 1.0 / 60.0;
@@ -57,7 +57,7 @@ TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
 }
 
 TEST(ImplicitEuler, ConjugateGradientReachesItsToleranceOnTheAssembledSystem) {
-  const GridClothSpec spec = stiff_sheet(9, 9);
+  const GridClothSpec spec = fixtures::stiff_sheet(9, 9);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   for (double tolerance : {1e-4, 1e-8}) {
     SpringDamperSettings settings;
@@ -86,7 +86,7 @@ TEST(ImplicitEuler, ConjugateGradientReachesItsToleranceOnTheAssembledSystem) {
 }
 
 TEST(ImplicitEuler, PinnedParticlesAreFilteredOutOfTheSystem) {
-  const GridClothSpec spec = stiff_sheet(5, 5);
+  const GridClothSpec spec = fixtures::stiff_sheet(5, 5);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   SpringDamperSettings settings;
   settings.integrator = Integrator::implicit_euler;

@@ -10,6 +10,8 @@
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
+#include "fixtures/chains.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -28,16 +30,7 @@ struct Oscillator {
 class OscillatorRun {
  public:
   OscillatorRun(const Oscillator& o, Integrator integrator, ImplicitSolveSettings implicit = {1e-14, 50}) {
-    GridClothSpec spec;
-    spec.nx = 1;
-    spec.ny = 2;
-    spec.plane = GridPlane::xy;
-    spec.size = {0.1, 1.0};
-    spec.center = {0.0, 1.0, 0.0};
-    spec.mass = 2.0 * o.mass;  // split evenly: the pinned particle keeps its half
-    spec.stretch = {o.stiffness, o.damping};
-    spec.shear = spec.bend = {0.0, 0.0};
-    spec.pins = {PinNamed{"top_corners"}};
+    const GridClothSpec spec = fixtures::spring_pendulum(1.0, o.mass, {o.stiffness, o.damping});
     auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
     ClothState start = initial_grid_state(*model, spec, 0.0, 0);
     rest_y_ = start.x(1, 0);
@@ -171,15 +164,7 @@ TEST(V4Integrators, ExplicitEulerOnADampedSpringIsStableBelowKdOverKs) {
 // The stable-step estimate of each explicit scheme is safe on a real cloth: 2 s of a pinned, damped
 // sheet at 0.95 x the estimate stays finite and unstretched.
 TEST(V4Integrators, StableStepEstimateHoldsOnACloth) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = 9;
-  spec.plane = GridPlane::xy;
-  spec.center = {0, 1, 0};
-  spec.mass = 0.1;
-  spec.stretch = {800.0, 0.1};
-  spec.shear = {80.0, 0.01};
-  spec.bend = {8.0, 0.001};
-  spec.pins = {PinNamed{"top_corners"}};
+  const GridClothSpec spec = fixtures::hanging_sheet(9, 0.1, {{800.0, 0.1}, {80.0, 0.01}, {8.0, 0.001}});
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   for (Integrator integrator : all_integrators()) {
     if (integrator == Integrator::implicit_euler) continue;

@@ -6,19 +6,13 @@
 #include "drapelab/cloth_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "metrics/projected_area.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
 
-GridClothSpec flat(int n, double size) {
-  GridClothSpec spec;
-  spec.nx = n;
-  spec.ny = n;
-  spec.size = {size, size};
-  spec.center = {0.0, 0.0, 0.0};
-  spec.mass = 1.0;
-  return spec;
-}
+// A flat n x n sheet of 1 kg, `size` m square, centred at the origin.
+GridClothSpec flat(int n, double size) { return fixtures::flat_sheet(n, size, Eigen::Vector3d::Zero(), 1.0); }
 
 TEST(Metrics, RestStateHasNoSpringEnergyOrStretch) {
   const ClothModel model = build_grid_cloth(flat(5, 1.0));

@@ -15,6 +15,8 @@
 #include "contact/penalty_contact.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "forces/spring_family_loops.hpp"
+#include "fixtures/colliders.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -199,21 +201,13 @@ TEST(ParticleLoops, BroadPhaseListsWholeChunksNearAndSkipsChunksFar) {
 // A 97 x 97 cloth dropped into a sphere and a floor, its middle already inside the sphere.
 struct ContactScene {
   ContactScene() {
-    spec.nx = spec.ny = 97;
-    spec.size = {1.0, 1.0};
-    spec.center = {0.0, 0.79, 0.0};  // 1 cm below the sphere's top: a patch of particles in contact
-    spec.mass = 0.25;
+    // 1 cm below the sphere's top: a patch of particles in contact.
+    spec = fixtures::flat_sheet(97, 1.0, {0.0, 0.79, 0.0}, 0.25);
     model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-    Collider ball;
-    ball.name = "ball";
-    ball.shape = ColliderShape::sphere;
-    ball.center = {0, 0.5, 0};
-    ball.radius = 0.3;
+    Collider ball = fixtures::ball_collider();
     ball.motion.angular_velocity = {5, 0, 0};  // its surface moves: friction relative to it
-    Collider floor;
-    floor.name = "floor";
-    floor.shape = ColliderShape::plane;
-    floor.center = {0, 0.785, 0};  // the cloth's edges rest 5 mm above it: within the contact radius
+    // The cloth's edges rest 5 mm above the floor: within the contact radius.
+    const Collider floor = fixtures::floor_collider(0.785);
     settings.air_damping = 0.1;
     settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball, floor},
                                                              ContactParameters{1000.0, 0.2}, spec.thickness);

@@ -13,22 +13,13 @@
 #include "drapelab/spring_damper_solver.hpp"
 #include "forces/spring_force.hpp"
 #include "drapelab/stability.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
 
-GridClothSpec sheet(int n) {
-  GridClothSpec spec;
-  spec.nx = n;
-  spec.ny = n;
-  spec.plane = GridPlane::xy;
-  spec.mass = 0.2;
-  spec.stretch = {800.0, 0.02};
-  spec.shear = {80.0, 0.01};
-  spec.bend = {8.0, 0.002};
-  spec.pins = {PinNamed{"top_corners"}};
-  return spec;
-}
+// The sheet of every test here: n x n particles, 0.2 kg, medium springs, hanging from two corners.
+GridClothSpec sheet(int n) { return fixtures::hanging_sheet(n, 0.2, fixtures::kMediumSprings); }
 
 ClothState random_state(const ClothModel& model, unsigned seed) {
   std::mt19937_64 random(seed);

@@ -13,19 +13,15 @@
 #include "drapelab/spring_damper_solver.hpp"
 #include "forces/spring_families.hpp"
 #include "forces/spring_family_loops.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
 
+// The solver-step suite's sheet (0.2 kg, medium springs, held at two corners), lying in the xz plane.
 GridClothSpec grid(int nx, int ny) {
-  GridClothSpec spec;
-  spec.nx = nx;
-  spec.ny = ny;
-  spec.mass = 0.2;
-  spec.stretch = {800.0, 0.02};
-  spec.shear = {80.0, 0.01};
-  spec.bend = {8.0, 0.002};
-  spec.pins = {PinNamed{"top_corners"}};
+  GridClothSpec spec = fixtures::hanging_sheet(nx, ny, 0.2, fixtures::kMediumSprings);
+  spec.plane = GridPlane::xz;
   return spec;
 }
 

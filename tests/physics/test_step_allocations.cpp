@@ -8,6 +8,8 @@
 
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
+#include "fixtures/colliders.hpp"
+#include "fixtures/sheets.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define DRAPELAB_COUNT_ALLOCATIONS 0  // AddressSanitizer owns malloc; the count cannot be taken
@@ -55,13 +57,8 @@ TEST(StepAllocations, CounterSeesAnAllocation) {
 // vectors on each solve (a few 3N vectors per step, small beside the solve itself).
 TEST(StepAllocations, StepAllocatesNothingForEveryExplicitIntegrator) {
   if (!DRAPELAB_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
-  GridClothSpec spec;
-  spec.nx = 17;
-  spec.ny = 17;
-  spec.plane = GridPlane::xy;
-  spec.mass = 0.1;
+  GridClothSpec spec = fixtures::hanging_sheet(17, 0.1, fixtures::default_springs());
   spec.stretch = {500.0, 0.01};
-  spec.pins = {PinNamed{"top_corners"}};
   for (Integrator integrator : all_integrators()) {
     if (integrator == Integrator::implicit_euler) continue;
     // Adaptive substeps too (where the scheme allows them): the bound's workspace is built by the
@@ -90,21 +87,11 @@ TEST(StepAllocations, StepAllocatesNothingForEveryExplicitIntegrator) {
 
 TEST(StepAllocations, StepWithContactsAndFrictionAllocatesNothing) {
   if (!DRAPELAB_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
-  GridClothSpec spec;
-  spec.nx = spec.ny = 17;
-  spec.size = {0.6, 0.6};
-  spec.center = {0, 0.8 + 0.005 - 3e-6, 0};  // resting on the floor (and the sphere's top), sagging m g / k
-  spec.mass = 0.05;
-  Collider ball;
-  ball.name = "ball";
-  ball.shape = ColliderShape::sphere;
-  ball.center = {0, 0.5, 0};
-  ball.radius = 0.3;
+  // Resting on the floor (and the sphere's top), sagging m g / k.
+  const GridClothSpec spec = fixtures::flat_sheet(17, 0.6, {0, 0.8 + 0.005 - 3e-6, 0}, 0.05);
+  Collider ball = fixtures::ball_collider();
   ball.motion.angular_velocity = {30, 0, 0};  // its top moves along z: friction drags the cloth
-  Collider floor;
-  floor.name = "floor";
-  floor.shape = ColliderShape::plane;
-  floor.center = {0, 0.8, 0};
+  const Collider floor = fixtures::floor_collider(0.8);
   auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   SpringDamperSettings settings;
   settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball, floor},

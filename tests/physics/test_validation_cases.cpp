@@ -10,6 +10,8 @@
 
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
+#include "fixtures/chains.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -35,11 +37,9 @@ double discrete_free_fall_steps(Integrator integrator, double n) {
 }
 
 TEST(V1FreeFall, DiscreteDropIsExactForEachIntegrator) {
-  GridClothSpec spec;
-  spec.nx = 3;
-  spec.ny = 3;
-  spec.mass = 0.09;
-  spec.stretch = spec.shear = spec.bend = {0.0, 0.0};  // no springs acting: particles fall freely
+  // No springs acting: particles fall freely.
+  const GridClothSpec spec =
+      fixtures::with_springs(fixtures::flat_sheet(3, 1.0, {0.0, 1.0, 0.0}, 0.09), fixtures::kNoSprings);
   for (Integrator integrator : kIntegrators) {
     SpringDamperSettings settings;
     settings.integrator = integrator;
@@ -61,16 +61,7 @@ TEST(V1FreeFall, DiscreteDropIsExactForEachIntegrator) {
 // V2: N = 10 particles of m = 0.01 kg hang below a pinned one on springs k = 100 N/m, L = 0.05 m.
 // Spring j from the top carries (N - j + 1) m g; the total extension is (m g / k) N (N + 1) / 2.
 TEST(V2HangingChain, RestsAtTheStaticsOfHookesLaw) {
-  GridClothSpec spec;
-  spec.nx = 1;
-  spec.ny = 11;
-  spec.plane = GridPlane::xy;
-  spec.size = {0.1, 0.5};
-  spec.center = {0.0, 0.75, 0.0};
-  spec.mass = 0.11;  // 0.01 kg each, the pinned particle included
-  spec.stretch = {100.0, 0.05};
-  spec.shear = spec.bend = {0.0, 0.0};
-  spec.pins = {PinNamed{"top_corners"}};
+  const GridClothSpec spec = fixtures::hanging_chain(0.05);  // 0.01 kg each, the pinned particle included
   for (Integrator integrator : kIntegrators) {
     SpringDamperSettings settings;
     settings.integrator = integrator;
@@ -102,15 +93,7 @@ struct OscillatorTrace {
 };
 
 OscillatorTrace trace_oscillator(Integrator integrator, double h) {
-  GridClothSpec spec;
-  spec.nx = 1;
-  spec.ny = 2;
-  spec.plane = GridPlane::xy;
-  spec.size = {0.1, 0.5};
-  spec.center = {0.0, 1.0, 0.0};
-  spec.mass = 0.2;  // 0.1 kg per particle
-  spec.stretch = {10.0, 0.1};
-  spec.pins = {PinNamed{"top_corners"}};
+  const GridClothSpec spec = fixtures::spring_pendulum(0.5, 0.1, {10.0, 0.1});
   SpringDamperSettings settings;
   settings.integrator = integrator;
   settings.gravity = Eigen::Vector3d::Zero();
