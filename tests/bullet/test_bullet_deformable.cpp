@@ -1,5 +1,6 @@
-// Bullet's deformable world built from our model: nodes, masses, pins and rest lengths; free fall, the
-// hanging chain at Hooke's statics, and rest on a sphere near the margin.
+// Bullet's deformable world built from our model (docs/bullet.md, "What the deformable world
+// computes"): nodes, masses, pins and rest lengths; free fall, the hanging chain at Hooke's statics,
+// and rest on a sphere near the margin.
 #include <gtest/gtest.h>
 
 #include <cmath>

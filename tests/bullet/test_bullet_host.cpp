@@ -1,5 +1,6 @@
-// Our cloth hosted in a Bullet world: at every substep its contacts use the poses of the host's Bullet
-// bodies (not a copy of collider_pose(t)), and a hosted run agrees with a bare one to rounding.
+// Our cloth hosted in a Bullet world (docs/bullet.md, "Parallel worlds with the same colliders"): at
+// every substep its contacts use the poses of the host's Bullet bodies (not a copy of
+// collider_pose(t)), and a hosted run agrees with a bare one to rounding.
 #include <gtest/gtest.h>
 
 #include <memory>

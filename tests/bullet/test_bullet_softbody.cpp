@@ -30,6 +30,7 @@ BulletSoftBodyOptions options_for(double dt, double margin) {
   return options;
 }
 
+// docs/bullet.md, "Masses, pins and rest lengths": our rest lengths, not the start's, and mass-0 pins.
 TEST(BulletBridge, ClothHasOurNodesMassesPinsRestLengthsAndLinks) {
   GridClothSpec spec = fixtures::bullet_test_sheet(7, 0.6, {0, 1, 0}, 0.49);
   spec.pins = {PinNamed{"corners"}};
@@ -57,6 +58,7 @@ TEST(BulletBridge, ClothHasOurNodesMassesPinsRestLengthsAndLinks) {
   EXPECT_DOUBLE_EQ(layout->margin, 0.01);
 }
 
+// docs/bullet.md, "Mapping our parameters to the classic cloth".
 TEST(BulletBridge, StiffnessMappingMatchesItsClosedForm) {
   // One sweep: kLST = x / (1 + x) with x = ks w h^2; n sweeps compound to the same total move.
   const double x = 200.0 * 100.0 * 1e-6;  // ks 200 N/m, w 100 /kg, h 1 ms
@@ -156,6 +158,8 @@ TEST(BulletBridge, HangingChainStaysWithinFivePercentOfHookeWhereTheMappingHolds
   }
 }
 
+// docs/bullet.md, "Soft-rigid contact through the signed-distance cache": the cloth rests one margin
+// off the surface.
 TEST(BulletBridge, ClothRestsOnASphereOneMarginOff) {
   const double radius = 0.2, margin = 0.01;
   GridClothSpec spec = fixtures::bullet_test_sheet(15, 0.5, {0, 0.5 + radius + 0.05, 0}, 0.05);

@@ -1,4 +1,4 @@
-// End-to-end tests of the drapelab binary: help, run (every output file of shared/outputs.md),
+// End-to-end tests of the drapelab binary: help, run (every output file of docs/outputs.md),
 // validate, exit codes, the run folder's safety rules, determinism and unstable runs.
 #include <gtest/gtest.h>
 

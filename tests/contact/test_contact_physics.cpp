@@ -1,6 +1,6 @@
-// Collision response with known answers (shared/validation.md V8, V9) and the penalty model's
-// bounds: weight balance, depth against stiffness, a cloth at rest on a cylinder's cap, and a moving
-// collider pushing through a pinned cloth.
+// Collision response with known answers (docs/validation.md, "V8 Cloth on a sphere" and "V9 Friction
+// on an incline") and the penalty model's bounds: weight balance, depth against stiffness, a cloth at
+// rest on a cylinder's cap, and a moving collider pushing through a pinned cloth.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -222,7 +222,7 @@ TEST(ContactPhysics, MovingSphereNeverPushesThroughThePinnedCloth) {
     worst = std::max(worst, s.collisions().max_penetration);
   }
   EXPECT_LT(worst, 0.5 * spec.thickness);
-  // The cloth's centre was lifted with the ball.
+  // The ball lifts the cloth's centre with it.
   const int centre = 10 * 21 + 10;
   EXPECT_GT(s.solver->state().x(1, centre), 1.25);
 }

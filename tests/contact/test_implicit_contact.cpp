@@ -1,5 +1,5 @@
 // The linearly implicit penalty contact of symplectic Euler (penalty_contact.hpp): the normal force is
-// the one the step's end state implies, so the contact's stiffness and damping no longer bound the
+// the one the step's end state implies, so the contact's stiffness and damping do not bound the
 // step. Checked on the formula itself, on a particle's normal motion, and on a whole cloth resting on
 // a floor at steps where the explicit penalty force diverges.
 #include <gtest/gtest.h>
@@ -152,7 +152,7 @@ TEST(LinearlyImplicitNormalForces, RandomContactSetsAreAlwaysConsistent) {
       }
     }
   }
-  EXPECT_GT(dropped, 100);  // the sets were often partial
+  EXPECT_GT(dropped, 100);  // the sets are often partial
 }
 
 // A particle pressed by gravity into a V between two planes (each 30 degrees from level), stepped by

@@ -1,5 +1,5 @@
-// Drape metrics (metrics.md, "Drape test"): the drape coefficient's limits, and the node count of
-// shadow outlines with a known number of lobes.
+// Drape metrics (docs/metrics.md, "Drape test"): the drape coefficient's limits, and the node count
+// of shadow outlines with a known number of lobes.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
-// V10 (shared/validation.md): on a Cusick drape test, raising the bend stiffness never lowers the
-// drape coefficient (same seed), a very stiff cloth approaches DC 1 and a limp heavy one approaches 0,
-// and the same seed reproduces the DC within 0.01.
+// docs/validation.md, "V10 Drape coefficient monotone in bending": on a Cusick drape test, raising
+// the bend stiffness never lowers the drape coefficient (same seed), a very stiff cloth approaches
+// DC 1 and a limp heavy one approaches 0, and the same seed reproduces the DC within 0.01.
 //
 // The scene is a reduced scenes/cusick.yaml, small enough for CI (and for the sanitizer build): the
 // same 0.15 m specimen on the same 0.09 m support cylinder, but 8 rings instead of 12 (about 220

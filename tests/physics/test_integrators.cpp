@@ -1,6 +1,6 @@
-// validation.md V4 for every integrator on a linear spring x'' = -w^2 x: convergence order from two
-// step sizes, energy behaviour, and stability just inside and just outside each scheme's bound; and
-// the stable-step estimates the loader and the advice rely on.
+// docs/validation.md, "V4 Integrators on a linear spring": every integrator on a linear spring
+// x'' = -w^2 x, its convergence order from two step sizes, energy behaviour, and stability just
+// inside and just outside its bound; and the stable-step estimates the loader and the advice rely on.
 #include <gtest/gtest.h>
 
 #include <cmath>

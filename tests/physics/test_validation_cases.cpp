@@ -1,5 +1,6 @@
-// Physics with known answers (shared/validation.md): V1 free fall, V2 hanging chain statics,
-// V3 damped oscillator period and logarithmic decrement, for every integrator.
+// Physics with known answers (docs/validation.md, "V1 Free fall", "V2 Hanging chain" and "V3 Damped
+// oscillator"): the discrete free fall, the hanging chain's statics, and the damped oscillator's
+// period and logarithmic decrement, for every integrator.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -149,7 +150,8 @@ TEST(V3DampedOscillator, PeriodAndDecrementMatchTheClosedForm) {
 
 // Implicit Euler multiplies each oscillation mode by mu = 1 / (1 - h lambda) per step, lambda =
 // omega0 (-zeta + i sqrt(1 - zeta^2)): its period is 2 pi h / arg(mu) and its decrement
-// -ln|mu| 2 pi / arg(mu). The numerical damping adds about omega0 h / 2 to zeta (validation.md V3).
+// -ln|mu| 2 pi / arg(mu). The numerical damping adds about omega0 h / 2 to zeta (docs/validation.md,
+// "V3 Damped oscillator").
 TEST(V3DampedOscillator, ImplicitEulerMatchesItsDiscreteFormAndAddsDampingOfHalfOmegaH) {
   const double omega0 = 10.0, zeta = 0.05, h = 0.05 / omega0;
   const std::complex<double> lambda = omega0 * std::complex<double>(-zeta, std::sqrt(1.0 - zeta * zeta));

@@ -147,7 +147,7 @@ void expect_no_blocks_in_paragraphs(xmlNode* root) {
 }
 
 // Every src and href: a data: URI, a fragment naming an id on the page, or a relative path to a
-// file inside `folder` (resolved from the page's own folder). Returns how many were checked.
+// file inside `folder` (resolved from the page's own folder). Returns how many it checks.
 int expect_references_inside(xmlNode* root, const fs::path& page, const fs::path& folder) {
   std::set<std::string> ids;
   std::vector<xmlNode*> all{root};
