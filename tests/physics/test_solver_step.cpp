@@ -18,8 +18,8 @@
 namespace drapelab {
 namespace {
 
-// The sheet of every test here: n x n particles, 0.2 kg, medium springs, hanging from two corners.
-GridClothSpec sheet(int n) { return fixtures::hanging_sheet(n, 0.2, fixtures::kMediumSprings); }
+// The sheet of every test here: n x n particles of 0.2 kg in all, hanging from two corners.
+GridClothSpec sheet(int n) { return fixtures::hanging_sheet(n, 0.2, fixtures::kTenfoldSprings); }
 
 ClothState random_state(const ClothModel& model, unsigned seed) {
   std::mt19937_64 random(seed);

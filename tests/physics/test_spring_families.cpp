@@ -18,9 +18,9 @@
 namespace drapelab {
 namespace {
 
-// The solver-step suite's sheet (0.2 kg, medium springs, held at two corners), lying in the xz plane.
+// The solver-step suite's sheet (0.2 kg, held at two corners), lying in the xz plane.
 GridClothSpec grid(int nx, int ny) {
-  GridClothSpec spec = fixtures::hanging_sheet(nx, ny, 0.2, fixtures::kMediumSprings);
+  GridClothSpec spec = fixtures::hanging_sheet(nx, ny, 0.2, fixtures::kTenfoldSprings);
   spec.plane = GridPlane::xz;
   return spec;
 }
