@@ -1,26 +1,39 @@
 #!/usr/bin/env bash
-# Quickstart 2: install what is missing, build, and run every test; then build and run the suite
-# again with AddressSanitizer and UndefinedBehaviorSanitizer. Exits non-zero if any test fails.
-# Usage: tools/test.sh [--no-sanitizers]
+# Quickstart 2: install what is missing, build, and run every test; then build and run the `fast` and
+# `physics` labels again with AddressSanitizer and UndefinedBehaviorSanitizer. Exits non-zero if any
+# test fails.
+# Usage: tools/test.sh [--fast | --no-sanitizers]
+#   --fast           build, then run only the `fast` label (tests/CMakeLists.txt); no sanitizer build
+#   --no-sanitizers  every test, without the sanitizer build
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 jobs=$(nproc)
+mode=${1:-}
+case "$mode" in
+  "" | --fast | --no-sanitizers) ;;
+  *) echo "usage: tools/test.sh [--fast | --no-sanitizers]" >&2; exit 2 ;;
+esac
 
 bash tools/install-deps.sh
 
-echo "== Release build and tests"
+echo "== Release build and tests${mode:+ ($mode)}"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DDRAPELAB_WARNINGS_AS_ERRORS=ON >/dev/null
 cmake --build build -j "$jobs"
+if [[ "$mode" == "--fast" ]]; then
+  ctest --test-dir build -j "$jobs" -L fast --output-on-failure
+  echo "== fast tests passed"
+  exit 0
+fi
 ctest --test-dir build -j "$jobs" --output-on-failure
 
-if [[ "${1:-}" != "--no-sanitizers" ]]; then
-  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+if [[ "$mode" != "--no-sanitizers" ]]; then
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build, fast and physics tests"
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDRAPELAB_SANITIZE=ON >/dev/null
   cmake --build build-sanitize -j "$jobs"
   # lsan-suppressions.txt: leaks inside system libraries (Mesa's OSMesa), each explained there.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     LSAN_OPTIONS=suppressions="$root/tools/lsan-suppressions.txt" \
-    ctest --test-dir build-sanitize -j "$jobs" --output-on-failure
+    ctest --test-dir build-sanitize -j "$jobs" -L 'fast|physics' --output-on-failure
 fi
 echo "== all tests passed"
