@@ -1,4 +1,5 @@
-// drapelab: the command line. Verbs: run, validate, check, stability, study, sweep. Exit codes: 0 ok, 1 a solver became unstable or
+// drapelab: the command line. Verbs: run, validate, check, stability, study, sweep, bench, render,
+// report (one file each, verb_*.cpp; docs/cli.md). Exit codes: 0 ok, 1 a solver became unstable or
 // failed, 2 bad input (nothing was run), 130 interrupted (files hold the frames recorded so far).
 #include <CLI/CLI.hpp>
 
