@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Quickstart 2: install what is missing, build, and run every test; then build and run the `fast` and
-# `physics` labels again with AddressSanitizer and UndefinedBehaviorSanitizer. Exits non-zero if any
-# test fails.
+# Quickstart 2: install what is missing, check the format, build, and run every test; then build and
+# run the `fast` and `physics` labels again with AddressSanitizer and UndefinedBehaviorSanitizer.
+# Exits non-zero if the format check or any test fails.
 # Usage: tools/test.sh [--fast | --no-sanitizers]
 #   --fast           build, then run only the `fast` label (tests/CMakeLists.txt); no sanitizer build
 #   --no-sanitizers  every test, without the sanitizer build
@@ -16,6 +16,10 @@ case "$mode" in
 esac
 
 bash tools/install-deps.sh
+
+echo "== Format check (.clang-format)"
+# Every tracked C++ file as clang-format writes it; `clang-format -i FILE` fixes one that is not.
+git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
 
 echo "== Release build and tests${mode:+ ($mode)}"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DDRAPELAB_WARNINGS_AS_ERRORS=ON >/dev/null
