@@ -1,9 +1,8 @@
-// Google Benchmark micro-benchmarks of the step's kernels: the spring phase (plain edge list and the
-// spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, the contact
-// phase alone (per contact), the adaptive substeps' shape bound (per particle), and a step of
-// implicit Euler with the assembled or the matrix-free solve (with its CG iterations). They measure;
-// nothing here asserts a time.
-// Run: build/bench/bench_kernels [--benchmark_filter=Springs]
+// Google Benchmark micro-benchmarks of the step's kernels: the spring phase (plain edge list and
+// the spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, the
+// contact phase alone (per contact), the adaptive substeps' shape bound (per particle), and a step
+// of implicit Euler with the assembled or the matrix-free solve (with its CG iterations). They
+// measure; nothing here asserts a time. Run: build/bench/bench_kernels [--benchmark_filter=Springs]
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -11,14 +10,14 @@
 #include <memory>
 #include <vector>
 
-#include "drapelab/contact_model.hpp"
 #include "contact/contact_pass.hpp"
-#include "forces/forces.hpp"
+#include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "forces/spring_families.hpp"
 #include "drapelab/stability.hpp"
+#include "forces/forces.hpp"
+#include "forces/spring_families.hpp"
 #include "integrators/shape_bound.hpp"
 
 namespace drapelab {
@@ -35,7 +34,10 @@ GridClothSpec square_sheet(int n) {
 }
 
 struct Sheet {
-  explicit Sheet(int n) : spec(square_sheet(n)), model(build_grid_cloth(spec)), state(initial_grid_state(model, spec, 1e-3, 1)) {
+  explicit Sheet(int n)
+      : spec(square_sheet(n)),
+        model(build_grid_cloth(spec)),
+        state(initial_grid_state(model, spec, 1e-3, 1)) {
     state.v.setRandom();
     force.setZero(3, model.particle_count());
   }
@@ -47,7 +49,8 @@ struct Sheet {
 
 // Wall time per item of an iteration (ns): the rate of "giga-items" per second, inverted.
 benchmark::Counter nanoseconds_per(double items) {
-  return benchmark::Counter(items * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  return benchmark::Counter(
+      items * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void report_per_spring(benchmark::State& bench, const ClothModel& model) {
@@ -74,11 +77,16 @@ void SpringsFamilies(benchmark::State& bench) {
   }
   report_per_spring(bench, sheet.model);
 }
-BENCHMARK(SpringsFamilies)->Args({65, 1})->Args({129, 1})->Args({257, 1})->Args({129, 2})->Args({257, 2});
+BENCHMARK(SpringsFamilies)
+    ->Args({65, 1})
+    ->Args({129, 1})
+    ->Args({257, 1})
+    ->Args({129, 2})
+    ->Args({257, 2});
 
-// A sheet laid over a sphere: the particles above the ball's cap (about a fifth of them) start on its
-// surface, sunk into the contact radius by their weight's sag, the rest of the sheet level with the
-// cap's rim.
+// A sheet laid over a sphere: the particles above the ball's cap (about a fifth of them) start on
+// its surface, sunk into the contact radius by their weight's sag, the rest of the sheet level with
+// the cap's rim.
 struct CappedSheet {
   explicit CappedSheet(int n) : sheet(n) {
     const double radius = 0.3;                             // m
@@ -89,13 +97,14 @@ struct CappedSheet {
     ball.shape = ColliderShape::sphere;
     ball.center = center;
     ball.radius = radius;
-    contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball}, ContactParameters{1000, 0.2},
-                                                    sheet.model.thickness);
+    contacts = std::make_shared<const ContactModel>(
+        std::vector<Collider>{ball}, ContactParameters{1000, 0.2}, sheet.model.thickness);
     model = std::make_shared<const ClothModel>(sheet.model);
     start = initial_grid_state(*model, sheet.spec, 0.0, 1);
     for (int i = 0; i < model->particle_count(); ++i) {
       Eigen::Vector3d p = start.x.col(i);
-      const double rho = std::min(cap, std::hypot(p.x() - center.x(), p.z() - center.z()));  // m, horizontal
+      const double rho =
+          std::min(cap, std::hypot(p.x() - center.x(), p.z() - center.z()));  // m, horizontal
       const double sag = model->mass[i] * 9.81 / 1000.0;  // m: the contact spring holds the weight
       p.y() = center.y() + std::sqrt(radius * radius - rho * rho) + model->thickness - sag;
       start.x.col(i) = p;
@@ -124,7 +133,13 @@ void StepWithContacts(benchmark::State& bench) {
   bench.counters["particles"] = capped.model->particle_count();
   bench.counters["mean_contacts"] = contacts / static_cast<double>(bench.iterations());
 }
-BENCHMARK(StepWithContacts)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2})->Args({257, 1})->Args({257, 2});
+BENCHMARK(StepWithContacts)
+    ->Args({65, 1})
+    ->Args({65, 2})
+    ->Args({129, 1})
+    ->Args({129, 2})
+    ->Args({257, 1})
+    ->Args({257, 2});
 
 // The contact phase alone on the same capped sheet, at its starting state: the broad phase of every
 // particle, FCL's closed form for the particles near the ball, the end-of-step normal force and
@@ -137,8 +152,9 @@ void ContactPhase(benchmark::State& bench) {
   std::vector<ColliderContactTotals> totals;
   ContactWorkspace workspace;
   for (auto _ : bench) {
-    capped.contacts->add_contact_forces(model, 0.0, 1e-5, capped.start.x, capped.start.v, force, totals, nullptr,
-                                        &workspace, ContactNormalScheme::linearly_implicit);
+    capped.contacts->add_contact_forces(model, 0.0, 1e-5, capped.start.x, capped.start.v, force,
+                                        totals, nullptr, &workspace,
+                                        ContactNormalScheme::linearly_implicit);
     benchmark::DoNotOptimize(force.data());
   }
   const double contacts = totals.front().contact_count;
@@ -148,29 +164,37 @@ void ContactPhase(benchmark::State& bench) {
 }
 BENCHMARK(ContactPhase)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2});
 
-// The adaptive substeps' shape bound (stability.hpp shape_stable_step): every particle's stiffness and
-// damping tensors at the current shape and their largest eigenvalues, evaluated once per step of the
-// scene (not per substep). Args: particles per side, threads, and 1 for the sums over spring families
-// (the solver's choice on a grid) or 0 for the index lists (any cloth). ns_per_particle is per
-// evaluation.
+// The adaptive substeps' shape bound (stability.hpp shape_stable_step): every particle's stiffness
+// and damping tensors at the current shape and their largest eigenvalues, evaluated once per step
+// of the scene (not per substep). Args: particles per side, threads, and 1 for the sums over spring
+// families (the solver's choice on a grid) or 0 for the index lists (any cloth). ns_per_particle is
+// per evaluation.
 void ShapeBound(benchmark::State& bench) {
   Sheet sheet(static_cast<int>(bench.range(0)));
   kernels::set_thread_count(static_cast<int>(bench.range(1)));
   const auto families = SpringFamilies::build(sheet.model);
-  const std::vector<SpringFamily>* by_family = bench.range(2) != 0 ? &families->families() : nullptr;
+  const std::vector<SpringFamily>* by_family =
+      bench.range(2) != 0 ? &families->families() : nullptr;
   ShapeBoundWorkspace workspace;
   for (auto _ : bench)
-    benchmark::DoNotOptimize(shape_stable_step(sheet.model, sheet.state.x, 0.1, workspace, by_family));
+    benchmark::DoNotOptimize(
+        shape_stable_step(sheet.model, sheet.state.x, 0.1, workspace, by_family));
   bench.counters["ns_per_particle"] = nanoseconds_per(sheet.model.particle_count());
 }
 BENCHMARK(ShapeBound)
-    ->Args({65, 1, 0})->Args({65, 1, 1})->Args({65, 2, 1})->Args({129, 1, 0})->Args({129, 1, 1})->Args({129, 2, 0})
+    ->Args({65, 1, 0})
+    ->Args({65, 1, 1})
+    ->Args({65, 2, 1})
+    ->Args({129, 1, 0})
+    ->Args({129, 1, 1})
+    ->Args({129, 2, 0})
     ->Args({129, 2, 1});
 
 // A step of implicit Euler at h = 1/240 s on a free sheet (no collider) and its conjugate-gradient
-// iterations: args are the particles per side, the threads, and 1 for the matrix-free solve on spring
-// families (with the spring fast path) or 0 for the assembled sparse matrix (Eigen's CG, plain edge
-// list). time / cg_iterations_per_step is the step's cost per iteration, force and assembly included.
+// iterations: args are the particles per side, the threads, and 1 for the matrix-free solve on
+// spring families (with the spring fast path) or 0 for the assembled sparse matrix (Eigen's CG,
+// plain edge list). time / cg_iterations_per_step is the step's cost per iteration, force and
+// assembly included.
 void ImplicitStep(benchmark::State& bench) {
   Sheet sheet(static_cast<int>(bench.range(0)));
   kernels::set_thread_count(static_cast<int>(bench.range(1)));
@@ -182,9 +206,16 @@ void ImplicitStep(benchmark::State& bench) {
   SpringDamperSolver solver("bench", model, sheet.state, settings);
   for (auto _ : bench) solver.step(1.0 / 240.0);
   const ImplicitSolveStats& stats = *solver.implicit_stats();
-  bench.counters["cg_iterations_per_step"] = static_cast<double>(stats.iterations_total) / static_cast<double>(stats.solves);
+  bench.counters["cg_iterations_per_step"] =
+      static_cast<double>(stats.iterations_total) / static_cast<double>(stats.solves);
 }
-BENCHMARK(ImplicitStep)->Args({65, 1, 0})->Args({65, 1, 1})->Args({65, 2, 1})->Args({129, 1, 0})->Args({129, 1, 1})->Args({129, 2, 1});
+BENCHMARK(ImplicitStep)
+    ->Args({65, 1, 0})
+    ->Args({65, 1, 1})
+    ->Args({65, 2, 1})
+    ->Args({129, 1, 0})
+    ->Args({129, 1, 1})
+    ->Args({129, 2, 1});
 
 }  // namespace
 }  // namespace drapelab

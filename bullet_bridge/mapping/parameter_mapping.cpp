@@ -18,24 +18,35 @@ double largest_link_rate(const ClothModel& model) {
   double largest = 0.0;  // 1/s^2
   const SpringSet& s = model.springs;
   for (std::size_t e = 0; e < s.size(); ++e)
-    largest = std::max(largest, s.ks[e] * (model.inverse_mass[s.v0[e]] + model.inverse_mass[s.v1[e]]));
+    largest =
+        std::max(largest, s.ks[e] * (model.inverse_mass[s.v0[e]] + model.inverse_mass[s.v1[e]]));
   return largest;
 }
 
 double largest_mapped_step(const ClothModel& model) {
   const double rate = largest_link_rate(model);
-  return rate > 0.0 ? std::sqrt(kMaxMappedLinkCompliance / rate) : std::numeric_limits<double>::infinity();
+  return rate > 0.0 ? std::sqrt(kMaxMappedLinkCompliance / rate)
+                    : std::numeric_limits<double>::infinity();
 }
 
 double default_voxel_size(const std::vector<Collider>& colliders, double margin) {
   double feature = std::numeric_limits<double>::infinity();  // m, the smallest size of any collider
   for (const auto& c : colliders) {
     switch (c.shape) {
-      case ColliderShape::sphere: feature = std::min(feature, c.radius); break;
-      case ColliderShape::capsule: feature = std::min(feature, c.radius); break;
-      case ColliderShape::cylinder: feature = std::min({feature, c.radius, c.height}); break;
-      case ColliderShape::box: feature = std::min(feature, 2.0 * c.half_extents.minCoeff()); break;
-      case ColliderShape::plane: break;
+      case ColliderShape::sphere:
+        feature = std::min(feature, c.radius);
+        break;
+      case ColliderShape::capsule:
+        feature = std::min(feature, c.radius);
+        break;
+      case ColliderShape::cylinder:
+        feature = std::min({feature, c.radius, c.height});
+        break;
+      case ColliderShape::box:
+        feature = std::min(feature, 2.0 * c.half_extents.minCoeff());
+        break;
+      case ColliderShape::plane:
+        break;
     }
   }
   return std::min(margin, feature / 10.0);

@@ -18,7 +18,8 @@ constexpr double kPlaneHalfThickness = 5.0;
 constexpr double kPlaneHalfWidth = 500.0;
 
 Eigen::Matrix3d y_onto(const Eigen::Vector3d& direction) {
-  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), direction.normalized()).toRotationMatrix();
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), direction.normalized())
+      .toRotationMatrix();
 }
 
 }  // namespace
@@ -30,7 +31,8 @@ BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
       out.shape = std::make_unique<btSphereShape>(c.radius);
       break;
     case ColliderShape::capsule:
-      out.shape = std::make_unique<btCapsuleShape>(c.radius, c.height);  // height: between cap centres
+      out.shape =
+          std::make_unique<btCapsuleShape>(c.radius, c.height);  // height: between cap centres
       out.shape_in_collider.linear() = y_onto(c.axis);
       break;
     case ColliderShape::cylinder:
@@ -43,7 +45,8 @@ BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
       out.shape->setMargin(edge_margin);
       break;
     case ColliderShape::plane:
-      out.shape = std::make_unique<btBoxShape>(btVector3(kPlaneHalfWidth, kPlaneHalfThickness, kPlaneHalfWidth));
+      out.shape = std::make_unique<btBoxShape>(
+          btVector3(kPlaneHalfWidth, kPlaneHalfThickness, kPlaneHalfWidth));
       out.shape->setMargin(edge_margin);
       out.shape_in_collider.linear() = y_onto(c.normal);
       out.shape_in_collider.translation() = -kPlaneHalfThickness * c.normal.normalized();
@@ -59,7 +62,8 @@ KinematicColliders::KinematicColliders(const std::vector<Collider>& colliders, d
     shapes_.push_back(make_bullet_shape(collider, edge_margin));
     btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, shapes_.back().shape.get());
     info.m_friction = collider.friction;
-    info.m_startWorldTransform = to_bullet(collider_pose(collider, 0.0) * shapes_.back().shape_in_collider);
+    info.m_startWorldTransform =
+        to_bullet(collider_pose(collider, 0.0) * shapes_.back().shape_in_collider);
     auto body = std::make_unique<btRigidBody>(info);
     body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     body->setActivationState(DISABLE_DEACTIVATION);
@@ -75,16 +79,19 @@ KinematicColliders::~KinematicColliders() {
 void KinematicColliders::move_to(double t0, double t1) {
   const double h = t1 - t0;
   for (std::size_t c = 0; c < bodies_.size(); ++c) {
-    const Eigen::Isometry3d before = collider_pose(colliders_[c], t0) * shapes_[c].shape_in_collider;
+    const Eigen::Isometry3d before =
+        collider_pose(colliders_[c], t0) * shapes_[c].shape_in_collider;
     const Eigen::Isometry3d after = collider_pose(colliders_[c], t1) * shapes_[c].shape_in_collider;
     btRigidBody& body = *bodies_[c];
     body.setInterpolationWorldTransform(to_bullet(before));
     body.setWorldTransform(to_bullet(after));
     // Velocities of the motion over the substep, for contact response and friction.
     const Eigen::AngleAxisd turn(after.linear() * before.linear().transpose());
-    const Eigen::Vector3d angular = h > 0.0 ? Eigen::Vector3d(turn.axis() * turn.angle() / h) : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d angular =
+        h > 0.0 ? Eigen::Vector3d(turn.axis() * turn.angle() / h) : Eigen::Vector3d::Zero();
     const Eigen::Vector3d linear =
-        h > 0.0 ? Eigen::Vector3d((after.translation() - before.translation()) / h) : Eigen::Vector3d::Zero();
+        h > 0.0 ? Eigen::Vector3d((after.translation() - before.translation()) / h)
+                : Eigen::Vector3d::Zero();
     body.setLinearVelocity(to_bullet(linear));
     body.setAngularVelocity(to_bullet(angular));
     body.setInterpolationLinearVelocity(to_bullet(linear));
@@ -99,11 +106,12 @@ Eigen::Isometry3d KinematicColliders::collider_pose_in_world(std::size_t c) cons
 ColliderSubstepMotion KinematicColliders::substep_motion(std::size_t c, double h) const {
   const btRigidBody& body = *bodies_[c];
   ColliderSubstepMotion motion;
-  motion.start = to_eigen(body.getInterpolationWorldTransform()) * shapes_[c].shape_in_collider.inverse();
+  motion.start =
+      to_eigen(body.getInterpolationWorldTransform()) * shapes_[c].shape_in_collider.inverse();
   motion.end = collider_pose_in_world(c);
   // Bullet's linear velocity is that of the shape's origin; the collider's origin differs from it
-  // where the shape is offset in the collider's frame (a plane's box), so take the collider origin's
-  // own displacement over the substep. The angular velocity is the same for both frames.
+  // where the shape is offset in the collider's frame (a plane's box), so take the collider
+  // origin's own displacement over the substep. The angular velocity is the same for both frames.
   if (h > 0.0) motion.velocity = (motion.end.translation() - motion.start.translation()) / h;
   motion.angular_velocity = to_eigen(body.getAngularVelocity());
   return motion;

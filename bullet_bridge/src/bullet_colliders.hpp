@@ -13,22 +13,23 @@
 
 namespace drapelab::bullet {
 
-// A Bullet shape for a collider, and where the shape sits in the collider's frame (Bullet's cylinder
-// and capsule lie along local y; a plane becomes a thick box whose top face is the plane).
+// A Bullet shape for a collider, and where the shape sits in the collider's frame (Bullet's
+// cylinder and capsule lie along local y; a plane becomes a thick box whose top face is the plane).
 struct BulletShape {
   std::unique_ptr<btCollisionShape> shape;
   Eigen::Isometry3d shape_in_collider = Eigen::Isometry3d::Identity();
 };
 
-// The one conversion from our Collider to Bullet. `edge_margin` (m) is given to boxes and cylinders,
-// whose edges Bullet rounds by their margin (spheres and capsules are exact).
+// The one conversion from our Collider to Bullet. `edge_margin` (m) is given to boxes and
+// cylinders, whose edges Bullet rounds by their margin (spheres and capsules are exact).
 BulletShape make_bullet_shape(const Collider& collider, double edge_margin);
 
 // Kinematic bodies for every collider in one world; move_to(t0, t1) poses them at t1 with the
 // velocities of the motion over [t0, t1], as a substep needs.
 class KinematicColliders {
  public:
-  KinematicColliders(const std::vector<Collider>& colliders, double edge_margin, btDynamicsWorld& world);
+  KinematicColliders(const std::vector<Collider>& colliders, double edge_margin,
+                     btDynamicsWorld& world);
   ~KinematicColliders();
   KinematicColliders(const KinematicColliders&) = delete;
   KinematicColliders& operator=(const KinematicColliders&) = delete;

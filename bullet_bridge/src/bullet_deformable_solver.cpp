@@ -22,15 +22,20 @@ namespace {
 
 class BulletDeformableSolver final : public BulletClothSolver {
  public:
-  BulletDeformableSolver(std::string name, std::shared_ptr<const ClothModel> model, const ClothState& initial,
-                         std::vector<Collider> colliders, BulletDeformableOptions options)
-      : name_(std::move(name)), model_(std::move(model)), options_(std::move(options)), state_(initial) {
+  BulletDeformableSolver(std::string name, std::shared_ptr<const ClothModel> model,
+                         const ClothState& initial, std::vector<Collider> colliders,
+                         BulletDeformableOptions options)
+      : name_(std::move(name)),
+        model_(std::move(model)),
+        options_(std::move(options)),
+        state_(initial) {
     // As in Bullet's examples/DeformableDemo: the deformable solver inside the constraint solver.
     constraint_solver_.setDeformableSolver(&deformable_solver_);
-    world_ = std::make_unique<btDeformableMultiBodyDynamicsWorld>(&dispatcher_, &broadphase_, &constraint_solver_,
-                                                                  &configuration_, &deformable_solver_);
+    world_ = std::make_unique<btDeformableMultiBodyDynamicsWorld>(
+        &dispatcher_, &broadphase_, &constraint_solver_, &configuration_, &deformable_solver_);
     world_->setGravity(to_bullet(options_.gravity));  // rigid bodies only; the cloth gets a force
-    world_->setInternalTickCallback(&BulletDeformableSolver::before_substep, this, /*isPreTick=*/true);
+    world_->setInternalTickCallback(&BulletDeformableSolver::before_substep, this,
+                                    /*isPreTick=*/true);
     btSoftBodyWorldInfo& info = world_->getWorldInfo();
     info.m_gravity = to_bullet(options_.gravity);
     info.m_sparsesdf.Initialize();
@@ -38,9 +43,11 @@ class BulletDeformableSolver final : public BulletClothSolver {
     info.m_sparsesdf.Reset();
     colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_);
 
-    cloth_ = make_soft_body(info, *model_, initial, [](std::size_t) { return 1.0; });  // kLST unused here
+    cloth_ = make_soft_body(info, *model_, initial,
+                            [](std::size_t) { return 1.0; });  // kLST unused here
     btSoftBody::Config& cfg = cloth_->m_cfg;
-    cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;  // node contacts
+    cfg.collisions =
+        btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;  // node contacts
     cfg.kDF = 1.0;  // friction = collider friction
     cfg.kCHR = cfg.kKHR = 1.0;
     cfg.drag = 1.0 - std::exp(-options_.air_damping * options_.dt);
@@ -69,9 +76,10 @@ class BulletDeformableSolver final : public BulletClothSolver {
     ++state_.step_count;
     read_soft_body_state(*cloth_, state_);
     deformable_contact_forces(deformable_solver_, *cloth_, *colliders_, h, forces_);
-    if (const auto message = runaway_message(*model_, state_, options_.max_speed, h,
-                                             "a smaller dt (its elastic force is explicit: the same step bound "
-                                             "as our symplectic Euler holds), or softer springs.")) {
+    if (const auto message =
+            runaway_message(*model_, state_, options_.max_speed, h,
+                            "a smaller dt (its elastic force is explicit: the same step bound "
+                            "as our symplectic Euler holds), or softer springs.")) {
       status_ = SolverStatus::unstable;
       message_ = *message;
     }
@@ -115,11 +123,13 @@ class BulletDeformableSolver final : public BulletClothSolver {
 
 }  // namespace
 
-std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name, std::shared_ptr<const ClothModel> model,
-                                                      const ClothState& initial, std::vector<Collider> colliders,
+std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name,
+                                                      std::shared_ptr<const ClothModel> model,
+                                                      const ClothState& initial,
+                                                      std::vector<Collider> colliders,
                                                       BulletDeformableOptions options) {
-  return std::make_unique<BulletDeformableSolver>(std::move(name), std::move(model), initial, std::move(colliders),
-                                                  std::move(options));
+  return std::make_unique<BulletDeformableSolver>(std::move(name), std::move(model), initial,
+                                                  std::move(colliders), std::move(options));
 }
 
 }  // namespace drapelab::bullet

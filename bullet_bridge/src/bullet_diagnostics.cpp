@@ -4,8 +4,8 @@
 #include <BulletCollision/CollisionShapes/btConvexShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 
-#include "bullet_math.hpp"
 #include "bullet_cloth_solver.hpp"
+#include "bullet_math.hpp"
 
 namespace drapelab::bullet {
 
@@ -42,12 +42,13 @@ std::vector<Eigen::Isometry3d> bullet_collider_poses(const Solver& solver) {
   return poses;
 }
 
-double bullet_signed_distance(const Collider& collider, double t, const Eigen::Vector3d& p, double edge_margin) {
+double bullet_signed_distance(const Collider& collider, double t, const Eigen::Vector3d& p,
+                              double edge_margin) {
   const BulletShape shape = make_bullet_shape(collider, edge_margin);
   const btTransform pose = to_bullet(collider_pose(collider, t) * shape.shape_in_collider);
   btGjkEpaSolver2::sResults results;
-  return btGjkEpaSolver2::SignedDistance(to_bullet(p), 0.0, static_cast<const btConvexShape*>(shape.shape.get()),
-                                         pose, results);
+  return btGjkEpaSolver2::SignedDistance(
+      to_bullet(p), 0.0, static_cast<const btConvexShape*>(shape.shape.get()), pose, results);
 }
 
 }  // namespace drapelab::bullet

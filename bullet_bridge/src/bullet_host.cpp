@@ -19,13 +19,14 @@ namespace {
 class BulletHostedSolver final : public BulletWorldSolver {
  public:
   BulletHostedSolver(std::unique_ptr<Solver> guest, std::shared_ptr<ColliderPoseTable> guest_poses,
-                     const std::vector<Collider>& colliders, const Eigen::Vector3d& gravity, double collider_margin)
+                     const std::vector<Collider>& colliders, const Eigen::Vector3d& gravity,
+                     double collider_margin)
       : guest_(std::move(guest)), guest_poses_(std::move(guest_poses)), action_(*this) {
     if (!guest_poses_ || guest_poses_->size() != colliders.size())
       throw std::invalid_argument("the hosted solver's pose table needs one entry per collider (" +
                                   std::to_string(colliders.size()) + ")");
-    world_ = std::make_unique<btSoftRigidDynamicsWorld>(&dispatcher_, &broadphase_, &constraint_solver_,
-                                                        &configuration_, nullptr);
+    world_ = std::make_unique<btSoftRigidDynamicsWorld>(
+        &dispatcher_, &broadphase_, &constraint_solver_, &configuration_, nullptr);
     world_->setGravity(to_bullet(gravity));
     world_->setInternalTickCallback(&BulletHostedSolver::before_substep, this, /*isPreTick=*/true);
     colliders_ = std::make_unique<KinematicColliders>(colliders, collider_margin, *world_);
@@ -39,7 +40,8 @@ class BulletHostedSolver final : public BulletWorldSolver {
   void step(double h) override {
     if (guest_->status() != SolverStatus::ok) return;
     substep_start_ = guest_->state().time;
-    world_->stepSimulation(h, 0);  // one substep: pre-tick poses the colliders, the action steps the guest
+    world_->stepSimulation(
+        h, 0);  // one substep: pre-tick poses the colliders, the action steps the guest
   }
   const ClothState& state() const override { return guest_->state(); }
   const std::string& name() const override { return guest_->name(); }
@@ -47,8 +49,12 @@ class BulletHostedSolver final : public BulletWorldSolver {
   SolverStatus status() const override { return guest_->status(); }
   const std::string& message() const override { return guest_->message(); }
   std::vector<ColliderForce> collider_forces() const override { return guest_->collider_forces(); }
-  std::vector<std::pair<std::string, double>> phase_seconds() const override { return guest_->phase_seconds(); }
-  std::vector<std::pair<std::string, double>> counters() const override { return guest_->counters(); }
+  std::vector<std::pair<std::string, double>> phase_seconds() const override {
+    return guest_->phase_seconds();
+  }
+  std::vector<std::pair<std::string, double>> counters() const override {
+    return guest_->counters();
+  }
 
   const KinematicColliders& colliders() const override { return *colliders_; }
 
@@ -70,10 +76,12 @@ class BulletHostedSolver final : public BulletWorldSolver {
     self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
   }
 
-  // Hands the guest the colliders as the world holds them at this point of the substep, then steps it.
+  // Hands the guest the colliders as the world holds them at this point of the substep, then steps
+  // it.
   void step_guest(double h) {
     guest_poses_->set_substep(substep_start_, substep_start_ + h);
-    for (std::size_t c = 0; c < colliders_->size(); ++c) guest_poses_->set(c, colliders_->substep_motion(c, h));
+    for (std::size_t c = 0; c < colliders_->size(); ++c)
+      guest_poses_->set(c, colliders_->substep_motion(c, h));
     guest_->step(h);
   }
 
@@ -93,10 +101,11 @@ class BulletHostedSolver final : public BulletWorldSolver {
 
 std::unique_ptr<Solver> host_in_bullet_world(std::unique_ptr<Solver> guest,
                                              std::shared_ptr<ColliderPoseTable> guest_poses,
-                                             const std::vector<Collider>& colliders, const Eigen::Vector3d& gravity,
+                                             const std::vector<Collider>& colliders,
+                                             const Eigen::Vector3d& gravity,
                                              double collider_margin) {
-  return std::make_unique<BulletHostedSolver>(std::move(guest), std::move(guest_poses), colliders, gravity,
-                                              collider_margin);
+  return std::make_unique<BulletHostedSolver>(std::move(guest), std::move(guest_poses), colliders,
+                                              gravity, collider_margin);
 }
 
 }  // namespace drapelab::bullet

@@ -9,12 +9,17 @@
 
 namespace drapelab::bullet {
 
-BulletSoftBodySolver::BulletSoftBodySolver(std::string name, std::shared_ptr<const ClothModel> model,
-                                           const ClothState& initial, std::vector<Collider> colliders,
+BulletSoftBodySolver::BulletSoftBodySolver(std::string name,
+                                           std::shared_ptr<const ClothModel> model,
+                                           const ClothState& initial,
+                                           std::vector<Collider> colliders,
                                            BulletSoftBodyOptions options)
-    : name_(std::move(name)), model_(std::move(model)), options_(std::move(options)), state_(initial) {
-  world_ = std::make_unique<btSoftRigidDynamicsWorld>(&dispatcher_, &broadphase_, &constraint_solver_,
-                                                      &configuration_, nullptr);
+    : name_(std::move(name)),
+      model_(std::move(model)),
+      options_(std::move(options)),
+      state_(initial) {
+  world_ = std::make_unique<btSoftRigidDynamicsWorld>(
+      &dispatcher_, &broadphase_, &constraint_solver_, &configuration_, nullptr);
   world_->setInternalTickCallback(&BulletSoftBodySolver::before_substep, this, /*isPreTick=*/true);
   world_->setGravity(to_bullet(options_.gravity));
   btSoftBodyWorldInfo& info = world_->getWorldInfo();
@@ -45,7 +50,6 @@ void BulletSoftBodySolver::step(double h) {
   estimate_contact_forces(h);
   check_health(h);
 }
-
 
 // Pre-tick: the kinematic colliders take their pose at the end of the substep [t, t + h].
 void BulletSoftBodySolver::before_substep(btDynamicsWorld* world, btScalar h) {
@@ -80,25 +84,30 @@ void BulletSoftBodySolver::estimate_contact_forces(double h) {
     const btSoftBody::RContact& contact = cloth_->m_rcontacts[k];
     const int c = colliders_->index_of(contact.m_cti.m_colObj);
     if (c >= 0)
-      contacts.push_back({static_cast<int>(contact.m_node - &cloth_->m_nodes[0]), c, to_eigen(contact.m_cti.m_normal)});
+      contacts.push_back({static_cast<int>(contact.m_node - &cloth_->m_nodes[0]), c,
+                          to_eigen(contact.m_cti.m_normal)});
   }
-  bullet::estimate_contact_forces(*model_, contacts, previous_velocity_, state_.v, options_.gravity, h, forces_);
+  bullet::estimate_contact_forces(*model_, contacts, previous_velocity_, state_.v, options_.gravity,
+                                  h, forces_);
 }
 
 void BulletSoftBodySolver::check_health(double h) {
-  if (const auto message = runaway_message(*model_, state_, options_.max_speed, h,
-                                           "a smaller dt, more iterations, or a smaller voxel_size if nodes "
-                                           "tunnel into a collider.")) {
+  if (const auto message =
+          runaway_message(*model_, state_, options_.max_speed, h,
+                          "a smaller dt, more iterations, or a smaller voxel_size if nodes "
+                          "tunnel into a collider.")) {
     status_ = SolverStatus::unstable;
     message_ = *message;
   }
 }
 
-std::unique_ptr<Solver> make_bullet_softbody_solver(std::string name, std::shared_ptr<const ClothModel> model,
-                                                    const ClothState& initial, std::vector<Collider> colliders,
+std::unique_ptr<Solver> make_bullet_softbody_solver(std::string name,
+                                                    std::shared_ptr<const ClothModel> model,
+                                                    const ClothState& initial,
+                                                    std::vector<Collider> colliders,
                                                     BulletSoftBodyOptions options) {
-  return std::make_unique<BulletSoftBodySolver>(std::move(name), std::move(model), initial, std::move(colliders),
-                                                std::move(options));
+  return std::make_unique<BulletSoftBodySolver>(std::move(name), std::move(model), initial,
+                                                std::move(colliders), std::move(options));
 }
 
 }  // namespace drapelab::bullet

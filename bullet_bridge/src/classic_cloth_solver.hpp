@@ -1,4 +1,5 @@
-// The classic cloth solver's class, shared by its implementation and the diagnostics that tests use.
+// The classic cloth solver's class, shared by its implementation and the diagnostics that tests
+// use.
 #pragma once
 
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
@@ -19,8 +20,9 @@ namespace drapelab::bullet {
 
 class BulletSoftBodySolver final : public BulletClothSolver {
  public:
-  BulletSoftBodySolver(std::string name, std::shared_ptr<const ClothModel> model, const ClothState& initial,
-                       std::vector<Collider> colliders, BulletSoftBodyOptions options);
+  BulletSoftBodySolver(std::string name, std::shared_ptr<const ClothModel> model,
+                       const ClothState& initial, std::vector<Collider> colliders,
+                       BulletSoftBodyOptions options);
   ~BulletSoftBodySolver() override;
 
   void step(double h) override;

@@ -20,7 +20,9 @@ void PerLinkSpringForce::addScaledForces(btScalar scale, TVStack& force) {
   addScaledElasticForce(scale, force);
 }
 
-void PerLinkSpringForce::addScaledExplicitForce(btScalar scale, TVStack& force) { addScaledElasticForce(scale, force); }
+void PerLinkSpringForce::addScaledExplicitForce(btScalar scale, TVStack& force) {
+  addScaledElasticForce(scale, force);
+}
 
 void PerLinkSpringForce::addScaledElasticForce(btScalar scale, TVStack& force) {
   for (int b = 0; b < m_softBodies.size(); ++b) {
@@ -28,7 +30,9 @@ void PerLinkSpringForce::addScaledElasticForce(btScalar scale, TVStack& force) {
     for (int j = 0; j < body->m_links.size(); ++j) {
       const btSoftBody::Link& link = body->m_links[j];
       const btVector3 d = link.m_n[1]->m_q - link.m_n[0]->m_q;
-      const btVector3 f = scale * ks_[j] * (d - direction_of(d) * link.m_rl);  // pulls node 0 towards 1 when stretched
+      const btVector3 f =
+          scale * ks_[j] *
+          (d - direction_of(d) * link.m_rl);  // pulls node 0 towards 1 when stretched
       force[link.m_n[0]->index] += f;
       force[link.m_n[1]->index] -= f;
     }
@@ -48,7 +52,8 @@ void PerLinkSpringForce::addScaledDampingForce(btScalar scale, TVStack& force) {
   }
 }
 
-void PerLinkSpringForce::addScaledDampingForceDifferential(btScalar scale, const TVStack& dv, TVStack& df) {
+void PerLinkSpringForce::addScaledDampingForceDifferential(btScalar scale, const TVStack& dv,
+                                                           TVStack& df) {
   for (int b = 0; b < m_softBodies.size(); ++b) {
     const btSoftBody* body = m_softBodies[b];
     for (int j = 0; j < body->m_links.size(); ++j) {
@@ -76,8 +81,10 @@ void PerLinkSpringForce::buildDampingForceDifferentialDiagonal(btScalar scale, T
   }
 }
 
-void PerLinkSpringForce::addScaledElasticForceDifferential(btScalar scale, const TVStack& dx, TVStack& df) {
-  // d f1 = -K (dx1 - dx2) with K = ks [u u^T + (1 - L/|d|) (I - u u^T)], the spring's stiffness matrix.
+void PerLinkSpringForce::addScaledElasticForceDifferential(btScalar scale, const TVStack& dx,
+                                                           TVStack& df) {
+  // d f1 = -K (dx1 - dx2) with K = ks [u u^T + (1 - L/|d|) (I - u u^T)], the spring's stiffness
+  // matrix.
   for (int b = 0; b < m_softBodies.size(); ++b) {
     const btSoftBody* body = m_softBodies[b];
     for (int j = 0; j < body->m_links.size(); ++j) {

@@ -1,8 +1,8 @@
 // Our damped springs as a force of Bullet's deformable world. btDeformableMassSpringForce has one
 // stiffness for every non-bending link (and a world takes one mass-spring force per body), so it
-// cannot give shear springs their own ks; this force carries ks and kd per link, in our spring order.
-// Elastic: f1 = ks (|d| - L) d/|d| with d = x2 - x1 (at the start of the step, Bullet's m_q);
-// damping: f1 = kd ((v2 - v1).d^) d^ (along the link only, as ours); f2 = -f1.
+// cannot give shear springs their own ks; this force carries ks and kd per link, in our spring
+// order. Elastic: f1 = ks (|d| - L) d/|d| with d = x2 - x1 (at the start of the step, Bullet's
+// m_q); damping: f1 = kd ((v2 - v1).d^) d^ (along the link only, as ours); f2 = -f1.
 #pragma once
 
 #include <BulletSoftBody/btDeformableLagrangianForce.h>

@@ -9,9 +9,9 @@
 
 namespace drapelab::bullet {
 
-std::unique_ptr<btSoftBody> make_soft_body(btSoftBodyWorldInfo& info, const ClothModel& model,
-                                           const ClothState& initial,
-                                           const std::function<double(std::size_t)>& link_stiffness) {
+std::unique_ptr<btSoftBody> make_soft_body(
+    btSoftBodyWorldInfo& info, const ClothModel& model, const ClothState& initial,
+    const std::function<double(std::size_t)>& link_stiffness) {
   const int n = model.particle_count();
   std::vector<btVector3> rest(n);
   std::vector<btScalar> masses(n);
@@ -59,20 +59,22 @@ void read_soft_body_state(const btSoftBody& body, ClothState& state) {
 }
 
 void estimate_contact_forces(const ClothModel& model, const std::vector<NodeContact>& contacts,
-                             const Eigen::Matrix3Xd& previous_velocity, const Eigen::Matrix3Xd& velocity,
-                             const Eigen::Vector3d& gravity, double h, std::vector<ColliderForce>& forces) {
+                             const Eigen::Matrix3Xd& previous_velocity,
+                             const Eigen::Matrix3Xd& velocity, const Eigen::Vector3d& gravity,
+                             double h, std::vector<ColliderForce>& forces) {
   forces.assign(forces.size(), ColliderForce{});
   for (const auto& contact : contacts) {
     const int i = contact.node;
-    const Eigen::Vector3d force = model.mass[i] * ((velocity.col(i) - previous_velocity.col(i)) / h - gravity);
+    const Eigen::Vector3d force =
+        model.mass[i] * ((velocity.col(i) - previous_velocity.col(i)) / h - gravity);
     const double normal = force.dot(contact.normal);
     forces[contact.collider].normal += std::max(0.0, normal);
     forces[contact.collider].friction += (force - normal * contact.normal).norm();
   }
 }
 
-std::optional<std::string> runaway_message(const ClothModel& model, const ClothState& state, double max_speed,
-                                           double h, const std::string& advice) {
+std::optional<std::string> runaway_message(const ClothModel& model, const ClothState& state,
+                                           double max_speed, double h, const std::string& advice) {
   for (int i = 0; i < model.particle_count(); ++i) {
     const bool finite = state.x.col(i).allFinite() && state.v.col(i).allFinite();
     const double speed = finite ? state.v.col(i).norm() : 0.0;
@@ -80,9 +82,12 @@ std::optional<std::string> runaway_message(const ClothModel& model, const ClothS
     std::ostringstream text;
     text.precision(4);
     text << "node " << i << " (" << model.describe_particle(i) << ") ";
-    if (finite) text << "moves at " << speed << " m/s, above the runaway limit of " << max_speed << " m/s";
-    else text << "has a non-finite position or velocity";
-    text << " after step " << state.step_count << " (t = " << state.time << " s, dt = " << h << " s). Try: " << advice;
+    if (finite)
+      text << "moves at " << speed << " m/s, above the runaway limit of " << max_speed << " m/s";
+    else
+      text << "has a non-finite position or velocity";
+    text << " after step " << state.step_count << " (t = " << state.time << " s, dt = " << h
+         << " s). Try: " << advice;
     return text.str();
   }
   return std::nullopt;

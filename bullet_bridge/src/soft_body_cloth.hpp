@@ -1,5 +1,6 @@
-// What Bullet's two cloths share: a btSoftBody built from our model (node i = particle i, our masses,
-// pins, links and rest lengths), reading its state back, estimating contact forces, and the health check.
+// What Bullet's two cloths share: a btSoftBody built from our model (node i = particle i, our
+// masses, pins, links and rest lengths), reading its state back, estimating contact forces, and the
+// health check.
 #pragma once
 
 #include <BulletSoftBody/btSoftBody.h>
@@ -20,9 +21,9 @@ namespace drapelab::bullet {
 // positions whenever masses or links change: docs/bullet.md, "Masses, pins and rest lengths"), then
 // set exactly to ours and moved to the initial state. `link_stiffness(e)` gives spring e's kLST
 // (the classic solver's only stiffness).
-std::unique_ptr<btSoftBody> make_soft_body(btSoftBodyWorldInfo& info, const ClothModel& model,
-                                           const ClothState& initial,
-                                           const std::function<double(std::size_t)>& link_stiffness);
+std::unique_ptr<btSoftBody> make_soft_body(
+    btSoftBodyWorldInfo& info, const ClothModel& model, const ClothState& initial,
+    const std::function<double(std::size_t)>& link_stiffness);
 
 void read_soft_body_state(const btSoftBody& body, ClothState& state);
 
@@ -33,19 +34,21 @@ struct NodeContact {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
 };
 
-// For the classic cloth, which keeps no contact impulses (its contacts are position projections whose
-// impulse PSolve_RContacts computes and discards), the force a collider exerted on a node in contact
-// is estimated from the node's momentum change over the step beyond gravity,
-// m ((v(n+1) - v(n)) / h - g), split along the contact normal (normal force, pushing part only) and
-// across it (friction). It includes the node's link forces: it averages to the weight of a cloth
-// resting flat but jitters from step to step (test_bullet_contact_forces). The deformable world reads
-// its impulses instead (deformable_contact_forces.hpp).
+// For the classic cloth, which keeps no contact impulses (its contacts are position projections
+// whose impulse PSolve_RContacts computes and discards), the force a collider exerted on a node in
+// contact is estimated from the node's momentum change over the step beyond gravity, m ((v(n+1) -
+// v(n)) / h - g), split along the contact normal (normal force, pushing part only) and across it
+// (friction). It includes the node's link forces: it averages to the weight of a cloth resting flat
+// but jitters from step to step (test_bullet_contact_forces). The deformable world reads its
+// impulses instead (deformable_contact_forces.hpp).
 void estimate_contact_forces(const ClothModel& model, const std::vector<NodeContact>& contacts,
-                             const Eigen::Matrix3Xd& previous_velocity, const Eigen::Matrix3Xd& velocity,
-                             const Eigen::Vector3d& gravity, double h, std::vector<ColliderForce>& forces);
+                             const Eigen::Matrix3Xd& previous_velocity,
+                             const Eigen::Matrix3Xd& velocity, const Eigen::Vector3d& gravity,
+                             double h, std::vector<ColliderForce>& forces);
 
-// A message naming the first non-finite or runaway node, the step and `advice`; nothing when healthy.
-std::optional<std::string> runaway_message(const ClothModel& model, const ClothState& state, double max_speed,
-                                           double h, const std::string& advice);
+// A message naming the first non-finite or runaway node, the step and `advice`; nothing when
+// healthy.
+std::optional<std::string> runaway_message(const ClothModel& model, const ClothState& state,
+                                           double max_speed, double h, const std::string& advice);
 
 }  // namespace drapelab::bullet

@@ -19,7 +19,8 @@ Eigen::VectorXd vertex_areas(const Eigen::Matrix3Xd& rest, const Eigen::Matrix3X
   Eigen::VectorXd area = Eigen::VectorXd::Zero(rest.cols());
   for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
     const int a = triangles(0, t), b = triangles(1, t), c = triangles(2, t);
-    const double third = 0.5 * (rest.col(b) - rest.col(a)).cross(rest.col(c) - rest.col(a)).norm() / 3.0;
+    const double third =
+        0.5 * (rest.col(b) - rest.col(a)).cross(rest.col(c) - rest.col(a)).norm() / 3.0;
     area[a] += third;
     area[b] += third;
     area[c] += third;

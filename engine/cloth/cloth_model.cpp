@@ -7,9 +7,12 @@ namespace drapelab {
 
 const char* spring_kind_name(SpringKind kind) {
   switch (kind) {
-    case SpringKind::stretch: return "stretch";
-    case SpringKind::shear: return "shear";
-    case SpringKind::bend: return "bend";
+    case SpringKind::stretch:
+      return "stretch";
+    case SpringKind::shear:
+      return "shear";
+    case SpringKind::bend:
+      return "bend";
   }
   return "unknown";
 }

@@ -2,7 +2,6 @@
 #include "drapelab/disc_cloth.hpp"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -24,12 +23,15 @@ std::vector<double> disc_ring_radii(const DiscSpec& spec) {
   }
   const double support = *spec.ring_at;
   if (!(support > 0.0 && support < spec.radius) || rings < 2)
-    throw std::invalid_argument("a ring at " + std::to_string(support) + " m needs 0 < it < the radius " +
-                                std::to_string(spec.radius) + " m and at least 2 rings");
+    throw std::invalid_argument("a ring at " + std::to_string(support) +
+                                " m needs 0 < it < the radius " + std::to_string(spec.radius) +
+                                " m and at least 2 rings");
   // Rings inside the support in proportion to its radius, at least one on each side.
-  const int inside = std::clamp(static_cast<int>(std::lround(rings * support / spec.radius)), 1, rings - 1);
+  const int inside =
+      std::clamp(static_cast<int>(std::lround(rings * support / spec.radius)), 1, rings - 1);
   for (int k = 1; k <= inside; ++k) radii.push_back(support * k / inside);
-  for (int k = 1; k <= rings - inside; ++k) radii.push_back(support + (spec.radius - support) * k / (rings - inside));
+  for (int k = 1; k <= rings - inside; ++k)
+    radii.push_back(support + (spec.radius - support) * k / (rings - inside));
   radii.back() = spec.radius;
   radii[static_cast<std::size_t>(inside - 1)] = support;  // exactly, whatever the rounding
   return radii;
@@ -39,7 +41,8 @@ int disc_ring_count(const DiscSpec& spec, int ring) {
   const std::vector<double> radii = disc_ring_radii(spec);
   const double outer = radii[static_cast<std::size_t>(ring - 1)];
   const double inner = ring >= 2 ? radii[static_cast<std::size_t>(ring - 2)] : 0.0;
-  return std::max(6, static_cast<int>(std::lround(2.0 * std::numbers::pi * outer / (outer - inner))));
+  return std::max(6,
+                  static_cast<int>(std::lround(2.0 * std::numbers::pi * outer / (outer - inner))));
 }
 
 int disc_ring_start(const DiscSpec& spec, int ring) {
@@ -51,7 +54,8 @@ int disc_ring_start(const DiscSpec& spec, int ring) {
 TriangleMesh make_disc_mesh(const DiscSpec& spec) {
   const std::vector<double> radii = disc_ring_radii(spec);
   const int rings = spec.rings;
-  std::vector<int> counts(static_cast<std::size_t>(rings + 1), 1), starts(static_cast<std::size_t>(rings + 1), 0);
+  std::vector<int> counts(static_cast<std::size_t>(rings + 1), 1),
+      starts(static_cast<std::size_t>(rings + 1), 0);
   int total = 1;
   for (int k = 1; k <= rings; ++k) {
     counts[static_cast<std::size_t>(k)] = disc_ring_count(spec, k);
@@ -78,19 +82,21 @@ TriangleMesh make_disc_mesh(const DiscSpec& spec) {
   std::vector<Eigen::Vector3i> triangles;
   const Eigen::Vector3d normal = turn * Eigen::Vector3d::UnitY();
   auto emit = [&](int a, int b, int c) {
-    const Eigen::Vector3d n =
-        (mesh.vertices.col(b) - mesh.vertices.col(a)).cross(mesh.vertices.col(c) - mesh.vertices.col(a));
+    const Eigen::Vector3d n = (mesh.vertices.col(b) - mesh.vertices.col(a))
+                                  .cross(mesh.vertices.col(c) - mesh.vertices.col(a));
     if (n.dot(normal) < 0.0) std::swap(b, c);
     triangles.emplace_back(a, b, c);
   };
   for (int k = 0; k < rings; ++k) {
-    const int n_in = counts[static_cast<std::size_t>(k)], n_out = counts[static_cast<std::size_t>(k + 1)];
+    const int n_in = counts[static_cast<std::size_t>(k)],
+              n_out = counts[static_cast<std::size_t>(k + 1)];
     auto inner = [&](int i) { return starts[static_cast<std::size_t>(k)] + i % n_in; };
     auto outer = [&](int j) { return starts[static_cast<std::size_t>(k + 1)] + j % n_out; };
     int i = n_in == 1 ? 1 : 0;  // the centre has no next point: only the outer ring advances
     int j = 0;
     while (i < n_in || j < n_out) {
-      const double next_in = static_cast<double>(i + 1) / n_in, next_out = static_cast<double>(j + 1) / n_out;
+      const double next_in = static_cast<double>(i + 1) / n_in,
+                   next_out = static_cast<double>(j + 1) / n_out;
       if (j < n_out && (i >= n_in || next_out <= next_in)) {
         emit(inner(i), outer(j), outer(j + 1));
         ++j;
@@ -101,7 +107,8 @@ TriangleMesh make_disc_mesh(const DiscSpec& spec) {
     }
   }
   mesh.triangles.resize(3, static_cast<Eigen::Index>(triangles.size()));
-  for (std::size_t t = 0; t < triangles.size(); ++t) mesh.triangles.col(static_cast<Eigen::Index>(t)) = triangles[t];
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    mesh.triangles.col(static_cast<Eigen::Index>(t)) = triangles[t];
   return mesh;
 }
 

@@ -2,7 +2,6 @@
 #include "drapelab/grid_cloth.hpp"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <limits>
 #include <random>
@@ -28,27 +27,33 @@ Eigen::Vector3d sheet_normal(GridPlane plane) {
 }
 
 // Stretch springs join lattice neighbours, shear springs both diagonals of a cell, bend springs
-// particles two apart along a lattice line. Counts: stretch nx(ny-1) + ny(nx-1), shear 2(nx-1)(ny-1),
-// bend nx(ny-2) + ny(nx-2) (negative terms count as zero).
+// particles two apart along a lattice line. Counts: stretch nx(ny-1) + ny(nx-1), shear
+// 2(nx-1)(ny-1), bend nx(ny-2) + ny(nx-2) (negative terms count as zero).
 SpringSet build_grid_springs(const GridClothSpec& spec, const Eigen::Matrix3Xd& rest) {
   const int nx = spec.nx, ny = spec.ny;
   SpringSet springs;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const int k = grid_index(nx, i, j);
-      if (i + 1 < nx) add_spring(springs, rest, k, grid_index(nx, i + 1, j), SpringKind::stretch, spec.stretch);
-      if (j + 1 < ny) add_spring(springs, rest, k, grid_index(nx, i, j + 1), SpringKind::stretch, spec.stretch);
+      if (i + 1 < nx)
+        add_spring(springs, rest, k, grid_index(nx, i + 1, j), SpringKind::stretch, spec.stretch);
+      if (j + 1 < ny)
+        add_spring(springs, rest, k, grid_index(nx, i, j + 1), SpringKind::stretch, spec.stretch);
     }
   for (int j = 0; j + 1 < ny; ++j)
     for (int i = 0; i + 1 < nx; ++i) {
-      add_spring(springs, rest, grid_index(nx, i, j), grid_index(nx, i + 1, j + 1), SpringKind::shear, spec.shear);
-      add_spring(springs, rest, grid_index(nx, i + 1, j), grid_index(nx, i, j + 1), SpringKind::shear, spec.shear);
+      add_spring(springs, rest, grid_index(nx, i, j), grid_index(nx, i + 1, j + 1),
+                 SpringKind::shear, spec.shear);
+      add_spring(springs, rest, grid_index(nx, i + 1, j), grid_index(nx, i, j + 1),
+                 SpringKind::shear, spec.shear);
     }
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const int k = grid_index(nx, i, j);
-      if (i + 2 < nx) add_spring(springs, rest, k, grid_index(nx, i + 2, j), SpringKind::bend, spec.bend);
-      if (j + 2 < ny) add_spring(springs, rest, k, grid_index(nx, i, j + 2), SpringKind::bend, spec.bend);
+      if (i + 2 < nx)
+        add_spring(springs, rest, k, grid_index(nx, i + 2, j), SpringKind::bend, spec.bend);
+      if (j + 2 < ny)
+        add_spring(springs, rest, k, grid_index(nx, i, j + 2), SpringKind::bend, spec.bend);
     }
   return springs;
 }
@@ -86,17 +91,22 @@ std::vector<int> all_matching(const GridClothSpec& spec, auto&& predicate) {
   return picked;
 }
 
-std::vector<int> select_named(const GridClothSpec& spec, const std::string& name, std::string* error) {
+std::vector<int> select_named(const GridClothSpec& spec, const std::string& name,
+                              std::string* error) {
   const int last_i = spec.nx - 1, last_j = spec.ny - 1;
   const bool xz = spec.plane == GridPlane::xz;
   if (name == "corners")
-    return all_matching(spec, [&](int i, int j) { return (i == 0 || i == last_i) && (j == 0 || j == last_j); });
-  if (name == "top_corners")  // greatest y (vertical sheet) or greatest z (horizontal sheet): j = ny-1
+    return all_matching(
+        spec, [&](int i, int j) { return (i == 0 || i == last_i) && (j == 0 || j == last_j); });
+  if (name ==
+      "top_corners")  // greatest y (vertical sheet) or greatest z (horizontal sheet): j = ny-1
     return all_matching(spec, [&](int i, int j) { return (i == 0 || i == last_i) && j == last_j; });
   if (name == "edge_min_x") return all_matching(spec, [&](int i, int) { return i == 0; });
   if (name == "edge_max_x") return all_matching(spec, [&](int i, int) { return i == last_i; });
-  if (name == (xz ? "edge_min_z" : "edge_min_y")) return all_matching(spec, [&](int, int j) { return j == 0; });
-  if (name == (xz ? "edge_max_z" : "edge_max_y")) return all_matching(spec, [&](int, int j) { return j == last_j; });
+  if (name == (xz ? "edge_min_z" : "edge_min_y"))
+    return all_matching(spec, [&](int, int j) { return j == 0; });
+  if (name == (xz ? "edge_max_z" : "edge_max_y"))
+    return all_matching(spec, [&](int, int j) { return j == last_j; });
   if (name == "center") {
     // The particle nearest the sheet's centre; ties go to the lowest index.
     int best = 0;
@@ -122,20 +132,25 @@ std::vector<int> select_named(const GridClothSpec& spec, const std::string& name
 
 std::vector<std::string> pin_set_names(GridPlane plane) {
   if (plane == GridPlane::xz)
-    return {"corners", "top_corners", "edge_min_x", "edge_max_x", "edge_min_z", "edge_max_z", "center"};
-  return {"corners", "top_corners", "edge_min_x", "edge_max_x", "edge_min_y", "edge_max_y", "center"};
+    return {"corners",    "top_corners", "edge_min_x", "edge_max_x",
+            "edge_min_z", "edge_max_z",  "center"};
+  return {"corners",    "top_corners", "edge_min_x", "edge_max_x",
+          "edge_min_y", "edge_max_y",  "center"};
 }
 
 Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j) {
   // A side with a single particle sits at the centre on that axis.
   const double u = spec.nx > 1 ? static_cast<double>(i) / (spec.nx - 1) - 0.5 : 0.0;
   const double w = spec.ny > 1 ? static_cast<double>(j) / (spec.ny - 1) - 0.5 : 0.0;
-  const Eigen::Vector3d offset = u * spec.size.x() * Eigen::Vector3d::UnitX() + w * spec.size.y() * second_axis(spec.plane);
+  const Eigen::Vector3d offset =
+      u * spec.size.x() * Eigen::Vector3d::UnitX() + w * spec.size.y() * second_axis(spec.plane);
   return spec.center + euler_rotation(spec.rotation) * offset;
 }
 
-std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selector, std::string* error) {
-  if (const auto* named = std::get_if<PinNamed>(&selector)) return select_named(spec, named->name, error);
+std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selector,
+                             std::string* error) {
+  if (const auto* named = std::get_if<PinNamed>(&selector))
+    return select_named(spec, named->name, error);
   if (const auto* coord = std::get_if<PinGridCoord>(&selector)) {
     if (coord->i < 0 || coord->i >= spec.nx || coord->j < 0 || coord->j >= spec.ny) {
       if (error)
@@ -192,7 +207,8 @@ ClothModel build_grid_cloth(const GridClothSpec& spec) {
     model.mass = Eigen::VectorXd::Constant(count, *spec.mass / count);
   } else {
     if (model.triangles.cols() == 0)
-      throw std::invalid_argument("areal_density needs a two-dimensional cloth (a chain has no area)");
+      throw std::invalid_argument(
+          "areal_density needs a two-dimensional cloth (a chain has no area)");
     model.mass = *spec.areal_density * model.vertex_area;
   }
   model.inverse_mass = model.mass.cwiseInverse();

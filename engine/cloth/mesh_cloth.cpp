@@ -2,7 +2,6 @@
 #include "drapelab/mesh_cloth.hpp"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <map>
 #include <random>
@@ -25,31 +24,38 @@ std::map<Edge, std::vector<int>> opposite_vertices(const Eigen::Matrix3Xi& trian
   std::map<Edge, std::vector<int>> opposite;
   for (Eigen::Index t = 0; t < triangles.cols(); ++t)
     for (int e = 0; e < 3; ++e)
-      opposite[edge_of(triangles(e, t), triangles((e + 1) % 3, t))].push_back(triangles((e + 2) % 3, t));
+      opposite[edge_of(triangles(e, t), triangles((e + 1) % 3, t))].push_back(
+          triangles((e + 2) % 3, t));
   return opposite;
 }
 
 // True when (a, b) is, within 1 %, the longest edge of the triangle (a, b, c).
 bool is_longest_edge(const Eigen::Matrix3Xd& rest, int a, int b, int c) {
   const double edge = (rest.col(a) - rest.col(b)).norm();
-  return edge >= 1.01 * std::max((rest.col(a) - rest.col(c)).norm(), (rest.col(b) - rest.col(c)).norm());
+  return edge >=
+         1.01 * std::max((rest.col(a) - rest.col(c)).norm(), (rest.col(b) - rest.col(c)).norm());
 }
 
 SpringSet build_mesh_springs(const MeshClothSpec& spec, const Eigen::Matrix3Xd& rest) {
   SpringSet springs;
   const auto opposite = opposite_vertices(spec.mesh.triangles);
-  for (const auto& [edge, across] : opposite) add_spring(springs, rest, edge.first, edge.second, SpringKind::stretch, spec.stretch);
+  for (const auto& [edge, across] : opposite)
+    add_spring(springs, rest, edge.first, edge.second, SpringKind::stretch, spec.stretch);
   for (const auto& [edge, across] : opposite) {
     if (across.size() != 2 || across[0] == across[1]) continue;  // a border edge
     const auto [a, b] = edge;
-    const bool diagonal = is_longest_edge(rest, a, b, across[0]) && is_longest_edge(rest, a, b, across[1]);
-    if (diagonal) add_spring(springs, rest, across[0], across[1], SpringKind::shear, spec.shear);
-    else add_spring(springs, rest, across[0], across[1], SpringKind::bend, spec.bend);
+    const bool diagonal =
+        is_longest_edge(rest, a, b, across[0]) && is_longest_edge(rest, a, b, across[1]);
+    if (diagonal)
+      add_spring(springs, rest, across[0], across[1], SpringKind::shear, spec.shear);
+    else
+      add_spring(springs, rest, across[0], across[1], SpringKind::bend, spec.bend);
   }
   return springs;
 }
 
-// Planar UVs: the vertices projected on the two longest axes of their bounding box, scaled to [0, 1].
+// Planar UVs: the vertices projected on the two longest axes of their bounding box, scaled to [0,
+// 1].
 Eigen::Matrix2Xd planar_uvs(const Eigen::Matrix3Xd& vertices) {
   const Eigen::Vector3d low = vertices.rowwise().minCoeff(), high = vertices.rowwise().maxCoeff();
   const Eigen::Vector3d extent = high - low;
@@ -75,23 +81,29 @@ std::optional<std::string> mesh_problem(const TriangleMesh& mesh) {
     for (int c = 0; c < 3; ++c) {
       const int v = mesh.triangles(c, t);
       if (v < 0 || v >= n)
-        return "triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + ", outside 0.." + std::to_string(n - 1);
+        return "triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) +
+               ", outside 0.." + std::to_string(n - 1);
       used[static_cast<std::size_t>(v)] = 1;
     }
-    const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t)), b = mesh.vertices.col(mesh.triangles(1, t)),
+    const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t)),
+                          b = mesh.vertices.col(mesh.triangles(1, t)),
                           c = mesh.vertices.col(mesh.triangles(2, t));
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     if ((b - a).cross(c - a).norm() <= 1e-12 * longest * longest)
-      return "triangle " + std::to_string(t) + " has no area (its vertices are repeated or collinear)";
+      return "triangle " + std::to_string(t) +
+             " has no area (its vertices are repeated or collinear)";
   }
   for (Eigen::Index v = 0; v < n; ++v)
-    if (!used[static_cast<std::size_t>(v)]) return "vertex " + std::to_string(v) + " is used by no triangle";
+    if (!used[static_cast<std::size_t>(v)])
+      return "vertex " + std::to_string(v) + " is used by no triangle";
   for (const auto& [edge, across] : opposite_vertices(mesh.triangles))
     if (across.size() > 2)
-      return "the edge between vertices " + std::to_string(edge.first) + " and " + std::to_string(edge.second) +
-             " is shared by " + std::to_string(across.size()) + " triangles (a cloth surface allows at most 2)";
+      return "the edge between vertices " + std::to_string(edge.first) + " and " +
+             std::to_string(edge.second) + " is shared by " + std::to_string(across.size()) +
+             " triangles (a cloth surface allows at most 2)";
   if (mesh.uvs.cols() != 0 && mesh.uvs.cols() != n)
-    return "there are " + std::to_string(mesh.uvs.cols()) + " texture coordinates for " + std::to_string(n) + " vertices";
+    return "there are " + std::to_string(mesh.uvs.cols()) + " texture coordinates for " +
+           std::to_string(n) + " vertices";
   return std::nullopt;
 }
 
@@ -112,18 +124,21 @@ ClothModel build_mesh_cloth(const MeshClothSpec& spec) {
   model.inverse_mass = model.mass.cwiseInverse();
   for (int k : spec.pinned) {
     if (k < 0 || k >= count)
-      throw std::invalid_argument("pin index " + std::to_string(k) + " is outside 0.." + std::to_string(count - 1));
+      throw std::invalid_argument("pin index " + std::to_string(k) + " is outside 0.." +
+                                  std::to_string(count - 1));
     model.inverse_mass[k] = 0.0;
   }
   return model;
 }
 
-Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xi& triangles) {
+Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions,
+                                const Eigen::Matrix3Xi& triangles) {
   Eigen::Matrix3Xd normals = Eigen::Matrix3Xd::Zero(3, positions.cols());
   for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
     const int a = triangles(0, t), b = triangles(1, t), c = triangles(2, t);
     // The cross product's length is twice the area: an area-weighted sum.
-    const Eigen::Vector3d n = (positions.col(b) - positions.col(a)).cross(positions.col(c) - positions.col(a));
+    const Eigen::Vector3d n =
+        (positions.col(b) - positions.col(a)).cross(positions.col(c) - positions.col(a));
     normals.col(a) += n;
     normals.col(b) += n;
     normals.col(c) += n;

@@ -60,7 +60,8 @@ ObjReadResult read_obj(std::istream& in) {
       double value[3] = {0, 0, 0};
       for (int c = 0; c < needed; ++c) {
         std::string word;
-        if (!(words >> word)) return fail(line, "'" + tag + "' needs " + std::to_string(needed) + " numbers");
+        if (!(words >> word))
+          return fail(line, "'" + tag + "' needs " + std::to_string(needed) + " numbers");
         try {
           std::size_t used = 0;
           value[c] = std::stod(word, &used);
@@ -70,8 +71,10 @@ ObjReadResult read_obj(std::istream& in) {
         }
         if (!std::isfinite(value[c])) return fail(line, "'" + word + "' is not a finite number");
       }
-      if (tag == "v") vertices.emplace_back(value[0], value[1], value[2]);
-      else uvs.emplace_back(value[0], value[1]);
+      if (tag == "v")
+        vertices.emplace_back(value[0], value[1], value[2]);
+      else
+        uvs.emplace_back(value[0], value[1]);
       continue;
     }
     if (tag != "f") continue;  // vn, o, g, s, usemtl, mtllib, l, ...: not needed for a cloth
@@ -85,14 +88,15 @@ ObjReadResult read_obj(std::istream& in) {
         return fail(line, "face corner '" + word + "' does not start with a vertex index");
       const auto vertex = resolve_index(index, vertices.size());
       if (!vertex)
-        return fail(line, "face uses vertex " + std::to_string(index) + " but " + std::to_string(vertices.size()) +
-                              " vertices are defined so far");
+        return fail(line, "face uses vertex " + std::to_string(index) + " but " +
+                              std::to_string(vertices.size()) + " vertices are defined so far");
       corner.vertex = *vertex;
       if (slash != std::string::npos) {
         const std::string rest = word.substr(slash + 1);
         const std::string uv_text = rest.substr(0, rest.find('/'));
         if (!uv_text.empty()) {
-          if (!parse_integer(uv_text, index)) return fail(line, "face corner '" + word + "' has a bad texture index");
+          if (!parse_integer(uv_text, index))
+            return fail(line, "face corner '" + word + "' has a bad texture index");
           const auto uv = resolve_index(index, uvs.size());
           if (!uv)
             return fail(line, "face uses texture coordinate " + std::to_string(index) + " but " +
@@ -102,10 +106,12 @@ ObjReadResult read_obj(std::istream& in) {
       }
       corners.push_back(corner);
     }
-    if (corners.size() < 3) return fail(line, "a face needs at least 3 corners, got " + std::to_string(corners.size()));
+    if (corners.size() < 3)
+      return fail(line, "a face needs at least 3 corners, got " + std::to_string(corners.size()));
     vertex_uv.resize(vertices.size(), -1);
     for (const Corner& c : corners)
-      if (c.uv >= 0 && vertex_uv[static_cast<std::size_t>(c.vertex)] < 0) vertex_uv[static_cast<std::size_t>(c.vertex)] = c.uv;
+      if (c.uv >= 0 && vertex_uv[static_cast<std::size_t>(c.vertex)] < 0)
+        vertex_uv[static_cast<std::size_t>(c.vertex)] = c.uv;
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
       triangles.emplace_back(corners[0].vertex, corners[k].vertex, corners[k + 1].vertex);
   }
@@ -115,15 +121,18 @@ ObjReadResult read_obj(std::istream& in) {
 
   TriangleMesh mesh;
   mesh.vertices.resize(3, static_cast<Eigen::Index>(vertices.size()));
-  for (std::size_t i = 0; i < vertices.size(); ++i) mesh.vertices.col(static_cast<Eigen::Index>(i)) = vertices[i];
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    mesh.vertices.col(static_cast<Eigen::Index>(i)) = vertices[i];
   mesh.triangles.resize(3, static_cast<Eigen::Index>(triangles.size()));
-  for (std::size_t t = 0; t < triangles.size(); ++t) mesh.triangles.col(static_cast<Eigen::Index>(t)) = triangles[t];
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    mesh.triangles.col(static_cast<Eigen::Index>(t)) = triangles[t];
   vertex_uv.resize(vertices.size(), -1);
   bool every_vertex_has_uv = !uvs.empty();
   for (int uv : vertex_uv) every_vertex_has_uv = every_vertex_has_uv && uv >= 0;
   if (every_vertex_has_uv) {
     mesh.uvs.resize(2, static_cast<Eigen::Index>(vertices.size()));
-    for (std::size_t i = 0; i < vertices.size(); ++i) mesh.uvs.col(static_cast<Eigen::Index>(i)) = uvs[static_cast<std::size_t>(vertex_uv[i])];
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+      mesh.uvs.col(static_cast<Eigen::Index>(i)) = uvs[static_cast<std::size_t>(vertex_uv[i])];
   }
   result.mesh = std::move(mesh);
   return result;

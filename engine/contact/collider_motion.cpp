@@ -14,7 +14,8 @@ Eigen::Quaterniond keyframe_rotation(const ColliderKeyframe& k) {
 }
 
 // Index of the keyframe segment holding t, and the fraction along it (clamped to the ends).
-std::pair<std::size_t, double> keyframe_segment(const std::vector<ColliderKeyframe>& keys, double t) {
+std::pair<std::size_t, double> keyframe_segment(const std::vector<ColliderKeyframe>& keys,
+                                                double t) {
   if (t <= keys.front().t || keys.size() == 1) return {0, 0.0};
   for (std::size_t k = 0; k + 1 < keys.size(); ++k)
     if (t < keys[k + 1].t) return {k, (t - keys[k].t) / (keys[k + 1].t - keys[k].t)};
@@ -25,11 +26,16 @@ std::pair<std::size_t, double> keyframe_segment(const std::vector<ColliderKeyfra
 
 const char* collider_shape_name(ColliderShape shape) {
   switch (shape) {
-    case ColliderShape::sphere: return "sphere";
-    case ColliderShape::cylinder: return "cylinder";
-    case ColliderShape::capsule: return "capsule";
-    case ColliderShape::box: return "box";
-    case ColliderShape::plane: return "plane";
+    case ColliderShape::sphere:
+      return "sphere";
+    case ColliderShape::cylinder:
+      return "cylinder";
+    case ColliderShape::capsule:
+      return "capsule";
+    case ColliderShape::box:
+      return "box";
+    case ColliderShape::plane:
+      return "plane";
   }
   return "unknown";
 }
@@ -46,32 +52,36 @@ Eigen::Isometry3d collider_pose(const Collider& collider, double t) {
   const ColliderMotion& motion = collider.motion;
   if (!motion.keyframes.empty()) {
     // Linear in position, spherical-linear in orientation between neighbouring keyframes. The
-    // keyframe's rotation turns the collider after its own `rotation` (its orientation at rest), about
-    // the keyframe's centre; the collider's `center` plays no part (the keyframes give the centre).
+    // keyframe's rotation turns the collider after its own `rotation` (its orientation at rest),
+    // about the keyframe's centre; the collider's `center` plays no part (the keyframes give the
+    // centre).
     const auto [k, s] = keyframe_segment(motion.keyframes, t);
     const ColliderKeyframe& a = motion.keyframes[k];
     const ColliderKeyframe& b = motion.keyframes.size() > 1 ? motion.keyframes[k + 1] : a;
     pose.translation() = (1.0 - s) * a.center + s * b.center;
-    pose.linear() =
-        keyframe_rotation(a).slerp(s, keyframe_rotation(b)).toRotationMatrix() * euler_rotation(collider.rotation);
+    pose.linear() = keyframe_rotation(a).slerp(s, keyframe_rotation(b)).toRotationMatrix() *
+                    euler_rotation(collider.rotation);
     return pose;
   }
   pose.translation() = collider.center + t * motion.velocity;
   const Eigen::Vector3d turn = t * motion.angular_velocity * kDegree;  // rad, rotation vector
   const double angle = turn.norm();
-  const Eigen::Matrix3d spin =
-      angle > 0.0 ? Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix() : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d spin = angle > 0.0
+                                   ? Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix()
+                                   : Eigen::Matrix3d::Identity();
   pose.linear() = spin * euler_rotation(collider.rotation);
   return pose;
 }
 
-Eigen::Vector3d collider_point_velocity(const Collider& collider, double t, const Eigen::Vector3d& p) {
+Eigen::Vector3d collider_point_velocity(const Collider& collider, double t,
+                                        const Eigen::Vector3d& p) {
   const ColliderMotion& motion = collider.motion;
   if (!motion.keyframes.empty()) {
     // Constant linear and angular velocity within a segment; at rest before the first keyframe and
     // after the last.
     const auto& keys = motion.keyframes;
-    if (keys.size() == 1 || t < keys.front().t || t >= keys.back().t) return Eigen::Vector3d::Zero();
+    if (keys.size() == 1 || t < keys.front().t || t >= keys.back().t)
+      return Eigen::Vector3d::Zero();
     const auto [k, s] = keyframe_segment(keys, t);
     const ColliderKeyframe& a = keys[k];
     const ColliderKeyframe& b = keys[k + 1];

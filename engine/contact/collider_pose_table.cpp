@@ -20,11 +20,13 @@ ColliderKinematics ColliderPoseTable::at(std::size_t c, double t) const {
   } else if (t == t1_) {
     k.pose = m.end;
   } else {
-    const double elapsed = t - t0_;  // s
+    const double elapsed = t - t0_;                             // s
     const Eigen::Vector3d turn = elapsed * m.angular_velocity;  // rad, rotation vector
     const double angle = turn.norm();
     k.pose = m.start;
-    if (angle > 0.0) k.pose.linear() = Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix() * m.start.linear();
+    if (angle > 0.0)
+      k.pose.linear() =
+          Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix() * m.start.linear();
     k.pose.translation() = m.start.translation() + elapsed * m.velocity;
   }
   return k;

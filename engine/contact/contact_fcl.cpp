@@ -34,14 +34,16 @@ FclCollider make_fcl_collider(const Collider& c) {
         out.geometry = std::make_shared<fcl::Capsule<double>>(c.radius, c.height);
       // FCL's axis is local z: rotate z onto the collider's axis.
       out.shape_in_collider.linear() =
-          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), c.axis.normalized()).toRotationMatrix();
+          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), c.axis.normalized())
+              .toRotationMatrix();
       break;
     }
     case ColliderShape::box:
       out.geometry = std::make_shared<fcl::Box<double>>(2.0 * c.half_extents);
       break;
     case ColliderShape::plane:
-      // A half-space through the collider's origin: solid where n.p <= 0 (FCL's Plane is two-sided).
+      // A half-space through the collider's origin: solid where n.p <= 0 (FCL's Plane is
+      // two-sided).
       out.geometry = std::make_shared<fcl::Halfspace<double>>(c.normal.normalized(), 0.0);
       break;
   }
@@ -50,8 +52,7 @@ FclCollider make_fcl_collider(const Collider& c) {
 }
 
 ParticleContactQuery::ParticleContactQuery(double radius)
-    : radius_(radius),
-      sphere_(std::make_shared<fcl::Sphere<double>>(radius)) {
+    : radius_(radius), sphere_(std::make_shared<fcl::Sphere<double>>(radius)) {
   sphere_->computeLocalAABB();
 }
 
@@ -72,24 +73,29 @@ std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& 
   bool touching = false;
   switch (shape.getNodeType()) {
     case fcl::GEOM_SPHERE:
-      touching = fcl::detail::sphereSphereIntersect(particle, particle_pose, static_cast<const fcl::Sphere<double>&>(shape),
+      touching = fcl::detail::sphereSphereIntersect(particle, particle_pose,
+                                                    static_cast<const fcl::Sphere<double>&>(shape),
                                                     shape_pose, &contacts);
       break;
     case fcl::GEOM_CAPSULE:
-      touching = fcl::detail::sphereCapsuleIntersect(particle, particle_pose,
-                                                     static_cast<const fcl::Capsule<double>&>(shape), shape_pose, &contacts);
+      touching = fcl::detail::sphereCapsuleIntersect(
+          particle, particle_pose, static_cast<const fcl::Capsule<double>&>(shape), shape_pose,
+          &contacts);
       break;
     case fcl::GEOM_CYLINDER:
-      touching = fcl::detail::sphereCylinderIntersect(particle, particle_pose,
-                                                      static_cast<const fcl::Cylinder<double>&>(shape), shape_pose, &contacts);
+      touching = fcl::detail::sphereCylinderIntersect(
+          particle, particle_pose, static_cast<const fcl::Cylinder<double>&>(shape), shape_pose,
+          &contacts);
       break;
     case fcl::GEOM_BOX:
-      touching = fcl::detail::sphereBoxIntersect(particle, particle_pose, static_cast<const fcl::Box<double>&>(shape),
+      touching = fcl::detail::sphereBoxIntersect(particle, particle_pose,
+                                                 static_cast<const fcl::Box<double>&>(shape),
                                                  shape_pose, &contacts);
       break;
     case fcl::GEOM_HALFSPACE:
-      touching = fcl::detail::sphereHalfspaceIntersect(particle, particle_pose,
-                                                       static_cast<const fcl::Halfspace<double>&>(shape), shape_pose, &contacts);
+      touching = fcl::detail::sphereHalfspaceIntersect(
+          particle, particle_pose, static_cast<const fcl::Halfspace<double>&>(shape), shape_pose,
+          &contacts);
       break;
     default:
       return std::nullopt;  // make_fcl_collider makes only the shapes above
@@ -99,12 +105,13 @@ std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& 
   return ParticleContact{contacts.front().penetration_depth, -contacts.front().normal.normalized()};
 }
 
-double ParticleContactQuery::clearance(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
+double ParticleContactQuery::clearance(const FclCollider& collider,
+                                       const Eigen::Isometry3d& shape_pose,
                                        const Eigen::Vector3d& x) const {
   if (const auto touching = contact(collider, shape_pose, x)) return -touching->depth;
   if (collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE) {
-    // FCL has no sphere-halfspace distance routine (its libccd fallback crashes: a half-space has no
-    // support point), but the half-space's own signed distance is exact.
+    // FCL has no sphere-halfspace distance routine (its libccd fallback crashes: a half-space has
+    // no support point), but the half-space's own signed distance is exact.
     const auto& halfspace = static_cast<const fcl::Halfspace<double>&>(*collider.geometry);
     return halfspace.signedDistance(shape_pose.inverse() * x) - radius_;
   }
@@ -120,7 +127,8 @@ double ParticleContactQuery::clearance(const FclCollider& collider, const Eigen:
 double bounding_radius(const FclCollider& collider) {
   const fcl::CollisionGeometry<double>& shape = *collider.geometry;
   switch (shape.getNodeType()) {
-    case fcl::GEOM_SPHERE: return static_cast<const fcl::Sphere<double>&>(shape).radius;
+    case fcl::GEOM_SPHERE:
+      return static_cast<const fcl::Sphere<double>&>(shape).radius;
     case fcl::GEOM_CAPSULE: {
       const auto& capsule = static_cast<const fcl::Capsule<double>&>(shape);
       return 0.5 * capsule.lz + capsule.radius;
@@ -129,19 +137,23 @@ double bounding_radius(const FclCollider& collider) {
       const auto& cylinder = static_cast<const fcl::Cylinder<double>&>(shape);
       return std::hypot(0.5 * cylinder.lz, cylinder.radius);
     }
-    case fcl::GEOM_BOX: return 0.5 * static_cast<const fcl::Box<double>&>(shape).side.norm();
-    case fcl::GEOM_HALFSPACE: return std::numeric_limits<double>::infinity();
-    default: break;
+    case fcl::GEOM_BOX:
+      return 0.5 * static_cast<const fcl::Box<double>&>(shape).side.norm();
+    case fcl::GEOM_HALFSPACE:
+      return std::numeric_limits<double>::infinity();
+    default:
+      break;
   }
   const fcl::AABBd& local = shape.aabb_local;  // any other shape: the sphere around its local box
   return 0.5 * (local.max_ - local.min_).norm() + local.center().norm();
 }
 
-Eigen::AlignedBox3d collider_bounds(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
-                                    double margin) {
+Eigen::AlignedBox3d collider_bounds(const FclCollider& collider,
+                                    const Eigen::Isometry3d& shape_pose, double margin) {
   const double infinity = std::numeric_limits<double>::infinity();
   if (collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE)
-    return Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-infinity), Eigen::Vector3d::Constant(infinity));
+    return Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-infinity),
+                               Eigen::Vector3d::Constant(infinity));
   // The eight corners of the local box, posed: a box that holds the posed shape.
   const fcl::AABBd& local = collider.geometry->aabb_local;
   Eigen::AlignedBox3d world;

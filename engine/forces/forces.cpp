@@ -5,14 +5,14 @@
 
 namespace drapelab {
 
-void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                       Eigen::Matrix3Xd& force) {
+void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                       const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force) {
   const SpringSet& s = model.springs;
   const std::size_t count = s.size();
   for (std::size_t e = 0; e < count; ++e) {
     const int a = s.v0[e], b = s.v1[e];
-    const Eigen::Vector3d f =
-        damped_spring_force(x.col(a), x.col(b), v.col(a), v.col(b), s.ks[e], s.kd[e], s.rest_length[e]);
+    const Eigen::Vector3d f = damped_spring_force(x.col(a), x.col(b), v.col(a), v.col(b), s.ks[e],
+                                                  s.kd[e], s.rest_length[e]);
     force.col(a) += f;
     force.col(b) -= f;
   }

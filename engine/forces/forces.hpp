@@ -1,5 +1,5 @@
-// The plain (edge-list) spring phase, adding into a force buffer (N, 3 x N). Gravity and air drag are
-// one pass of particle_loops.hpp; the grid fast path is spring_families.hpp.
+// The plain (edge-list) spring phase, adding into a force buffer (N, 3 x N). Gravity and air drag
+// are one pass of particle_loops.hpp; the grid fast path is spring_families.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,7 +9,7 @@
 namespace drapelab {
 
 // Every spring's damped force (spring_force.hpp), +f on v0 and -f on v1.
-void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                       Eigen::Matrix3Xd& force);
+void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                       const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
 
 }  // namespace drapelab

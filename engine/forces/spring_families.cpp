@@ -23,9 +23,12 @@ void mark_if_uniform(SpringFamily& family) {
   bool same_rest = true;
   std::vector<std::int32_t> empty;
   for (std::size_t i = 0; i < n; ++i) {
-    if (is_empty(i)) empty.push_back(static_cast<std::int32_t>(i));
-    else if (family.ks[i] != ks || family.kd[i] != kd) return;
-    else same_rest = same_rest && family.rest[i] == rest;
+    if (is_empty(i))
+      empty.push_back(static_cast<std::int32_t>(i));
+    else if (family.ks[i] != ks || family.kd[i] != kd)
+      return;
+    else
+      same_rest = same_rest && family.rest[i] == rest;
   }
   family.uniform = same_rest;
   family.uniform_stiffness = !same_rest;
@@ -55,12 +58,13 @@ std::unique_ptr<SpringFamilies> SpringFamilies::build(const ClothModel& model, i
       family.ks.assign(static_cast<std::size_t>(n), 0.0);
       family.kd.assign(static_cast<std::size_t>(n), 0.0);
     }
-    // A slot with ks = kd = 0 is empty: a zero-stiffness spring may share it with nothing else either.
+    // A slot with ks = kd = 0 is empty: a zero-stiffness spring may share it with nothing else
+    // either.
     if (family.rest[a] != 0.0 || family.ks[a] != 0.0 || family.kd[a] != 0.0)
       return nullptr;  // two springs start at one particle: not a family
     // The force formula is symmetric in the two ends, up to the sign the gather applies: the first
-    // particle here may be the model's v1, which receives -f from add_spring_forces, and receives here
-    // +f(x_first - x_second), the same vector.
+    // particle here may be the model's v1, which receives -f from add_spring_forces, and receives
+    // here +f(x_first - x_second), the same vector.
     family.rest[a] = s.rest_length[e];
     family.ks[a] = s.ks[e];
     family.kd[a] = s.kd[e];
@@ -74,22 +78,27 @@ std::unique_ptr<SpringFamilies> SpringFamilies::build(const ClothModel& model, i
     families->families_.push_back(std::move(family));
   }
   const std::int64_t slots = n * static_cast<std::int64_t>(families->families_.size());
-  if (2 * static_cast<std::int64_t>(s.size()) < slots) return nullptr;  // sparse: the edge list is as good
+  if (2 * static_cast<std::int64_t>(s.size()) < slots)
+    return nullptr;  // sparse: the edge list is as good
   families->scratch_.resize(n, static_cast<std::int64_t>(families->families_.size()), max_offset);
   return families;
 }
 
-void SpringFamilies::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force) {
+void SpringFamilies::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                Eigen::Matrix3Xd& force) {
   // Matrix3Xd stores x, y, z of each particle together: the packed layout the loops read.
   kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data());
 }
 
-void SpringFamilies::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                                                const Eigen::Matrix3Xd& weight, const Eigen::Matrix3Xd& mass, double air,
+void SpringFamilies::set_body_and_spring_forces(const Eigen::Matrix3Xd& x,
+                                                const Eigen::Matrix3Xd& v,
+                                                const Eigen::Matrix3Xd& weight,
+                                                const Eigen::Matrix3Xd& mass, double air,
                                                 Eigen::Matrix3Xd& force, bool state_split,
                                                 const kernels::ForcesFinalHook* after) {
   const kernels::BodyForceInputs body{weight.data(), mass.data(), air};
-  kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data(), &body, state_split, after);
+  kernels::add_family_forces(x.data(), v.data(), families_, scratch_, force.data(), &body,
+                             state_split, after);
 }
 
 }  // namespace drapelab

@@ -6,8 +6,8 @@
 //
 // Determinism: every spring's force is computed into its family's slot array, then each particle
 // gathers its terms in a fixed family order (+ as a first particle, - as a second). The result is
-// therefore bitwise identical for any number of threads. It equals add_spring_forces (forces.hpp) to
-// rounding: the same terms, summed in a different order.
+// therefore bitwise identical for any number of threads. It equals add_spring_forces (forces.hpp)
+// to rounding: the same terms, summed in a different order.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,14 +31,15 @@ class SpringFamilies {
   void add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
   // force = gravity and air drag (per coordinate: weight m g in N, mass in kg, air in 1/s; as
   // particle_loops.hpp set_body_forces, bit for bit) + every spring's force, in one threaded pass.
-  // `state_split`: split_state has been given every particle of this x and v since they last changed.
-  // `after`: work on each thread's particles once their forces are final, in the same parallel region
-  // (spring_family_loops.hpp ForcesFinalHook).
-  void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& weight,
-                                  const Eigen::Matrix3Xd& mass, double air, Eigen::Matrix3Xd& force,
-                                  bool state_split = false, const kernels::ForcesFinalHook* after = nullptr);
-  // Copies particles [begin, end) of x and v (3 x N, packed) into the loops' unit-stride state, on the
-  // calling thread (spring_family_loops.hpp split_state_range).
+  // `state_split`: split_state has been given every particle of this x and v since they last
+  // changed. `after`: work on each thread's particles once their forces are final, in the same
+  // parallel region (spring_family_loops.hpp ForcesFinalHook).
+  void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                  const Eigen::Matrix3Xd& weight, const Eigen::Matrix3Xd& mass,
+                                  double air, Eigen::Matrix3Xd& force, bool state_split = false,
+                                  const kernels::ForcesFinalHook* after = nullptr);
+  // Copies particles [begin, end) of x and v (3 x N, packed) into the loops' unit-stride state, on
+  // the calling thread (spring_family_loops.hpp split_state_range).
   void split_state(const double* x, const double* v, std::int64_t begin, std::int64_t end) {
     kernels::split_state_range(x, v, scratch_, begin, end);
   }

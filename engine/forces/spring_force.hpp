@@ -20,12 +20,13 @@ inline Eigen::Vector3d damped_spring_force(const Eigen::Vector3d& x1, const Eige
   const double length = d.norm();
   if (length == 0.0) return Eigen::Vector3d::Zero();
   const Eigen::Vector3d direction = d / length;
-  const double elastic = ks * (length - rest_length);   // N
+  const double elastic = ks * (length - rest_length);    // N
   const double viscous = kd * (v1 - v2).dot(direction);  // N
   return -(elastic + viscous) * direction;
 }
 
-// Elastic energy 1/2 ks (|x1 - x2| - l0)^2 (J); its negative gradient w.r.t. x1 is the elastic force.
+// Elastic energy 1/2 ks (|x1 - x2| - l0)^2 (J); its negative gradient w.r.t. x1 is the elastic
+// force.
 inline double spring_energy(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, double ks,
                             double rest_length) {
   const double extension = (x1 - x2).norm() - rest_length;

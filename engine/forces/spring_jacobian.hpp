@@ -18,12 +18,12 @@ struct SpringJacobian {
   Eigen::Matrix3d dforce_dv = Eigen::Matrix3d::Zero();  // d f1 / d v1, N*s/m
 };
 
-// The exact derivative of damped_spring_force, elastic and viscous parts together. The viscous part's
-// position derivative is not symmetric, so the implicit solve leaves it out (see below); this full
-// form is what finite differences check.
+// The exact derivative of damped_spring_force, elastic and viscous parts together. The viscous
+// part's position derivative is not symmetric, so the implicit solve leaves it out (see below);
+// this full form is what finite differences check.
 inline SpringJacobian spring_jacobian_exact(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
-                                            const Eigen::Vector3d& v1, const Eigen::Vector3d& v2, double ks,
-                                            double kd, double rest_length) {
+                                            const Eigen::Vector3d& v1, const Eigen::Vector3d& v2,
+                                            double ks, double kd, double rest_length) {
   SpringJacobian j;
   const Eigen::Vector3d d = x1 - x2;
   const double length = d.norm();
@@ -38,15 +38,16 @@ inline SpringJacobian spring_jacobian_exact(const Eigen::Vector3d& x1, const Eig
   return j;
 }
 
-// What the implicit solve uses: the elastic position derivative and the viscous velocity derivative,
-// both symmetric and negative semidefinite so that M - h D - h^2 K is positive definite and conjugate
-// gradients apply. Two departures from the exact Jacobian, both as in Baraff & Witkin (1998) and
-// Choi & Ko (2002): the across-spring term (1 - l0 / l) is clamped at 0 for a compressed spring (it
-// would be negative, making the matrix indefinite; a compressed spring buckles rather than pushes
-// sideways), and the viscous force's position derivative (proportional to the relative velocity,
-// not symmetric) is left out.
-inline SpringJacobian spring_jacobian_for_solve(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, double ks,
-                                                double kd, double rest_length) {
+// What the implicit solve uses: the elastic position derivative and the viscous velocity
+// derivative, both symmetric and negative semidefinite so that M - h D - h^2 K is positive definite
+// and conjugate gradients apply. Two departures from the exact Jacobian, both as in Baraff & Witkin
+// (1998) and Choi & Ko (2002): the across-spring term (1 - l0 / l) is clamped at 0 for a compressed
+// spring (it would be negative, making the matrix indefinite; a compressed spring buckles rather
+// than pushes sideways), and the viscous force's position derivative (proportional to the relative
+// velocity, not symmetric) is left out.
+inline SpringJacobian spring_jacobian_for_solve(const Eigen::Vector3d& x1,
+                                                const Eigen::Vector3d& x2, double ks, double kd,
+                                                double rest_length) {
   SpringJacobian j;
   const Eigen::Vector3d d = x1 - x2;
   const double length = d.norm();

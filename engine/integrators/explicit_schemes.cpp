@@ -59,7 +59,8 @@ void SpringDamperSolver::verlet_step(double h) {
   evaluate_forces(state_.x, state_.v, state_.time, h);
   acceleration_of_force(acceleration_);
   if (two_level_step_ != h) {
-    previous_x_ = state_.x - h * state_.v + 0.5 * h * h * acceleration_;  // x(-1) from the same Taylor series
+    previous_x_ =
+        state_.x - h * state_.v + 0.5 * h * h * acceleration_;  // x(-1) from the same Taylor series
     two_level_step_ = h;
   }
   stage_x_ = state_.x;  // x(n), kept while x(n+1) is written
@@ -69,10 +70,11 @@ void SpringDamperSolver::verlet_step(double h) {
 }
 
 // Leapfrog in kick-drift-kick form (velocity Verlet): v(n+1/2) = v(n) + h/2 a(n),
-// x(n+1) = x(n) + h v(n+1/2), v(n+1) = v(n+1/2) + h/2 a(n+1). The end-of-step force is evaluated at the
-// predicted velocity v(n) + h a(n) (damping needs a velocity there; the prediction is second-order
-// accurate) and reused as the next step's first kick, so a step costs one force evaluation. With
-// forces that do not depend on velocity this is exactly velocity Verlet, symplectic and time-reversible.
+// x(n+1) = x(n) + h v(n+1/2), v(n+1) = v(n+1/2) + h/2 a(n+1). The end-of-step force is evaluated at
+// the predicted velocity v(n) + h a(n) (damping needs a velocity there; the prediction is
+// second-order accurate) and reused as the next step's first kick, so a step costs one force
+// evaluation. With forces that do not depend on velocity this is exactly velocity Verlet,
+// symplectic and time-reversible.
 void SpringDamperSolver::leapfrog_step(double h) {
   const double t = state_.time;
   if (two_level_step_ != h) {  // first step (or new h): a(n) from the current state

@@ -1,7 +1,7 @@
-// Backward Euler's matrix-free solve for spring families (family_cg_loops.hpp). Every loop runs over
-// fixed blocks of particles (each thread one contiguous run, particle_loops.hpp's for_each_block); a
-// product is two passes, the slot terms B_s (p_a - p_b) of every family and then each particle's
-// gather of its slots, so no two threads ever write one value.
+// Backward Euler's matrix-free solve for spring families (family_cg_loops.hpp). Every loop runs
+// over fixed blocks of particles (each thread one contiguous run, particle_loops.hpp's
+// for_each_block); a product is two passes, the slot terms B_s (p_a - p_b) of every family and then
+// each particle's gather of its slots, so no two threads ever write one value.
 #include "integrators/family_cg_loops.hpp"
 
 #include <algorithm>
@@ -9,24 +9,34 @@
 
 #include "integrators/particle_loops.hpp"
 
-
 namespace drapelab::kernels {
 namespace {
 
-// Particles per block. Fixed, never derived from the thread count, so every sum runs in the same order.
+// Particles per block. Fixed, never derived from the thread count, so every sum runs in the same
+// order.
 constexpr std::int64_t kBlock = 512;
 
 // The CG's vectors (FamilySystem::vector_row): solution, residual, preconditioned residual, search
-// direction and its product with A; the sixth holds the unpacked velocity during the assembly and the
-// right-hand side at the start of the solve.
-enum Vector : int { kSolution = 0, kResidual, kPreconditioned, kDirection, kProduct, kScratch, kCount };
+// direction and its product with A; the sixth holds the unpacked velocity during the assembly and
+// the right-hand side at the start of the solve.
+enum Vector : int {
+  kSolution = 0,
+  kResidual,
+  kPreconditioned,
+  kDirection,
+  kProduct,
+  kScratch,
+  kCount
+};
 
 // Three rows of one vector.
 struct Rows {
   double* c[3];
 };
 
-Rows rows(FamilySystem& s, int which) { return {{s.vector_row(which, 0), s.vector_row(which, 1), s.vector_row(which, 2)}}; }
+Rows rows(FamilySystem& s, int which) {
+  return {{s.vector_row(which, 0), s.vector_row(which, 1), s.vector_row(which, 2)}};
+}
 
 struct BlockRange {
   std::int64_t begin, end;
@@ -42,7 +52,8 @@ bool threaded(const FamilySystem& s) { return s.particles >= kParallelParticles;
 // The per-block partial sums of one pass, added in block order.
 double sum_partials(const FamilySystem& s, int column) {
   double total = 0.0;
-  for (std::int64_t block = 0; block < block_count(s); ++block) total += s.partials[2 * block + column];
+  for (std::int64_t block = 0; block < block_count(s); ++block)
+    total += s.partials[2 * block + column];
   return total;
 }
 
@@ -70,7 +81,8 @@ void slot_terms(FamilySystem& s, const Rows& p, BlockRange range) {
   }
 }
 
-// out(i) = sum over families, in order, of t_f(i) - t_f(i - offset), for the particles of one block.
+// out(i) = sum over families, in order, of t_f(i) - t_f(i - offset), for the particles of one
+// block.
 void gather_terms(FamilySystem& s, BlockRange range, const Rows& out) {
   for (int c = 0; c < 3; ++c) std::fill(out.c[c] + range.begin, out.c[c] + range.end, 0.0);
   for (std::size_t f = 0; f < s.offsets.size(); ++f) {
@@ -110,9 +122,9 @@ double dot(const Rows& a, const Rows& b, BlockRange range) {
 
 // y = A p over every particle; returns p . y (summed per block, then in block order).
 // One parallel region: each thread walks its own run of blocks, computing a block's slot terms and
-// then its particles' products while the terms are in cache. Particle i reads slots i and i - offset;
-// only the first `padding` particles of a run read slots of the previous thread's run, so they wait
-// for the barrier. The dot products then go per block, over values that are final.
+// then its particles' products while the terms are in cache. Particle i reads slots i and i -
+// offset; only the first `padding` particles of a run read slots of the previous thread's run, so
+// they wait for the barrier. The dot products then go per block, over values that are final.
 double product(FamilySystem& s, int p_index, int y_index) {
   const Rows p = rows(s, p_index), y = rows(s, y_index);
   const std::int64_t blocks = block_count(s);
@@ -182,9 +194,9 @@ void FamilySystem::resize(std::int64_t particle_count, const std::vector<SpringF
   partials.assign(2 * static_cast<std::size_t>((particles + kBlock - 1) / kBlock), 0.0);
 }
 
-void assemble_family_system(const double* x, const double* v, const double* mass, const double* free,
-                            const std::vector<SpringFamily>& families, double h, double air, FamilySystem& s,
-                            double* spring_stiffness_velocity) {
+void assemble_family_system(const double* x, const double* v, const double* mass,
+                            const double* free, const std::vector<SpringFamily>& families, double h,
+                            double air, FamilySystem& s, double* spring_stiffness_velocity) {
   std::copy(free, free + s.particles, s.free.begin());
   // Positions and velocities as rows (velocities unmasked: a pinned particle's is zero anyway).
   const Rows position = rows(s, kSolution), velocity = rows(s, kScratch);
@@ -217,7 +229,7 @@ void assemble_family_system(const double* x, const double* v, const double* mass
         const double live = length > 0.0 ? 1.0 : 0.0;
         const double tau = std::max(0.0, 1.0 - rest[i] * inverse);
         const double stiff_along = live * h2 * ks[i] * (1.0 - tau);  // kg
-        const double across = live * h2 * ks[i] * tau;                // kg
+        const double across = live * h2 * ks[i] * tau;               // kg
         ux[i] = dx * inverse;
         uy[i] = dy * inverse;
         uz[i] = dz * inverse;
@@ -257,11 +269,13 @@ void invert_diagonal_blocks(FamilySystem& s) {
     for (std::int64_t i = range.begin; i < range.end; ++i) {
       double m[6];  // xx, yy, zz, xy, xz, yz
       for (int e = 0; e < 6; ++e) m[e] = body[e][i];
-      // Each spring's B on both of its particles: slot i (first particle) and slot i - offset (second).
+      // Each spring's B on both of its particles: slot i (first particle) and slot i - offset
+      // (second).
       for (std::size_t f = 0; f < s.offsets.size(); ++f) {
         const std::int64_t o = s.offsets[f];
         for (const std::int64_t slot : {i, i - o}) {
-          const double ux = s.spring_row(f, 0)[slot], uy = s.spring_row(f, 1)[slot], uz = s.spring_row(f, 2)[slot];
+          const double ux = s.spring_row(f, 0)[slot], uy = s.spring_row(f, 1)[slot],
+                       uz = s.spring_row(f, 2)[slot];
           const double a = s.spring_row(f, 3)[slot], b = s.spring_row(f, 4)[slot];
           m[0] += a * ux * ux + b;
           m[1] += a * uy * uy + b;
@@ -272,8 +286,10 @@ void invert_diagonal_blocks(FamilySystem& s) {
         }
       }
       // The inverse of a symmetric 3x3 block by its cofactors.
-      const double c_xx = m[1] * m[2] - m[5] * m[5], c_xy = m[4] * m[5] - m[3] * m[2], c_xz = m[3] * m[5] - m[4] * m[1];
-      const double c_yy = m[0] * m[2] - m[4] * m[4], c_yz = m[3] * m[4] - m[0] * m[5], c_zz = m[0] * m[1] - m[3] * m[3];
+      const double c_xx = m[1] * m[2] - m[5] * m[5], c_xy = m[4] * m[5] - m[3] * m[2],
+                   c_xz = m[3] * m[5] - m[4] * m[1];
+      const double c_yy = m[0] * m[2] - m[4] * m[4], c_yz = m[3] * m[4] - m[0] * m[5],
+                   c_zz = m[0] * m[1] - m[3] * m[3];
       const double determinant = m[0] * c_xx + m[3] * c_xy + m[4] * c_xz;
       const double scale = s.free[i] / determinant;  // 0 for a pinned particle
       inverse[0][i] = scale * c_xx;
@@ -291,13 +307,16 @@ void apply_family_system(FamilySystem& s, const double* p, double* y) {
   for_each_block(block_count(s), threaded(s),
                  [&](std::int64_t block) { unpack(s, p, direction, block_range(s, block)); });
   product(s, kDirection, kProduct);
-  for_each_block(block_count(s), threaded(s), [&](std::int64_t block) { pack(result, y, block_range(s, block)); });
+  for_each_block(block_count(s), threaded(s),
+                 [&](std::int64_t block) { pack(result, y, block_range(s, block)); });
 }
 
 FamilySolveResult solve_family_system(FamilySystem& s, const double* b, double* x, double tolerance,
                                       int max_iterations) {
-  const Rows solution = rows(s, kSolution), residual = rows(s, kResidual), preconditioned = rows(s, kPreconditioned);
-  const Rows direction = rows(s, kDirection), product_rows = rows(s, kProduct), rhs = rows(s, kScratch);
+  const Rows solution = rows(s, kSolution), residual = rows(s, kResidual),
+             preconditioned = rows(s, kPreconditioned);
+  const Rows direction = rows(s, kDirection), product_rows = rows(s, kProduct),
+             rhs = rows(s, kScratch);
   const std::int64_t blocks = block_count(s);
   const bool parallel = threaded(s);
   FamilySolveResult result;
@@ -320,7 +339,8 @@ FamilySolveResult solve_family_system(FamilySystem& s, const double* b, double* 
   for_each_block(blocks, parallel, [&](std::int64_t block) {
     const BlockRange range = block_range(s, block);
     for (int c = 0; c < 3; ++c)
-      for (std::int64_t i = range.begin; i < range.end; ++i) residual.c[c][i] = rhs.c[c][i] - product_rows.c[c][i];
+      for (std::int64_t i = range.begin; i < range.end; ++i)
+        residual.c[c][i] = rhs.c[c][i] - product_rows.c[c][i];
     s.partials[2 * block] = precondition(s, residual, direction, range);
     s.partials[2 * block + 1] = squared_norm(residual, range);
   });
@@ -363,7 +383,8 @@ FamilySolveResult solve_family_system(FamilySystem& s, const double* b, double* 
       ++iteration;
     }
   }
-  for_each_block(blocks, parallel, [&](std::int64_t block) { pack(solution, x, block_range(s, block)); });
+  for_each_block(blocks, parallel,
+                 [&](std::int64_t block) { pack(solution, x, block_range(s, block)); });
   result.iterations = iteration;
   result.relative_residual = std::sqrt(residual_norm2 / rhs_norm2);
   result.converged = residual_norm2 < threshold;

@@ -16,14 +16,15 @@ FamilyImplicitSystem::FamilyImplicitSystem(const ClothModel& model, const Spring
   solution_ = Eigen::Matrix3Xd::Zero(3, n);
 }
 
-void FamilyImplicitSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                                 const Eigen::Matrix3Xd& force, double h, double air_damping,
-                                 const ContactParameters& contact, const std::vector<ActiveContact>& contacts,
-                                 Eigen::Matrix3Xd& dv) {
-  kernels::assemble_family_system(x.data(), v.data(), model.mass.data(), free_.data(), families_.families(), h,
-                                  air_damping, system_, spring_kv_.data());
+void FamilyImplicitSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                                 const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& force, double h,
+                                 double air_damping, const ContactParameters& contact,
+                                 const std::vector<ActiveContact>& contacts, Eigen::Matrix3Xd& dv) {
+  kernels::assemble_family_system(x.data(), v.data(), model.mass.data(), free_.data(),
+                                  families_.families(), h, air_damping, system_, spring_kv_.data());
   // rhs = h f0 + h^2 K v0: the springs' share came from the assembly, each pushing contact adds
-  // -h^2 k n (n . v0), as its spring k and damper c along n add (h c + h^2 k) n n^T to the diagonal.
+  // -h^2 k n (n . v0), as its spring k and damper c along n add (h c + h^2 k) n n^T to the
+  // diagonal.
   rhs_.noalias() = h * force - spring_kv_;
   const double contact_block = h * contact.damping + h * h * contact.stiffness;  // kg
   for (const ActiveContact& touch : contacts) {

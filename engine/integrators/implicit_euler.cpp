@@ -18,7 +18,8 @@ void add_block_triplets(std::vector<Eigen::Triplet<double>>& triplets, int row, 
 
 }  // namespace
 
-void record_solve(ImplicitSolveStats& stats, int iterations, double relative_residual, bool converged) {
+void record_solve(ImplicitSolveStats& stats, int iterations, double relative_residual,
+                  bool converged) {
   ++stats.solves;
   stats.iterations_total += iterations;
   stats.iterations_max = std::max(stats.iterations_max, iterations);
@@ -48,7 +49,8 @@ ImplicitEulerSystem::ImplicitEulerSystem(const ClothModel& model, ImplicitSolveS
   auto block_slots = [&](int row, int col) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
-        slots_.push_back(static_cast<std::int32_t>(&matrix_.coeffRef(3 * row + r, 3 * col + c) - values));
+        slots_.push_back(
+            static_cast<std::int32_t>(&matrix_.coeffRef(3 * row + r, 3 * col + c) - values));
   };
   slots_.reserve(static_cast<std::size_t>(n) * kSlotsPerBlock + s.size() * kSlotsPerSpring);
   for (int i = 0; i < n; ++i) block_slots(i, i);
@@ -73,10 +75,10 @@ void ImplicitEulerSystem::add_block(std::size_t first, const Eigen::Matrix3d& bl
     for (int c = 0; c < 3; ++c) values[slots_[first + 3 * r + c]] += block(r, c);
 }
 
-void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                                const Eigen::Matrix3Xd& force, double h, double air_damping,
-                                const ContactParameters& contact, const std::vector<ActiveContact>& contacts,
-                                Eigen::Matrix3Xd& dv) {
+void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                                const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& force, double h,
+                                double air_damping, const ContactParameters& contact,
+                                const std::vector<ActiveContact>& contacts, Eigen::Matrix3Xd& dv) {
   const int n = model.particle_count();
   std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
   stiffness_times_velocity_.setZero();
@@ -91,7 +93,8 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
   const std::size_t spring_base = static_cast<std::size_t>(kSlotsPerBlock) * n;
   for (std::size_t e = 0; e < s.size(); ++e) {
     const int a = s.v0[e], b = s.v1[e];
-    const SpringJacobian j = spring_jacobian_for_solve(x.col(a), x.col(b), s.ks[e], s.kd[e], s.rest_length[e]);
+    const SpringJacobian j =
+        spring_jacobian_for_solve(x.col(a), x.col(b), s.ks[e], s.kd[e], s.rest_length[e]);
     const Eigen::Matrix3d block = -(h * j.dforce_dv + h * h * j.dforce_dx);
     const std::size_t first = spring_base + kSlotsPerSpring * e;
     if (free_[a]) add_block(first, block);
@@ -109,18 +112,21 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
     const Eigen::Matrix3d along = touch.normal * touch.normal.transpose();
     add_block(static_cast<std::size_t>(kSlotsPerBlock) * touch.particle,
               (h * contact.damping + h * h * contact.stiffness) * along);
-    stiffness_times_velocity_.col(touch.particle) -= contact.stiffness * along * v.col(touch.particle);
+    stiffness_times_velocity_.col(touch.particle) -=
+        contact.stiffness * along * v.col(touch.particle);
   }
 
   for (int i = 0; i < n; ++i)
     rhs_.segment<3>(3 * i) =
-        free_[i] ? Eigen::Vector3d(h * (force.col(i) + h * stiffness_times_velocity_.col(i))) : Eigen::Vector3d::Zero();
+        free_[i] ? Eigen::Vector3d(h * (force.col(i) + h * stiffness_times_velocity_.col(i)))
+                 : Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i)
     if (!free_[i]) solution_.segment<3>(3 * i).setZero();
 
   cg_.compute(matrix_);
   solution_ = cg_.solveWithGuess(rhs_, solution_);
-  record_solve(stats_, static_cast<int>(cg_.iterations()), cg_.error(), cg_.info() == Eigen::Success);
+  record_solve(stats_, static_cast<int>(cg_.iterations()), cg_.error(),
+               cg_.info() == Eigen::Success);
   dv = Eigen::Map<const Eigen::Matrix3Xd>(solution_.data(), 3, n);
 }
 

@@ -8,19 +8,28 @@
 namespace drapelab {
 
 std::vector<Integrator> all_integrators() {
-  return {Integrator::explicit_euler, Integrator::symplectic_euler, Integrator::midpoint, Integrator::rk4,
-          Integrator::verlet,         Integrator::leapfrog,         Integrator::implicit_euler};
+  return {Integrator::explicit_euler, Integrator::symplectic_euler,
+          Integrator::midpoint,       Integrator::rk4,
+          Integrator::verlet,         Integrator::leapfrog,
+          Integrator::implicit_euler};
 }
 
 const char* integrator_name(Integrator integrator) {
   switch (integrator) {
-    case Integrator::explicit_euler: return "explicit_euler";
-    case Integrator::symplectic_euler: return "symplectic_euler";
-    case Integrator::midpoint: return "midpoint";
-    case Integrator::rk4: return "rk4";
-    case Integrator::verlet: return "verlet";
-    case Integrator::leapfrog: return "leapfrog";
-    case Integrator::implicit_euler: return "implicit_euler";
+    case Integrator::explicit_euler:
+      return "explicit_euler";
+    case Integrator::symplectic_euler:
+      return "symplectic_euler";
+    case Integrator::midpoint:
+      return "midpoint";
+    case Integrator::rk4:
+      return "rk4";
+    case Integrator::verlet:
+      return "verlet";
+    case Integrator::leapfrog:
+      return "leapfrog";
+    case Integrator::implicit_euler:
+      return "implicit_euler";
   }
   return "unknown";
 }
@@ -39,9 +48,12 @@ std::optional<Integrator> parse_integrator(std::string_view name) {
 
 int force_evaluations_per_step(Integrator integrator) {
   switch (integrator) {
-    case Integrator::midpoint: return 2;
-    case Integrator::rk4: return 4;
-    default: return 1;  // leapfrog reuses the end-of-step force as the next step's first kick
+    case Integrator::midpoint:
+      return 2;
+    case Integrator::rk4:
+      return 4;
+    default:
+      return 1;  // leapfrog reuses the end-of-step force as the next step's first kick
   }
 }
 
@@ -49,9 +61,12 @@ int order_of_accuracy(Integrator integrator) {
   switch (integrator) {
     case Integrator::midpoint:
     case Integrator::verlet:
-    case Integrator::leapfrog: return 2;
-    case Integrator::rk4: return 4;
-    default: return 1;
+    case Integrator::leapfrog:
+      return 2;
+    case Integrator::rk4:
+      return 4;
+    default:
+      return 1;
   }
 }
 
@@ -59,10 +74,14 @@ double undamped_stability_limit(Integrator integrator) {
   switch (integrator) {
     case Integrator::symplectic_euler:
     case Integrator::verlet:
-    case Integrator::leapfrog: return 2.0;
-    case Integrator::rk4: return 2.0 * std::sqrt(2.0);
-    case Integrator::implicit_euler: return std::numeric_limits<double>::infinity();
-    default: return 0.0;
+    case Integrator::leapfrog:
+      return 2.0;
+    case Integrator::rk4:
+      return 2.0 * std::sqrt(2.0);
+    case Integrator::implicit_euler:
+      return std::numeric_limits<double>::infinity();
+    default:
+      return 0.0;
   }
 }
 

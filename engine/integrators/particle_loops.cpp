@@ -15,40 +15,43 @@
 
 namespace drapelab::kernels {
 
-void set_body_forces(std::int64_t n, const double* weight, const double* mass, double air, const double* v,
-                     double* f) {
-#pragma omp parallel for simd schedule(simd:static) if (n >= kParallelParticles)
+void set_body_forces(std::int64_t n, const double* weight, const double* mass, double air,
+                     const double* v, double* f) {
+#pragma omp parallel for simd schedule(simd : static) if (n >= kParallelParticles)
   for (std::int64_t k = 0; k < 3 * n; ++k) f[k] = weight[k] - air * (v[k] * mass[k]);
 }
 
-void set_body_forces_range(std::int64_t begin, std::int64_t end, const double* weight, const double* mass,
-                           double air, const double* v, double* f) {
+void set_body_forces_range(std::int64_t begin, std::int64_t end, const double* weight,
+                           const double* mass, double air, const double* v, double* f) {
 #pragma omp simd
   for (std::int64_t k = 3 * begin; k < 3 * end; ++k) f[k] = weight[k] - air * (v[k] * mass[k]);
 }
 
 namespace {
 
-// Particles per block of the update passes: a block is updated and tested branch-free on unit-stride
-// arrays (so both vectorise), and searched particle by particle only when the test fails.
+// Particles per block of the update passes: a block is updated and tested branch-free on
+// unit-stride arrays (so both vectorise), and searched particle by particle only when the test
+// fails.
 constexpr std::int64_t kBlock = 256;
 
 // Finite position and velocity, speed squared within the limit (m, m/s, m^2/s^2).
 inline bool healthy(const double* x, const double* v, double max_speed_squared) {
   return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]) && std::isfinite(v[0]) &&
-         std::isfinite(v[1]) && std::isfinite(v[2]) && v[0] * v[0] + v[1] * v[1] + v[2] * v[2] <= max_speed_squared;
+         std::isfinite(v[1]) && std::isfinite(v[2]) &&
+         v[0] * v[0] + v[1] * v[1] + v[2] * v[2] <= max_speed_squared;
 }
 
 constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
 
-// The first unhealthy particle of [begin, end), or kNone, after a quick test of every coordinate: each
-// |x| finite and each |v| within max_speed / sqrt(3) puts every speed within max_speed (a cube inside
-// the ball), so a healthy block costs one vectorised pass over memory that is already in cache.
-std::int64_t first_unhealthy_in(std::int64_t begin, std::int64_t end, const double* x, const double* v,
-                                double max_speed_squared) {
+// The first unhealthy particle of [begin, end), or kNone, after a quick test of every coordinate:
+// each |x| finite and each |v| within max_speed / sqrt(3) puts every speed within max_speed (a cube
+// inside the ball), so a healthy block costs one vectorised pass over memory that is already in
+// cache.
+std::int64_t first_unhealthy_in(std::int64_t begin, std::int64_t end, const double* x,
+                                const double* v, double max_speed_squared) {
   const double big = std::numeric_limits<double>::max();
-  // Margin for rounding; never above the largest double, so an infinite velocity fails even when the
-  // limit is so large that its square overflows.
+  // Margin for rounding; never above the largest double, so an infinite velocity fails even when
+  // the limit is so large that its square overflows.
   const double component_limit = std::min(big, std::sqrt(max_speed_squared / 3.0) * (1.0 - 1e-12));
   int outside = 0;
 #pragma omp simd reduction(| : outside)
@@ -64,8 +67,8 @@ std::int64_t first_unhealthy_in(std::int64_t begin, std::int64_t end, const doub
 // coordinate), then the health test. Every particle is updated; returns the first unhealthy one
 // (blocks in increasing order) or kNone.
 template <typename Update>
-std::int64_t update_and_scan_range(std::int64_t begin, std::int64_t end, const double* x, const double* v,
-                                   double max_speed_squared, Update update) {
+std::int64_t update_and_scan_range(std::int64_t begin, std::int64_t end, const double* x,
+                                   const double* v, double max_speed_squared, Update update) {
   std::int64_t first = kNone;
   for (std::int64_t block = begin; block < end; block += kBlock) {
     const std::int64_t block_end = std::min(end, block + kBlock);
@@ -78,14 +81,15 @@ std::int64_t update_and_scan_range(std::int64_t begin, std::int64_t end, const d
 // The same over the whole cloth, its blocks shared among the threads. Returns the first unhealthy
 // particle (the minimum over blocks: the same for any thread count), or -1.
 template <typename Update>
-std::int64_t update_and_scan(std::int64_t n, const double* x, const double* v, double max_speed_squared,
-                             Update update) {
+std::int64_t update_and_scan(std::int64_t n, const double* x, const double* v,
+                             double max_speed_squared, Update update) {
   const std::int64_t blocks = (n + kBlock - 1) / kBlock;
   std::int64_t first = kNone;
 #pragma omp parallel for schedule(static) reduction(min : first) if (n >= kParallelParticles)
   for (std::int64_t block = 0; block < blocks; ++block) {
     const std::int64_t begin = block * kBlock;
-    first = std::min(first, update_and_scan_range(begin, std::min(n, begin + kBlock), x, v, max_speed_squared, update));
+    first = std::min(first, update_and_scan_range(begin, std::min(n, begin + kBlock), x, v,
+                                                  max_speed_squared, update));
   }
   return first == kNone ? -1 : first;
 }
@@ -101,8 +105,8 @@ namespace {
 
 // The two Euler updates of coordinates [begin, end), each the one expression every pass and range
 // below uses, so a fused update gives the bits of the whole-cloth pass.
-void symplectic_euler_update(std::int64_t begin, std::int64_t end, const double* inverse_mass, const double* f,
-                             double h, double* x, double* v) {
+void symplectic_euler_update(std::int64_t begin, std::int64_t end, const double* inverse_mass,
+                             const double* f, double h, double* x, double* v) {
 #pragma omp simd
   for (std::int64_t k = begin; k < end; ++k) {
     const double vk = v[k] + h * (f[k] * inverse_mass[k]);  // v(n+1) = v(n) + a(n) h
@@ -111,8 +115,8 @@ void symplectic_euler_update(std::int64_t begin, std::int64_t end, const double*
   }
 }
 
-void explicit_euler_update(std::int64_t begin, std::int64_t end, const double* inverse_mass, const double* f,
-                           double h, double* x, double* v) {
+void explicit_euler_update(std::int64_t begin, std::int64_t end, const double* inverse_mass,
+                           const double* f, double h, double* x, double* v) {
 #pragma omp simd
   for (std::int64_t k = begin; k < end; ++k) {
     const double vk = v[k];
@@ -123,15 +127,15 @@ void explicit_euler_update(std::int64_t begin, std::int64_t end, const double* i
 
 }  // namespace
 
-std::int64_t symplectic_euler_pass(std::int64_t n, const double* inverse_mass, const double* f, double h,
-                                   double* x, double* v, double max_speed_squared) {
+std::int64_t symplectic_euler_pass(std::int64_t n, const double* inverse_mass, const double* f,
+                                   double h, double* x, double* v, double max_speed_squared) {
   return update_and_scan(n, x, v, max_speed_squared, [=](std::int64_t begin, std::int64_t end) {
     symplectic_euler_update(begin, end, inverse_mass, f, h, x, v);
   });
 }
 
-std::int64_t explicit_euler_pass(std::int64_t n, const double* inverse_mass, const double* f, double h,
-                                 double* x, double* v, double max_speed_squared) {
+std::int64_t explicit_euler_pass(std::int64_t n, const double* inverse_mass, const double* f,
+                                 double h, double* x, double* v, double max_speed_squared) {
   return update_and_scan(n, x, v, max_speed_squared, [=](std::int64_t begin, std::int64_t end) {
     explicit_euler_update(begin, end, inverse_mass, f, h, x, v);
   });
@@ -139,7 +143,8 @@ std::int64_t explicit_euler_pass(std::int64_t n, const double* inverse_mass, con
 
 namespace {
 
-// Particles per chunk of the broad phase: the chunk's test results stay in L1 between its two passes.
+// Particles per chunk of the broad phase: the chunk's test results stay in L1 between its two
+// passes.
 constexpr int kNearChunk = 256;
 
 // hit[i - begin] = 1 when particle i of [begin, end) passes the collider's broad-phase test, else
@@ -152,7 +157,8 @@ int near_test(const NearCollider& collider, const double* __restrict x, int begi
     const double offset = collider.offset, radius = collider.radius;
 #pragma omp simd reduction(+ : passed)
     for (int i = begin; i < end; ++i) {
-      hit[i - begin] = (nx * x[3 * i] + ny * x[3 * i + 1] + nz * x[3 * i + 2] - offset < radius) ? 1 : 0;
+      hit[i - begin] =
+          (nx * x[3 * i] + ny * x[3 * i + 1] + nz * x[3 * i + 2] - offset < radius) ? 1 : 0;
       passed += hit[i - begin];
     }
     return passed;
@@ -165,8 +171,8 @@ int near_test(const NearCollider& collider, const double* __restrict x, int begi
   for (int i = begin; i < end; ++i) {
     const double px = x[3 * i], py = x[3 * i + 1], pz = x[3 * i + 2];
     const double dx = px - cx, dy = py - cy, dz = pz - cz;
-    const bool inside = (px >= lx) & (px <= hx) & (py >= ly) & (py <= hy) & (pz >= lz) & (pz <= hz) &
-                        (dx * dx + dy * dy + dz * dz < reach_squared);
+    const bool inside = (px >= lx) & (px <= hx) & (py >= ly) & (py <= hy) & (pz >= lz) &
+                        (pz <= hz) & (dx * dx + dy * dy + dz * dz < reach_squared);
     hit[i - begin] = inside ? 1 : 0;
     passed += hit[i - begin];
   }
@@ -184,7 +190,7 @@ int near_particles(const NearCollider& collider, const double* x, int begin, int
   for (int chunk = begin; chunk < end; chunk += kNearChunk) {
     const int chunk_end = std::min(end, chunk + kNearChunk);
     const int passed = near_test(collider, x, chunk, chunk_end, hit);
-    if (passed == 0) continue;  // a chunk far from the collider: nothing to list
+    if (passed == 0) continue;          // a chunk far from the collider: nothing to list
     if (passed == chunk_end - chunk) {  // a chunk wholly near it: every index
       for (int i = chunk; i < chunk_end; ++i) near[count++] = i;
       continue;
@@ -197,7 +203,8 @@ int near_particles(const NearCollider& collider, const double* x, int begin, int
   return count;
 }
 
-ThreadRun thread_run(std::int64_t blocks, std::int64_t block_size, std::int64_t n, std::int64_t max_offset) {
+ThreadRun thread_run(std::int64_t blocks, std::int64_t block_size, std::int64_t n,
+                     std::int64_t max_offset) {
   int thread = 0, threads = 1;
 #ifdef _OPENMP
   thread = omp_get_thread_num();
@@ -212,8 +219,8 @@ ThreadRun thread_run(std::int64_t blocks, std::int64_t block_size, std::int64_t 
   return run;
 }
 
-void for_each_block(std::int64_t blocks, bool parallel, void (*body)(const void* context, std::int64_t block),
-                    const void* context) {
+void for_each_block(std::int64_t blocks, bool parallel,
+                    void (*body)(const void* context, std::int64_t block), const void* context) {
   // thread_run's split, so every block-parallel pass gives a block to the same core.
 #pragma omp parallel if (parallel)
   {
@@ -222,13 +229,13 @@ void for_each_block(std::int64_t blocks, bool parallel, void (*body)(const void*
   }
 }
 
-std::int64_t euler_range(bool symplectic, std::int64_t begin, std::int64_t end, const double* inverse_mass,
-                         const double* f, double h, double* x, double* v, double max_speed_squared) {
+std::int64_t euler_range(bool symplectic, std::int64_t begin, std::int64_t end,
+                         const double* inverse_mass, const double* f, double h, double* x,
+                         double* v, double max_speed_squared) {
   const auto update = symplectic ? symplectic_euler_update : explicit_euler_update;
-  const std::int64_t first = update_and_scan_range(begin, end, x, v, max_speed_squared,
-                                                   [=](std::int64_t b, std::int64_t e) {
-                                                     update(b, e, inverse_mass, f, h, x, v);
-                                                   });
+  const std::int64_t first = update_and_scan_range(
+      begin, end, x, v, max_speed_squared,
+      [=](std::int64_t b, std::int64_t e) { update(b, e, inverse_mass, f, h, x, v); });
   return first == kNone ? -1 : first;
 }
 

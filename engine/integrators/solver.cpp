@@ -5,9 +5,12 @@ namespace drapelab {
 
 const char* solver_type_name(SolverType type) {
   switch (type) {
-    case SolverType::spring_damper: return "spring_damper";
-    case SolverType::bullet_softbody: return "bullet_softbody";
-    case SolverType::bullet_deformable: return "bullet_deformable";
+    case SolverType::spring_damper:
+      return "spring_damper";
+    case SolverType::bullet_softbody:
+      return "bullet_softbody";
+    case SolverType::bullet_deformable:
+      return "bullet_deformable";
   }
   return "unknown";
 }
@@ -20,9 +23,12 @@ std::optional<SolverType> parse_solver_type(std::string_view name) {
 
 const char* solver_status_name(SolverStatus status) {
   switch (status) {
-    case SolverStatus::ok: return "ok";
-    case SolverStatus::unstable: return "unstable";
-    case SolverStatus::error: return "error";
+    case SolverStatus::ok:
+      return "ok";
+    case SolverStatus::unstable:
+      return "unstable";
+    case SolverStatus::error:
+      return "error";
   }
   return "unknown";
 }

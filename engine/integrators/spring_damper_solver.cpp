@@ -9,12 +9,12 @@
 #include <stdexcept>
 
 #include "contact/contact_pass.hpp"
+#include "drapelab/stability.hpp"
 #include "forces/forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/family_implicit.hpp"
-#include "integrators/shape_bound.hpp"
 #include "integrators/particle_loops.hpp"
-#include "drapelab/stability.hpp"
+#include "integrators/shape_bound.hpp"
 
 namespace drapelab {
 namespace {
@@ -24,7 +24,8 @@ using Clock = std::chrono::steady_clock;
 // Adds the wall time of one phase into the step statistics when it goes out of scope.
 class PhaseTimer {
  public:
-  PhaseTimer(StepStats& stats, StepPhase phase) : stats_(stats), phase_(phase), start_(Clock::now()) {}
+  PhaseTimer(StepStats& stats, StepPhase phase)
+      : stats_(stats), phase_(phase), start_(Clock::now()) {}
   ~PhaseTimer() {
     stats_.seconds[static_cast<int>(phase_)] +=
         std::chrono::duration<double>(Clock::now() - start_).count();
@@ -42,13 +43,20 @@ class PhaseTimer {
 
 const char* step_phase_name(StepPhase phase) {
   switch (phase) {
-    case StepPhase::body_forces: return "body_forces";
-    case StepPhase::springs: return "springs";
-    case StepPhase::contacts: return "contacts";
-    case StepPhase::integrate: return "integrate";
-    case StepPhase::health_check: return "health_check";
-    case StepPhase::step_bound: return "step_bound";
-    case StepPhase::count: break;
+    case StepPhase::body_forces:
+      return "body_forces";
+    case StepPhase::springs:
+      return "springs";
+    case StepPhase::contacts:
+      return "contacts";
+    case StepPhase::integrate:
+      return "integrate";
+    case StepPhase::health_check:
+      return "health_check";
+    case StepPhase::step_bound:
+      return "step_bound";
+    case StepPhase::count:
+      break;
   }
   return "unknown";
 }
@@ -70,7 +78,8 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   if (settings_.fast_springs) spring_families_ = SpringFamilies::build(*model_);
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
-    case Integrator::symplectic_euler: break;
+    case Integrator::symplectic_euler:
+      break;
     case Integrator::rk4:
       sum_x_.resize(3, n);
       sum_v_.resize(3, n);
@@ -89,7 +98,8 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       break;
     case Integrator::implicit_euler:
       if (spring_families_)
-        family_implicit_ = std::make_unique<FamilyImplicitSystem>(*model_, *spring_families_, settings_.implicit);
+        family_implicit_ =
+            std::make_unique<FamilyImplicitSystem>(*model_, *spring_families_, settings_.implicit);
       else
         implicit_ = std::make_unique<ImplicitEulerSystem>(*model_, settings_.implicit);
       stage_v_.resize(3, n);  // dv
@@ -108,19 +118,22 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
 }
 
 const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3Xd& x,
-                                                            const Eigen::Matrix3Xd& v, double t, double h) {
+                                                            const Eigen::Matrix3Xd& v, double t,
+                                                            double h) {
   set_body_and_spring_forces(x, v);
   if (settings_.contacts) add_contact_forces(x, v, t, h, nullptr);
   return force_;
 }
 
-void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v) {
+void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x,
+                                                    const Eigen::Matrix3Xd& v) {
   if (spring_families_) {
     // Gravity and air drag inside the spring kernel (the same bits as the pass below). The kernel's
     // split of the state is skipped when the last Euler update left it split already.
     PhaseTimer timer(stats_, StepPhase::springs);
     const bool solver_state = &x == &state_.x && &v == &state_.v;
-    spring_families_->set_body_and_spring_forces(x, v, weight_, coordinate_mass_, settings_.air_damping, force_,
+    spring_families_->set_body_and_spring_forces(x, v, weight_, coordinate_mass_,
+                                                 settings_.air_damping, force_,
                                                  solver_state && split_state_is_current_);
     split_state_is_current_ = solver_state;
     return;
@@ -135,12 +148,13 @@ void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x, c
   add_spring_forces(*model_, x, v, force_);
 }
 
-std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
-                                                    double h, const ContactBlockFollowUp* follow_up) {
+std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x,
+                                                    const Eigen::Matrix3Xd& v, double t, double h,
+                                                    const ContactBlockFollowUp* follow_up) {
   PhaseTimer timer(stats_, StepPhase::contacts);
-  return settings_.contacts->add_contact_forces(*model_, t, h, x, v, force_, contact_totals_,
-                                                implicit_stats() ? &active_contacts_ : nullptr, contact_workspace_.get(),
-                                                contact_normal_scheme(), follow_up);
+  return settings_.contacts->add_contact_forces(
+      *model_, t, h, x, v, force_, contact_totals_, implicit_stats() ? &active_contacts_ : nullptr,
+      contact_workspace_.get(), contact_normal_scheme(), follow_up);
 }
 
 ContactNormalScheme SpringDamperSolver::contact_normal_scheme() const {
@@ -150,7 +164,8 @@ ContactNormalScheme SpringDamperSolver::contact_normal_scheme() const {
 
 std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
   std::vector<ColliderForce> forces;
-  for (const auto& total : contact_totals_) forces.push_back({total.normal_force, total.friction_force});
+  for (const auto& total : contact_totals_)
+    forces.push_back({total.normal_force, total.friction_force});
   return forces;
 }
 
@@ -174,14 +189,17 @@ const ImplicitSolveStats* SpringDamperSolver::implicit_stats() const {
 std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const {
   if (settings_.adaptive_substeps)
     return {{"substeps", static_cast<double>(stats_.steps)},
-            {"substeps_per_step_mean", stats_.outer_steps > 0 ? static_cast<double>(stats_.steps) /
-                                                                    static_cast<double>(stats_.outer_steps)
-                                                              : 0.0},
+            {"substeps_per_step_mean",
+             stats_.outer_steps > 0
+                 ? static_cast<double>(stats_.steps) / static_cast<double>(stats_.outer_steps)
+                 : 0.0},
             {"substeps_per_step_min", static_cast<double>(stats_.substeps_min)},
             {"substeps_per_step_max", static_cast<double>(stats_.substeps_max)}};
   if (!implicit_stats()) return {};
   const ImplicitSolveStats& cg = *implicit_stats();
-  const double mean = cg.solves > 0 ? static_cast<double>(cg.iterations_total) / static_cast<double>(cg.solves) : 0.0;
+  const double mean =
+      cg.solves > 0 ? static_cast<double>(cg.iterations_total) / static_cast<double>(cg.solves)
+                    : 0.0;
   return {{"cg_solves", static_cast<double>(cg.solves)},
           {"cg_iterations_total", static_cast<double>(cg.iterations_total)},
           {"cg_iterations_mean", mean},
@@ -214,8 +232,10 @@ void SpringDamperSolver::step(double h) {
   const int substeps = substeps_for(h);
   const double substep = h / substeps;
   for (int k = 0; k < substeps && status_ == SolverStatus::ok; ++k) single_step(substep);
-  if (status_ == SolverStatus::ok) state_.time = start_time + h;  // the caller's clock, without the substeps' rounding
-  stats_.substeps_min = stats_.outer_steps == 0 ? substeps : std::min(stats_.substeps_min, substeps);
+  if (status_ == SolverStatus::ok)
+    state_.time = start_time + h;  // the caller's clock, without the substeps' rounding
+  stats_.substeps_min =
+      stats_.outer_steps == 0 ? substeps : std::min(stats_.substeps_min, substeps);
   stats_.substeps_max = std::max(stats_.substeps_max, substeps);
   ++stats_.outer_steps;
 }
@@ -223,8 +243,9 @@ void SpringDamperSolver::step(double h) {
 int SpringDamperSolver::substeps_for(double h) {
   PhaseTimer timer(stats_, StepPhase::step_bound);
   const double target =
-      settings_.substep_safety * shape_stable_step(*model_, state_.x, settings_.air_damping, *shape_bound_,
-                                                   spring_families_ ? &spring_families_->families() : nullptr);  // s
+      settings_.substep_safety *
+      shape_stable_step(*model_, state_.x, settings_.air_damping, *shape_bound_,
+                        spring_families_ ? &spring_families_->families() : nullptr);  // s
   // At most 10^7 substeps, as the scene format allows per frame (a NaN shape gives one: the health
   // check then stops the run).
   const double count = std::ceil(h / target);
@@ -238,18 +259,32 @@ void SpringDamperSolver::single_step(double h) {
   std::optional<std::int64_t> scanned;  // the Euler passes scan the new state as they write it
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
-    case Integrator::symplectic_euler: scanned = euler_step(h); break;
-    case Integrator::midpoint: midpoint_step(h); break;
-    case Integrator::rk4: rk4_step(h); break;
-    case Integrator::verlet: verlet_step(h); break;
-    case Integrator::leapfrog: leapfrog_step(h); break;
-    case Integrator::implicit_euler: implicit_euler_step(h); break;
+    case Integrator::symplectic_euler:
+      scanned = euler_step(h);
+      break;
+    case Integrator::midpoint:
+      midpoint_step(h);
+      break;
+    case Integrator::rk4:
+      rk4_step(h);
+      break;
+    case Integrator::verlet:
+      verlet_step(h);
+      break;
+    case Integrator::leapfrog:
+      leapfrog_step(h);
+      break;
+    case Integrator::implicit_euler:
+      implicit_euler_step(h);
+      break;
   }
-  // Only the Euler pair with colliders keeps the spring kernel's split state in step with the update.
+  // Only the Euler pair with colliders keeps the spring kernel's split state in step with the
+  // update.
   if (!scanned || !settings_.contacts) split_state_is_current_ = false;
   // Whatever the step spent outside the force phases is the integrator's own work.
   const double step_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  stats_.seconds[static_cast<int>(StepPhase::integrate)] += step_seconds - (force_phase_seconds() - force_seconds_before);
+  stats_.seconds[static_cast<int>(StepPhase::integrate)] +=
+      step_seconds - (force_phase_seconds() - force_seconds_before);
   state_.time += h;
   ++state_.step_count;
   ++stats_.steps;
@@ -263,15 +298,15 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
   if (!settings_.contacts) {
     evaluate_forces(state_.x, state_.v, state_.time, h);
     const auto pass = symplectic ? kernels::symplectic_euler_pass : kernels::explicit_euler_pass;
-    return pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h, state_.x.data(),
-                state_.v.data(), max_speed_squared);
+    return pass(model_->particle_count(), coordinate_inverse_mass_.data(), force_.data(), h,
+                state_.x.data(), state_.v.data(), max_speed_squared);
   }
-  // With contacts, each block of particles is updated as soon as its contact forces are final, on the
-  // thread that computed them and while they are in its cache: the same expressions as the pass
-  // above, so the same bits, without a pass (and a start of the threads) of its own. The update's time
-  // is then counted in the contact phase.
-  // On the spring fast path the block's new state is also split into the kernel's unit-stride arrays
-  // there, so the next force evaluation skips its own pass over the state (and a barrier).
+  // With contacts, each block of particles is updated as soon as its contact forces are final, on
+  // the thread that computed them and while they are in its cache: the same expressions as the pass
+  // above, so the same bits, without a pass (and a start of the threads) of its own. The update's
+  // time is then counted in the contact phase. On the spring fast path the block's new state is
+  // also split into the kernel's unit-stride arrays there, so the next force evaluation skips its
+  // own pass over the state (and a barrier).
   struct EulerUpdate {
     bool symplectic;
     const double* inverse_mass;
@@ -282,14 +317,15 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
     double max_speed_squared;
     SpringFamilies* families;  // null off the fast path
   };
-  const EulerUpdate update{symplectic,      coordinate_inverse_mass_.data(), force_.data(), h,
-                           state_.x.data(), state_.v.data(),
+  const EulerUpdate update{symplectic,        coordinate_inverse_mass_.data(),
+                           force_.data(),     h,
+                           state_.x.data(),   state_.v.data(),
                            max_speed_squared, spring_families_.get()};
   const ContactBlockFollowUp follow_up{
       [](const void* context, std::int64_t begin, std::int64_t end) {
         const auto& u = *static_cast<const EulerUpdate*>(context);
-        const std::int64_t flagged =
-            kernels::euler_range(u.symplectic, begin, end, u.inverse_mass, u.force, u.h, u.x, u.v, u.max_speed_squared);
+        const std::int64_t flagged = kernels::euler_range(
+            u.symplectic, begin, end, u.inverse_mass, u.force, u.h, u.x, u.v, u.max_speed_squared);
         if (u.families) u.families->split_state(u.x, u.v, begin, end);
         return flagged;
       },
@@ -305,10 +341,12 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
   return flagged;
 }
 
-std::int64_t SpringDamperSolver::spring_and_contact_forces_together(double h, const ContactBlockFollowUp& follow_up) {
+std::int64_t SpringDamperSolver::spring_and_contact_forces_together(
+    double h, const ContactBlockFollowUp& follow_up) {
   const auto start = Clock::now();
-  const ContactPass pass(*settings_.contacts, *model_, state_.time, h, state_.x, state_.v, force_, *contact_workspace_,
-                         contact_normal_scheme(), implicit_stats() != nullptr, &follow_up);
+  const ContactPass pass(*settings_.contacts, *model_, state_.time, h, state_.x, state_.v, force_,
+                         *contact_workspace_, contact_normal_scheme(), implicit_stats() != nullptr,
+                         &follow_up);
   // The phase timers split the region where the thread that runs block 0 turns from springs to
   // contacts (the other thread's turn is within a block's time of it).
   struct Contacts {
@@ -317,17 +355,19 @@ std::int64_t SpringDamperSolver::spring_and_contact_forces_together(double h, co
   };
   auto turned = Clock::now();
   const Contacts contacts{&pass, &turned};
-  const kernels::ForcesFinalHook hook{[](const void* context, std::int64_t first_block, std::int64_t end_block) {
-                                        const auto& c = *static_cast<const Contacts*>(context);
-                                        if (first_block == 0 && end_block > 0) *c.turned = Clock::now();
-                                        for (std::int64_t block = first_block; block < end_block; ++block)
-                                          c.pass->run_block(block);
-                                      },
-                                      &contacts};
+  const kernels::ForcesFinalHook hook{
+      [](const void* context, std::int64_t first_block, std::int64_t end_block) {
+        const auto& c = *static_cast<const Contacts*>(context);
+        if (first_block == 0 && end_block > 0) *c.turned = Clock::now();
+        for (std::int64_t block = first_block; block < end_block; ++block) c.pass->run_block(block);
+      },
+      &contacts};
   const auto springs_start = Clock::now();
-  spring_families_->set_body_and_spring_forces(state_.x, state_.v, weight_, coordinate_mass_, settings_.air_damping,
-                                               force_, split_state_is_current_, &hook);
-  const std::int64_t flagged = pass.finish(contact_totals_, implicit_stats() ? &active_contacts_ : nullptr);
+  spring_families_->set_body_and_spring_forces(state_.x, state_.v, weight_, coordinate_mass_,
+                                               settings_.air_damping, force_,
+                                               split_state_is_current_, &hook);
+  const std::int64_t flagged =
+      pass.finish(contact_totals_, implicit_stats() ? &active_contacts_ : nullptr);
   const auto end = Clock::now();
   using Seconds = std::chrono::duration<double>;
   stats_.seconds[static_cast<int>(StepPhase::springs)] += Seconds(turned - springs_start).count();
@@ -339,14 +379,15 @@ std::int64_t SpringDamperSolver::spring_and_contact_forces_together(double h, co
 // Backward Euler, linearised at the start of the step (implicit_euler.hpp).
 void SpringDamperSolver::implicit_euler_step(double h) {
   evaluate_forces(state_.x, state_.v, state_.time, h);
-  const ContactParameters contact = settings_.contacts ? settings_.contacts->parameters() : ContactParameters{};
+  const ContactParameters contact =
+      settings_.contacts ? settings_.contacts->parameters() : ContactParameters{};
   if (family_implicit_)
     family_implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact,
                             active_contacts_, stage_v_);
   else
-    implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact, active_contacts_,
-                     stage_v_);
-  state_.v += stage_v_;         // v(n+1) = v(n) + dv
+    implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact,
+                     active_contacts_, stage_v_);
+  state_.v += stage_v_;                // v(n+1) = v(n) + dv
   state_.x.noalias() += h * state_.v;  // x(n+1) = x(n) + h v(n+1)
 }
 
@@ -357,8 +398,8 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
   // The Euler passes scanned the new state as they wrote it; other schemes scan it here.
   const std::int64_t first =
       scanned ? *scanned
-              : kernels::first_unhealthy_particle(model_->particle_count(), state_.x.data(), state_.v.data(),
-                                                  max_speed_squared);
+              : kernels::first_unhealthy_particle(model_->particle_count(), state_.x.data(),
+                                                  state_.v.data(), max_speed_squared);
   if (first < 0) return;
   const int i = static_cast<int>(first);
   const bool finite = state_.x.col(i).allFinite() && state_.v.col(i).allFinite();
@@ -375,43 +416,56 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
   text << " after step " << state_.step_count << " (t = " << state_.time << " s, dt = " << h
        << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
   if (settings_.adaptive_substeps)
-    text << "a smaller dt or adaptive_substeps: false (the substeps follow the shape's stable step, taken once "
+    text << "a smaller dt or adaptive_substeps: false (the substeps follow the shape's stable "
+            "step, taken once "
             "per dt; the cloth may have changed faster than that), ";
   ContactRates contact;
-  if (settings_.contacts) contact = {settings_.contacts->parameters().stiffness, settings_.contacts->parameters().damping};
-  const double stable_step = stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
+  if (settings_.contacts)
+    contact = {settings_.contacts->parameters().stiffness,
+               settings_.contacts->parameters().damping};
+  const double stable_step =
+      stable_step_estimate(*model_, settings_.air_damping, contact, settings_.integrator);
   const bool contact_bounds_step = !contact_at_step_end(settings_.integrator);
-  const NetworkRates rates =
-      network_rate_bounds(*model_, settings_.air_damping, contact_bounds_step ? contact : ContactRates{});
-  if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
-    text << "integrator symplectic_euler, leapfrog or implicit_euler (" << integrator_name(settings_.integrator)
-         << " gains energy on every undamped spring and is stable only while damping outweighs it), ";
+  const NetworkRates rates = network_rate_bounds(*model_, settings_.air_damping,
+                                                 contact_bounds_step ? contact : ContactRates{});
+  if (settings_.integrator == Integrator::explicit_euler ||
+      settings_.integrator == Integrator::midpoint)
+    text << "integrator symplectic_euler, leapfrog or implicit_euler ("
+         << integrator_name(settings_.integrator)
+         << " gains energy on every undamped spring and is stable only while damping outweighs "
+            "it), ";
   if (settings_.integrator == Integrator::implicit_euler)
-    text << "a smaller dt or a larger implicit max_iterations (the conjugate gradient reached a relative "
+    text << "a smaller dt or a larger implicit max_iterations (the conjugate gradient reached a "
+            "relative "
             "residual of "
          << implicit_stats()->residual_last << " in " << implicit_stats()->iterations_last
-         << " iterations; a collider moving faster than its contact can push back also needs a smaller dt), ";
+         << " iterations; a collider moving faster than its contact can push back also needs a "
+            "smaller dt), ";
   else if (stable_step > 0.0 && std::isfinite(stable_step) && stable_step < h)
     text << "a smaller dt (the Gershgorin bound of these springs and dampers"
-         << (contact_bounds_step ? " and of the contact" : "")
-         << " gives a stable "
+         << (contact_bounds_step ? " and of the contact" : "") << " gives a stable "
          << integrator_name(settings_.integrator) << " step below about " << stable_step << " s), ";
   else if (std::isfinite(stable_step) && stable_step >= h)
     text << "a smaller dt (dt is inside the springs' stable step of about " << stable_step
-         << " s, so a contact or a fast collider is the likely cause: try half the dt, or a softer contact), ";
+         << " s, so a contact or a fast collider is the likely cause: try half the dt, or a softer "
+            "contact), ";
   // In h^2 K + 2 h C < 4, the larger term says whether springs or dampers limit the step.
   if (settings_.integrator == Integrator::implicit_euler)
     text << "or a softer contact (lower contact.stiffness).";
-  else if (settings_.integrator == Integrator::explicit_euler || settings_.integrator == Integrator::midpoint)
-    text << "or more damping for the stiffness (this scheme is stable only for dt below about kd / ks of "
+  else if (settings_.integrator == Integrator::explicit_euler ||
+           settings_.integrator == Integrator::midpoint)
+    text << "or more damping for the stiffness (this scheme is stable only for dt below about kd / "
+            "ks of "
             "the springs).";
   else if (2.0 * rates.damping > h * rates.stiffness)
     text << (contact_bounds_step ? "or less damping (lower kd, air_damping or contact.damping"
                                  : "or less damping (lower kd or air_damping")
-         << ": here the dampers, not the springs, limit the step; they act per spring or particle, so light "
+         << ": here the dampers, not the springs, limit the step; they act per spring or particle, "
+            "so light "
             "particles need small values).";
   else
-    text << (contact_bounds_step ? "or softer springs (lower ks or contact.stiffness)." : "or softer springs (lower ks).");
+    text << (contact_bounds_step ? "or softer springs (lower ks or contact.stiffness)."
+                                 : "or softer springs (lower ks).");
   status_ = SolverStatus::unstable;
   message_ = text.str();
 }

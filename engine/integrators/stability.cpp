@@ -11,7 +11,8 @@
 
 namespace drapelab {
 
-NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, ContactRates contact) {
+NetworkRates network_rate_bounds(const ClothModel& model, double air_damping,
+                                 ContactRates contact) {
   // Row i of the stiffness matrix holds sum_j k_ij on the diagonal and -k_ij (times a direction
   // projector) off it, so its Gershgorin disc reaches 2 sum_j k_ij; the damping matrix likewise.
   const int count = model.particle_count();
@@ -34,8 +35,9 @@ NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, Co
   return rates;
 }
 
-NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
-                               ContactRates contact, ShapeBoundWorkspace& workspace,
+NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                               double air_damping, ContactRates contact,
+                               ShapeBoundWorkspace& workspace,
                                const std::vector<SpringFamily>* families) {
   const int count = model.particle_count();
   if (families) {
@@ -62,13 +64,15 @@ NetworkRates shape_rate_bounds(const ClothModel& model, const Eigen::Matrix3Xd& 
   }
   const kernels::ShapeRates maxima = kernels::shape_rate_maxima(
       count, {workspace.first.data(), workspace.incident.data()},
-      {s.v0.data(), s.v1.data(), s.rest_length.data(), s.ks.data(), s.kd.data()}, model.inverse_mass.data(), x.data(),
-      contact.stiffness, contact.damping, static_cast<std::int64_t>(s.size()), workspace.terms.data());
+      {s.v0.data(), s.v1.data(), s.rest_length.data(), s.ks.data(), s.kd.data()},
+      model.inverse_mass.data(), x.data(), contact.stiffness, contact.damping,
+      static_cast<std::int64_t>(s.size()), workspace.terms.data());
   return {maxima.stiffness, maxima.damping + air_damping};
 }
 
 double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping,
-                         ShapeBoundWorkspace& workspace, const std::vector<SpringFamily>* families) {
+                         ShapeBoundWorkspace& workspace,
+                         const std::vector<SpringFamily>* families) {
   return step_from_rates(shape_rate_bounds(model, x, air_damping, {}, workspace, families),
                          Integrator::symplectic_euler, 0.0);
 }
@@ -81,14 +85,16 @@ double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, dou
 namespace {
 
 double symplectic_step_of_rates(const NetworkRates& r) {
-  if (r.stiffness > 0.0) return (std::sqrt(r.damping * r.damping + 4.0 * r.stiffness) - r.damping) / r.stiffness;
+  if (r.stiffness > 0.0)
+    return (std::sqrt(r.damping * r.damping + 4.0 * r.stiffness) - r.damping) / r.stiffness;
   if (r.damping > 0.0) return 2.0 / r.damping;
   return std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
 
-double symplectic_euler_stable_step(const ClothModel& model, double air_damping, ContactRates contact) {
+double symplectic_euler_stable_step(const ClothModel& model, double air_damping,
+                                    ContactRates contact) {
   return symplectic_step_of_rates(network_rate_bounds(model, air_damping, contact));
 }
 
@@ -97,11 +103,15 @@ double step_from_rates(const NetworkRates& rates, Integrator integrator, double 
   switch (integrator) {
     case Integrator::symplectic_euler:
     case Integrator::verlet:
-    case Integrator::leapfrog: return symplectic;
-    case Integrator::rk4: return 1.39 * symplectic;
+    case Integrator::leapfrog:
+      return symplectic;
+    case Integrator::rk4:
+      return 1.39 * symplectic;
     case Integrator::explicit_euler:
-    case Integrator::midpoint: return std::min(damping_ratio, symplectic);
-    case Integrator::implicit_euler: break;
+    case Integrator::midpoint:
+      return std::min(damping_ratio, symplectic);
+    case Integrator::implicit_euler:
+      break;
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -121,7 +131,8 @@ double damping_ratio_step(const ClothModel& model, ContactRates contact) {
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
                             Integrator integrator) {
   if (contact_at_step_end(integrator)) contact = {};  // the network alone bounds the step
-  const bool ratio_bounds_step = integrator == Integrator::explicit_euler || integrator == Integrator::midpoint;
+  const bool ratio_bounds_step =
+      integrator == Integrator::explicit_euler || integrator == Integrator::midpoint;
   return step_from_rates(network_rate_bounds(model, air_damping, contact), integrator,
                          ratio_bounds_step ? damping_ratio_step(model, contact) : 0.0);
 }

@@ -39,7 +39,8 @@ ClothMetrics compute_cloth_metrics(const ClothModel& model, const ClothState& st
     m.mean_stretch = stretch_sum / static_cast<double>(stretch_count);
   }
   // Projected along gravity; without gravity, along y (up).
-  const Eigen::Vector3d up = gravity.squaredNorm() > 0.0 ? Eigen::Vector3d(-gravity) : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d up =
+      gravity.squaredNorm() > 0.0 ? Eigen::Vector3d(-gravity) : Eigen::Vector3d::UnitY();
   m.projected_area = projected_union_area(state.x, model.triangles, up);
   return m;
 }

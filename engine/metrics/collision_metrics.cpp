@@ -23,7 +23,8 @@ CollisionMetrics compute_collision_metrics(const ClothModel& model, const ClothS
       // Distance to the bounding box is a lower bound of the distance to the shape.
       const double lower_bound = std::sqrt(bounds.squaredExteriorDistance(state.x.col(i))) - h;
       if (lower_bound > best && lower_bound > contact_band) continue;
-      const double clearance = contacts.query().clearance(contacts.fcl_collider(c), pose, state.x.col(i));
+      const double clearance =
+          contacts.query().clearance(contacts.fcl_collider(c), pose, state.x.col(i));
       best = std::min(best, clearance);
       if (clearance <= contact_band) {
         ++out.contact_count;
@@ -34,7 +35,8 @@ CollisionMetrics compute_collision_metrics(const ClothModel& model, const ClothS
     out.max_penetration = std::max(0.0, -best);
   }
   metrics.min_clearance = std::numeric_limits<double>::infinity();
-  for (const auto& c : metrics.per_collider) metrics.min_clearance = std::min(metrics.min_clearance, c.min_clearance);
+  for (const auto& c : metrics.per_collider)
+    metrics.min_clearance = std::min(metrics.min_clearance, c.min_clearance);
   metrics.max_penetration = std::max(0.0, -metrics.min_clearance);
   metrics.contact_count = static_cast<int>(std::count(touching.begin(), touching.end(), 1));
   return metrics;

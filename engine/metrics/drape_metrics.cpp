@@ -54,14 +54,15 @@ int count_outline_nodes(const std::vector<double>& r, double min_prominence) {
   return nodes;
 }
 
-DrapeMeter::DrapeMeter(const ClothModel& model, const DrapeSupport& support, const Eigen::Vector3d& up,
-                       DrapeSettings settings)
+DrapeMeter::DrapeMeter(const ClothModel& model, const DrapeSupport& support,
+                       const Eigen::Vector3d& up, DrapeSettings settings)
     : settings_(settings), up_(up) {
   const ProjectionPlane plane(up_);
   center_ = plane.project(support.center);
   const Eigen::Matrix2Xd rest = plane.project(model.rest_positions);
   double specimen_radius = support.radius;  // R_D, m
-  for (Eigen::Index i = 0; i < rest.cols(); ++i) specimen_radius = std::max(specimen_radius, (rest.col(i) - center_).norm());
+  for (Eigen::Index i = 0; i < rest.cols(); ++i)
+    specimen_radius = std::max(specimen_radius, (rest.col(i) - center_).norm());
   half_extent_ = 1.1 * specimen_radius;
   Raster flat = grid_around(center_, half_extent_, settings_.cells_per_side);
   flat.fill_triangles(rest, model.triangles);
@@ -94,9 +95,11 @@ DrapeMeasure DrapeMeter::measure(const ClothModel& model, const Eigen::Matrix3Xd
       const Eigen::Vector2d d = shadow.centre(ix, iy) - center_;
       const double angle = std::atan2(d.y(), d.x()) + std::numbers::pi;  // [0, 2 pi]
       const int bin = std::min(bins - 1, static_cast<int>(angle / (2.0 * std::numbers::pi) * bins));
-      outline[static_cast<std::size_t>(bin)] = std::max(outline[static_cast<std::size_t>(bin)], d.norm());
+      outline[static_cast<std::size_t>(bin)] =
+          std::max(outline[static_cast<std::size_t>(bin)], d.norm());
     }
-  const int window = 2 * static_cast<int>(std::lround(0.5 * settings_.smoothing_degrees * bins / 360.0)) + 1;
+  const int window =
+      2 * static_cast<int>(std::lround(0.5 * settings_.smoothing_degrees * bins / 360.0)) + 1;
   m.outline = circular_smooth(outline, window);
   m.nodes = count_outline_nodes(m.outline, settings_.min_prominence);
   return m;

@@ -2,7 +2,6 @@
 #include "metrics/projected_area.hpp"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -19,7 +18,8 @@ double edge_function(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const E
 
 ProjectionPlane::ProjectionPlane(const Eigen::Vector3d& up) {
   const Eigen::Vector3d n = up.normalized();
-  const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d helper =
+      std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   e1 = n.cross(helper).normalized();
   e2 = n.cross(e1);
 }
@@ -32,7 +32,10 @@ Eigen::Matrix2Xd ProjectionPlane::project(const Eigen::Matrix3Xd& points) const 
 }
 
 Raster::Raster(const Eigen::Vector2d& low_corner, double cell_size, int nx, int ny)
-    : low(low_corner), cell(cell_size), cells_x(nx), cells_y(ny),
+    : low(low_corner),
+      cell(cell_size),
+      cells_x(nx),
+      cells_y(ny),
       covered(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0) {}
 
 double Raster::covered_area() const {
@@ -48,7 +51,8 @@ void Raster::fill_triangles(const Eigen::Matrix2Xd& points, const Eigen::Matrix3
     if (edge_function(a, b, c) == 0.0) continue;  // degenerate: no area
     const double t_low = std::min({a.y(), b.y(), c.y()}), t_high = std::max({a.y(), b.y(), c.y()});
     const int y0 = std::max(0, static_cast<int>(std::ceil((t_low - low.y()) / cell - 0.5)));
-    const int y1 = std::min(cells_y - 1, static_cast<int>(std::floor((t_high - low.y()) / cell - 0.5)));
+    const int y1 =
+        std::min(cells_y - 1, static_cast<int>(std::floor((t_high - low.y()) / cell - 0.5)));
     const Eigen::Vector2d corners[3] = {a, b, c};
     for (int iy = y0; iy <= y1; ++iy) {
       const double y = low.y() + (iy + 0.5) * cell;  // m, the row's centre line
@@ -56,7 +60,8 @@ void Raster::fill_triangles(const Eigen::Matrix2Xd& points, const Eigen::Matrix3
       for (int e = 0; e < 3; ++e) {
         const Eigen::Vector2d& p = corners[e];
         const Eigen::Vector2d& q = corners[(e + 1) % 3];
-        if ((p.y() > y) == (q.y() > y) && p.y() != y && q.y() != y) continue;  // edge misses the line
+        if ((p.y() > y) == (q.y() > y) && p.y() != y && q.y() != y)
+          continue;            // edge misses the line
         if (p.y() == q.y()) {  // edge along the line
           span_low = std::min({span_low, p.x(), q.x()});
           span_high = std::max({span_high, p.x(), q.x()});
@@ -69,7 +74,8 @@ void Raster::fill_triangles(const Eigen::Matrix2Xd& points, const Eigen::Matrix3
       if (span_low > span_high) continue;
       // Cells whose centre low.x + (ix + 1/2) cell lies in [span_low, span_high].
       const int x0 = std::max(0, static_cast<int>(std::ceil((span_low - low.x()) / cell - 0.5)));
-      const int x1 = std::min(cells_x - 1, static_cast<int>(std::floor((span_high - low.x()) / cell - 0.5)));
+      const int x1 =
+          std::min(cells_x - 1, static_cast<int>(std::floor((span_high - low.x()) / cell - 0.5)));
       if (x0 <= x1)
         std::fill(covered.begin() + static_cast<std::ptrdiff_t>(iy) * cells_x + x0,
                   covered.begin() + static_cast<std::ptrdiff_t>(iy) * cells_x + x1 + 1, 1);

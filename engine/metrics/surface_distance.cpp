@@ -13,11 +13,13 @@ namespace {
 // Triangles bucketed by the grid cells their bounding boxes overlap.
 class TriangleGrid {
  public:
-  TriangleGrid(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xi& triangles) : x_(x), triangles_(triangles) {
+  TriangleGrid(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xi& triangles)
+      : x_(x), triangles_(triangles) {
     double edges = 0.0;
     for (Eigen::Index t = 0; t < triangles.cols(); ++t)
       edges += (x.col(triangles(0, t)) - x.col(triangles(1, t))).norm();
-    cell_ = std::max(edges / static_cast<double>(std::max<Eigen::Index>(1, triangles.cols())), 1e-9);  // m, one edge
+    cell_ = std::max(edges / static_cast<double>(std::max<Eigen::Index>(1, triangles.cols())),
+                     1e-9);  // m, one edge
     for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
       Eigen::Vector3d low = x.col(triangles(0, t)), high = low;
       for (int k = 1; k < 3; ++k) {
@@ -27,7 +29,8 @@ class TriangleGrid {
       const Eigen::Vector3i from = cell_of(low), to = cell_of(high);
       for (int i = from.x(); i <= to.x(); ++i)
         for (int j = from.y(); j <= to.y(); ++j)
-          for (int k = from.z(); k <= to.z(); ++k) cells_[key(i, j, k)].push_back(static_cast<int>(t));
+          for (int k = from.z(); k <= to.z(); ++k)
+            cells_[key(i, j, k)].push_back(static_cast<int>(t));
     }
   }
 
@@ -41,11 +44,13 @@ class TriangleGrid {
       for (int i = -ring; i <= ring; ++i)
         for (int j = -ring; j <= ring; ++j)
           for (int k = -ring; k <= ring; ++k) {
-            if (std::max({std::abs(i), std::abs(j), std::abs(k)}) != ring) continue;  // the shell only
+            if (std::max({std::abs(i), std::abs(j), std::abs(k)}) != ring)
+              continue;  // the shell only
             const auto found = cells_.find(key(centre.x() + i, centre.y() + j, centre.z() + k));
             if (found == cells_.end()) continue;
             for (int t : found->second)
-              best = std::min(best, point_triangle_distance(p, x_.col(triangles_(0, t)), x_.col(triangles_(1, t)),
+              best = std::min(best, point_triangle_distance(p, x_.col(triangles_(0, t)),
+                                                            x_.col(triangles_(1, t)),
                                                             x_.col(triangles_(2, t))));
           }
       if (best <= enough || best <= ring * cell_ || ring > 1000000) return best;
@@ -68,15 +73,16 @@ class TriangleGrid {
 };
 
 // Largest distance from the sample points of surface `from` to surface `to`. Node i is the same
-// material point on both, so a sample's distance to its own counterpart on `to` bounds its distance to
-// the surface from above: samples whose bound cannot beat the largest distance found so far are
+// material point on both, so a sample's distance to its own counterpart on `to` bounds its distance
+// to the surface from above: samples whose bound cannot beat the largest distance found so far are
 // skipped, and the others are visited in decreasing order of their bound.
-double directed_distance(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to, const Eigen::Matrix3Xi& triangles) {
+double directed_distance(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to,
+                         const Eigen::Matrix3Xi& triangles) {
   const TriangleGrid grid(to, triangles);
   // Barycentric weights of the samples: vertices, edge third points, centroid.
-  static const double kWeights[8][3] = {{1, 0, 0},         {2. / 3, 1. / 3, 0}, {1. / 3, 2. / 3, 0},
-                                        {0, 2. / 3, 1. / 3}, {0, 1. / 3, 2. / 3}, {1. / 3, 0, 2. / 3},
-                                        {2. / 3, 0, 1. / 3}, {1. / 3, 1. / 3, 1. / 3}};
+  static const double kWeights[8][3] = {
+      {1, 0, 0},           {2. / 3, 1. / 3, 0}, {1. / 3, 2. / 3, 0}, {0, 2. / 3, 1. / 3},
+      {0, 1. / 3, 2. / 3}, {1. / 3, 0, 2. / 3}, {2. / 3, 0, 1. / 3}, {1. / 3, 1. / 3, 1. / 3}};
   struct Sample {
     Eigen::Vector3d point;
     double bound;  // m, distance to the same material point on `to`
@@ -92,7 +98,8 @@ double directed_distance(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& t
       }
       samples.push_back({p, (p - q).norm()});
     }
-  std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) { return a.bound > b.bound; });
+  std::sort(samples.begin(), samples.end(),
+            [](const Sample& a, const Sample& b) { return a.bound > b.bound; });
   double worst = 0.0;
   for (const auto& sample : samples) {
     if (sample.bound <= worst) break;  // sorted: no later sample can beat it
@@ -103,8 +110,8 @@ double directed_distance(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& t
 
 }  // namespace
 
-double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                               const Eigen::Vector3d& c) {
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                               const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   // The closest point lies in one of the triangle's Voronoi regions: a vertex, an edge or the face.
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
@@ -123,12 +130,14 @@ double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& 
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)  // edge bc
     return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
   const double denominator = va + vb + vc;
-  if (denominator == 0.0) return std::min({ap.norm(), bp.norm(), cp.norm()});  // degenerate triangle
+  if (denominator == 0.0)
+    return std::min({ap.norm(), bp.norm(), cp.norm()});  // degenerate triangle
   const double v = vb / denominator, w = vc / denominator;
   return (p - (a + ab * v + ac * w)).norm();  // inside the face
 }
 
-double hausdorff_distance(const Eigen::Matrix3Xd& xa, const Eigen::Matrix3Xd& xb, const Eigen::Matrix3Xi& triangles) {
+double hausdorff_distance(const Eigen::Matrix3Xd& xa, const Eigen::Matrix3Xd& xb,
+                          const Eigen::Matrix3Xi& triangles) {
   if (triangles.cols() == 0) {  // vertex sets
     auto directed = [](const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to) {
       double worst = 0.0;

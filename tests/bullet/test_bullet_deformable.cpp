@@ -1,6 +1,6 @@
 // Bullet's deformable world built from our model (docs/bullet.md, "What the deformable world
-// computes"): nodes, masses, pins and rest lengths; free fall, the hanging chain at Hooke's statics,
-// and rest on a sphere near the margin.
+// computes"): nodes, masses, pins and rest lengths; free fall, the hanging chain at Hooke's
+// statics, and rest on a sphere near the margin.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,8 +16,9 @@
 namespace drapelab {
 namespace {
 
-std::unique_ptr<Solver> deformable(const std::shared_ptr<const ClothModel>& model, const ClothState& initial,
-                                   std::vector<Collider> colliders, double dt, double margin, double air_damping = 0.0) {
+std::unique_ptr<Solver> deformable(const std::shared_ptr<const ClothModel>& model,
+                                   const ClothState& initial, std::vector<Collider> colliders,
+                                   double dt, double margin, double air_damping = 0.0) {
   bullet::BulletDeformableOptions options;
   options.dt = dt;
   options.margin = margin;

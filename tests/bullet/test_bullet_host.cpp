@@ -1,5 +1,5 @@
-// Our cloth hosted in a Bullet world (docs/bullet.md, "Parallel worlds with the same colliders"): at
-// every substep its contacts use the poses of the host's Bullet bodies (not a copy of
+// Our cloth hosted in a Bullet world (docs/bullet.md, "Parallel worlds with the same colliders"):
+// at every substep its contacts use the poses of the host's Bullet bodies (not a copy of
 // collider_pose(t)), and a hosted run agrees with a bare one to rounding.
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include "drapelab/bullet/bullet_diagnostics.hpp"
 #include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "fixtures/sheets.hpp"
 #include "drapelab/spring_damper_solver.hpp"
+#include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
@@ -24,8 +24,8 @@ double largest_difference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b
   return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
 }
 
-// Forwards to the solver it wraps and records, before each step, the poses (collider frame -> world)
-// that the wrapped solver's contact model will use at the start and the end of the step.
+// Forwards to the solver it wraps and records, before each step, the poses (collider frame ->
+// world) that the wrapped solver's contact model will use at the start and the end of the step.
 class PoseRecorder final : public Solver {
  public:
   PoseRecorder(std::unique_ptr<Solver> inner, std::shared_ptr<const ContactModel> contacts)
@@ -59,19 +59,19 @@ class PoseRecorder final : public Solver {
 };
 
 // Our solver on `colliders`, its contacts reading the pose table `poses` (null: analytic poses).
-std::unique_ptr<SpringDamperSolver> ours(const std::shared_ptr<const ClothModel>& model, const ClothState& initial,
-                                         const std::vector<Collider>& colliders,
-                                         std::shared_ptr<const ColliderPoseTable> poses,
-                                         std::shared_ptr<const ContactModel>* contacts_out = nullptr) {
+std::unique_ptr<SpringDamperSolver> ours(
+    const std::shared_ptr<const ClothModel>& model, const ClothState& initial,
+    const std::vector<Collider>& colliders, std::shared_ptr<const ColliderPoseTable> poses,
+    std::shared_ptr<const ContactModel>* contacts_out = nullptr) {
   SpringDamperSettings settings;
-  settings.contacts =
-      std::make_shared<const ContactModel>(colliders, ContactParameters{500, 0.05}, model->thickness, poses);
+  settings.contacts = std::make_shared<const ContactModel>(colliders, ContactParameters{500, 0.05},
+                                                           model->thickness, poses);
   if (contacts_out) *contacts_out = settings.contacts;
   return std::make_unique<SpringDamperSolver>("s", model, initial, settings);
 }
 
-// A keyframed arm that turns and moves, a ball that moves and spins, and a tilting floor (whose Bullet
-// box sits off the collider's origin, so its velocities differ from the shape's).
+// A keyframed arm that turns and moves, a ball that moves and spins, and a tilting floor (whose
+// Bullet box sits off the collider's origin, so its velocities differ from the shape's).
 std::vector<Collider> moving_colliders() {
   Collider arm;
   arm.name = "arm";
@@ -79,7 +79,8 @@ std::vector<Collider> moving_colliders() {
   arm.radius = 0.05;
   arm.height = 0.4;
   arm.axis = Eigen::Vector3d::UnitX();
-  arm.motion.keyframes = {{0.0, {0, 0.5, 0}, {0, 0, 0}}, {0.05, {0.1, 0.6, 0}, {0, 45, 10}},
+  arm.motion.keyframes = {{0.0, {0, 0.5, 0}, {0, 0, 0}},
+                          {0.05, {0.1, 0.6, 0}, {0, 45, 10}},
                           {0.08, {0.0, 0.55, 0.1}, {20, 0, -30}}};
   Collider ball;
   ball.name = "ball";
@@ -106,7 +107,8 @@ TEST(BulletHost, ContactsUseThePosesOfBulletsBodiesAtEverySubstep) {
   auto recorder = std::make_unique<PoseRecorder>(
       ours(model, initial_grid_state(*model, spec, 0.0, 0), colliders, poses, &contacts), contacts);
   const PoseRecorder& seen = *recorder;
-  auto hosted = bullet::host_in_bullet_world(std::move(recorder), poses, colliders, {0, -9.81, 0}, 1e-3);
+  auto hosted =
+      bullet::host_in_bullet_world(std::move(recorder), poses, colliders, {0, -9.81, 0}, 1e-3);
   const double h = 1e-3;
   std::vector<Eigen::Isometry3d> bullet_before = bullet::bullet_collider_poses(*hosted);
   ASSERT_EQ(bullet_before.size(), colliders.size());
@@ -116,15 +118,19 @@ TEST(BulletHost, ContactsUseThePosesOfBulletsBodiesAtEverySubstep) {
     const double t = k * h;  // the end of the substep just taken
     for (std::size_t c = 0; c < colliders.size(); ++c) {
       // What our contacts used is what Bullet's bodies held at both ends of the substep...
-      EXPECT_LT(largest_difference(seen.start[c], bullet_before[c]), 1e-15) << colliders[c].name << " t=" << t;
-      EXPECT_LT(largest_difference(seen.end[c], bullet_after[c]), 1e-15) << colliders[c].name << " t=" << t;
+      EXPECT_LT(largest_difference(seen.start[c], bullet_before[c]), 1e-15)
+          << colliders[c].name << " t=" << t;
+      EXPECT_LT(largest_difference(seen.end[c], bullet_after[c]), 1e-15)
+          << colliders[c].name << " t=" << t;
       // ...and Bullet's bodies did move as the scene says (so the check above is not between two
       // unmoved copies).
-      EXPECT_LT(largest_difference(bullet_after[c], collider_pose(colliders[c], t)), 1e-12) << colliders[c].name;
+      EXPECT_LT(largest_difference(bullet_after[c], collider_pose(colliders[c], t)), 1e-12)
+          << colliders[c].name;
       // The collider origin's velocity over the substep: the floor spins about its own point, which
       // stays put, although Bullet's box (centred 5 m below) moves.
-      const Eigen::Vector3d expected =
-          (collider_pose(colliders[c], t).translation() - collider_pose(colliders[c], t - h).translation()) / h;
+      const Eigen::Vector3d expected = (collider_pose(colliders[c], t).translation() -
+                                        collider_pose(colliders[c], t - h).translation()) /
+                                       h;
       EXPECT_LT((seen.velocity[c] - expected).norm(), 1e-9) << colliders[c].name << " t=" << t;
     }
     bullet_before = bullet_after;
@@ -135,9 +141,10 @@ TEST(BulletHost, ContactsUseThePosesOfBulletsBodiesAtEverySubstep) {
 }
 
 // A bare and a hosted run of a cloth pushed by a rising ball and brushed by a turning box agree to
-// rounding: the hosted one reads every pose back from Bullet's bodies and takes the collider velocities
-// as displacements over the substep, so bits differ, but only at the last place (a bitwise-equal test
-// would pass even if the host were cosmetic; this one is paired with the test above).
+// rounding: the hosted one reads every pose back from Bullet's bodies and takes the collider
+// velocities as displacements over the substep, so bits differ, but only at the last place (a
+// bitwise-equal test would pass even if the host were cosmetic; this one is paired with the test
+// above).
 TEST(BulletHost, HostedRunAgreesWithTheBareRunToRounding) {
   const GridClothSpec spec = pinned_sheet(11, 0.5, {0, 0.8, 0}, 0.05);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
@@ -155,8 +162,8 @@ TEST(BulletHost, HostedRunAgreesWithTheBareRunToRounding) {
   const ClothState initial = initial_grid_state(*model, spec, 0.0, 0);
   auto bare = ours(model, initial, colliders, nullptr);
   auto poses = std::make_shared<ColliderPoseTable>(colliders.size());
-  auto hosted = bullet::host_in_bullet_world(ours(model, initial, colliders, poses), poses, colliders,
-                                             {0, -9.81, 0}, 1e-3);
+  auto hosted = bullet::host_in_bullet_world(ours(model, initial, colliders, poses), poses,
+                                             colliders, {0, -9.81, 0}, 1e-3);
   const double h = 2e-4;
   double largest_push = 0.0, largest_brush = 0.0;  // N
   for (int k = 0; k < 2000; ++k) {
@@ -167,8 +174,10 @@ TEST(BulletHost, HostedRunAgreesWithTheBareRunToRounding) {
   }
   ASSERT_EQ(hosted->status(), SolverStatus::ok);
   EXPECT_EQ(hosted->state().step_count, 2000);
-  EXPECT_LT((hosted->state().x - bare->state().x).cwiseAbs().maxCoeff(), 1e-12);  // m (measured 1.8e-14)
-  EXPECT_LT((hosted->state().v - bare->state().v).cwiseAbs().maxCoeff(), 1e-9);   // m/s (measured 7e-12)
+  EXPECT_LT((hosted->state().x - bare->state().x).cwiseAbs().maxCoeff(),
+            1e-12);  // m (measured 1.8e-14)
+  EXPECT_LT((hosted->state().v - bare->state().v).cwiseAbs().maxCoeff(),
+            1e-9);                // m/s (measured 7e-12)
   EXPECT_GT(largest_push, 0.0);   // the ball reached the cloth
   EXPECT_GT(largest_brush, 0.0);  // so did the paddle
   EXPECT_FALSE(hosted->phase_seconds().empty());
@@ -180,9 +189,10 @@ TEST(BulletHost, RefusesAPoseTableOfTheWrongSize) {
   Collider ball;
   auto table = std::make_shared<ColliderPoseTable>(1);
   auto guest = ours(model, initial_grid_state(*model, spec, 0.0, 0), {ball}, table);
-  EXPECT_THROW(bullet::host_in_bullet_world(std::move(guest), std::make_shared<ColliderPoseTable>(2), {ball},
-                                            {0, -9.81, 0}, 1e-3),
-               std::invalid_argument);
+  EXPECT_THROW(
+      bullet::host_in_bullet_world(std::move(guest), std::make_shared<ColliderPoseTable>(2), {ball},
+                                   {0, -9.81, 0}, 1e-3),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // Bullet's classic cloth built from our model: node order, masses, pins, rest lengths, links; the
-// collider conversion against FCL; free fall, the hanging chain, rest on a sphere at the margin, and
-// kinematic colliders posed exactly as every other solver sees them.
+// collider conversion against FCL; free fall, the hanging chain, rest on a sphere at the margin,
+// and kinematic colliders posed exactly as every other solver sees them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,9 +13,9 @@
 #include "drapelab/collision_metrics.hpp"
 #include "drapelab/contact_fcl.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "drapelab/spring_damper_solver.hpp"
 #include "fixtures/chains.hpp"
 #include "fixtures/sheets.hpp"
-#include "drapelab/spring_damper_solver.hpp"
 
 namespace drapelab {
 namespace {
@@ -30,20 +30,23 @@ BulletSoftBodyOptions options_for(double dt, double margin) {
   return options;
 }
 
-// docs/bullet.md, "Masses, pins and rest lengths": our rest lengths, not the start's, and mass-0 pins.
+// docs/bullet.md, "Masses, pins and rest lengths": our rest lengths, not the start's, and mass-0
+// pins.
 TEST(BulletBridge, ClothHasOurNodesMassesPinsRestLengthsAndLinks) {
   GridClothSpec spec = fixtures::bullet_test_sheet(7, 0.6, {0, 1, 0}, 0.49);
   spec.pins = {PinNamed{"corners"}};
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState initial = initial_grid_state(*model, spec, 0.003, 5);  // perturbed start
   const double dt = 1e-3;
-  const auto solver = bullet::make_bullet_softbody_solver("b", model, initial, {}, options_for(dt, 0.01));
+  const auto solver =
+      bullet::make_bullet_softbody_solver("b", model, initial, {}, options_for(dt, 0.01));
   const auto layout = bullet::bullet_cloth_layout(*solver);
   ASSERT_TRUE(layout.has_value());
   ASSERT_EQ(layout->positions.cols(), model->particle_count());
   EXPECT_EQ(layout->positions, initial.x);  // node i is particle i, at its start position
   for (int i = 0; i < model->particle_count(); ++i)
-    EXPECT_DOUBLE_EQ(layout->inverse_mass[i], model->is_pinned(i) ? 0.0 : 1.0 / model->mass[i]) << i;
+    EXPECT_DOUBLE_EQ(layout->inverse_mass[i], model->is_pinned(i) ? 0.0 : 1.0 / model->mass[i])
+        << i;
   const SpringSet& s = model->springs;
   ASSERT_EQ(layout->link_v0.size(), s.size());
   for (std::size_t e = 0; e < s.size(); ++e) {
@@ -102,9 +105,11 @@ TEST(BulletBridge, ColliderSignedDistanceAgreesWithFcl) {
     int compared = 0;
     for (int trial = 0; trial < 100000 && compared < 300; ++trial) {
       const Eigen::Vector3d p = c.center + 0.8 * Eigen::Vector3d(u(random), u(random), u(random));
-      const double fcl_distance = query.clearance(fcl, pose, p) + r;  // signed distance of the point
-      if (std::abs(fcl_distance) > 0.05) continue;                     // near the surface only
-      EXPECT_NEAR(bullet::bullet_signed_distance(c, 0.0, p, edge_margin), fcl_distance, tolerance) << p.transpose();
+      const double fcl_distance =
+          query.clearance(fcl, pose, p) + r;        // signed distance of the point
+      if (std::abs(fcl_distance) > 0.05) continue;  // near the surface only
+      EXPECT_NEAR(bullet::bullet_signed_distance(c, 0.0, p, edge_margin), fcl_distance, tolerance)
+          << p.transpose();
       ++compared;
     }
     EXPECT_GT(compared, 100);
@@ -117,7 +122,8 @@ TEST(BulletBridge, FreeFallFollowsSymplecticEulerLikeOurs) {
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState initial = initial_grid_state(*model, spec, 0.0, 0);
   const double h = 1.0 / 600;  // s, exactly representable as a float? no: Bullet rounds h to float
-  auto bullet_solver = bullet::make_bullet_softbody_solver("b", model, initial, {}, options_for(h, 0.01));
+  auto bullet_solver =
+      bullet::make_bullet_softbody_solver("b", model, initial, {}, options_for(h, 0.01));
   SpringDamperSolver ours("s", model, initial, {});
   const int n = 300;
   for (int k = 0; k < n; ++k) {
@@ -140,12 +146,13 @@ TEST(BulletBridge, FreeFallFollowsSymplecticEulerLikeOurs) {
 TEST(BulletBridge, HangingChainStaysWithinFivePercentOfHookeWhereTheMappingHolds) {
   const GridClothSpec spec = fixtures::hanging_chain(0.0);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
-  const double w = 2.0 / 0.01;                      // 1/kg, two free particles of 10 g
-  for (double ratio : {0.01, 0.1}) {                // ks w h^2
+  const double w = 2.0 / 0.01;        // 1/kg, two free particles of 10 g
+  for (double ratio : {0.01, 0.1}) {  // ks w h^2
     const double h = std::sqrt(ratio / (100.0 * w));
     BulletSoftBodyOptions options = options_for(h, 0.01);
-    options.air_damping = 3.0;                      // 1/s, to settle
-    auto solver = bullet::make_bullet_softbody_solver("b", model, initial_grid_state(*model, spec, 0.0, 0), {}, options);
+    options.air_damping = 3.0;  // 1/s, to settle
+    auto solver = bullet::make_bullet_softbody_solver(
+        "b", model, initial_grid_state(*model, spec, 0.0, 0), {}, options);
     for (int k = 0; k < static_cast<int>(20.0 / h); ++k) solver->step(h);
     const auto& x = solver->state().x;
     double extension = 0.0;
@@ -153,13 +160,14 @@ TEST(BulletBridge, HangingChainStaysWithinFivePercentOfHookeWhereTheMappingHolds
     const double hooke = 0.053955;  // (m g / k) N (N + 1) / 2
     const double departure = extension / hooke;
     RecordProperty("bullet_over_hooke_at_" + std::to_string(ratio), std::to_string(departure));
-    std::printf("ks w h^2 = %.2f: Bullet's chain stretches %.4f of Hooke's law\n", ratio, departure);
+    std::printf("ks w h^2 = %.2f: Bullet's chain stretches %.4f of Hooke's law\n", ratio,
+                departure);
     EXPECT_NEAR(departure, 1.0, 0.05) << ratio;
   }
 }
 
-// docs/bullet.md, "Soft-rigid contact through the signed-distance cache": the cloth rests one margin
-// off the surface.
+// docs/bullet.md, "Soft-rigid contact through the signed-distance cache": the cloth rests one
+// margin off the surface.
 TEST(BulletBridge, ClothRestsOnASphereOneMarginOff) {
   const double radius = 0.2, margin = 0.01;
   GridClothSpec spec = fixtures::bullet_test_sheet(15, 0.5, {0, 0.5 + radius + 0.05, 0}, 0.05);
@@ -172,11 +180,12 @@ TEST(BulletBridge, ClothRestsOnASphereOneMarginOff) {
   BulletSoftBodyOptions options = options_for(1.0 / 1200, margin);
   options.voxel_size = 0.005;
   options.air_damping = 2.0;
-  auto solver = bullet::make_bullet_softbody_solver("b", model, initial_grid_state(*model, spec, 0.0, 0), {ball}, options);
+  auto solver = bullet::make_bullet_softbody_solver(
+      "b", model, initial_grid_state(*model, spec, 0.0, 0), {ball}, options);
   for (int k = 0; k < 2400; ++k) solver->step(1.0 / 1200);
   ASSERT_EQ(solver->status(), SolverStatus::ok) << solver->message();
-  // Every node keeps at least the margin from the sphere (to the SDF cell's accuracy), and the cap of
-  // nodes on top, where the cloth lies on the sphere, sits at the margin.
+  // Every node keeps at least the margin from the sphere (to the SDF cell's accuracy), and the cap
+  // of nodes on top, where the cloth lies on the sphere, sits at the margin.
   int on_top = 0;
   for (int i = 0; i < model->particle_count(); ++i) {
     const Eigen::Vector3d offset = solver->state().x.col(i) - ball.center;
@@ -207,18 +216,20 @@ TEST(BulletBridge, KinematicCollidersArePosedLikeEverySolverSeesThem) {
   deformable_options.dt = h;
   deformable_options.margin = deformable_options.voxel_size = 0.01;
   std::unique_ptr<Solver> solvers[] = {
-      bullet::make_bullet_softbody_solver("b", model, initial_grid_state(*model, spec, 0.0, 0), {arm, ball},
-                                          options_for(h, 0.01)),
-      bullet::make_bullet_deformable_solver("d", model, initial_grid_state(*model, spec, 0.0, 0), {arm, ball},
-                                            deformable_options)};
+      bullet::make_bullet_softbody_solver("b", model, initial_grid_state(*model, spec, 0.0, 0),
+                                          {arm, ball}, options_for(h, 0.01)),
+      bullet::make_bullet_deformable_solver("d", model, initial_grid_state(*model, spec, 0.0, 0),
+                                            {arm, ball}, deformable_options)};
   for (auto& solver : solvers) {
     for (int k = 1; k <= 80; ++k) {
       solver->step(h);
       const double t = k * h;  // the end of the substep just taken
       const auto poses = bullet::bullet_collider_poses(*solver);
       ASSERT_EQ(poses.size(), 2u);
-      EXPECT_LT((poses[0].matrix() - collider_pose(arm, t).matrix()).cwiseAbs().maxCoeff(), 1e-12) << t;
-      EXPECT_LT((poses[1].matrix() - collider_pose(ball, t).matrix()).cwiseAbs().maxCoeff(), 1e-12) << t;
+      EXPECT_LT((poses[0].matrix() - collider_pose(arm, t).matrix()).cwiseAbs().maxCoeff(), 1e-12)
+          << t;
+      EXPECT_LT((poses[1].matrix() - collider_pose(ball, t).matrix()).cwiseAbs().maxCoeff(), 1e-12)
+          << t;
     }
   }
 }

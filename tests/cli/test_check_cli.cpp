@@ -35,7 +35,8 @@ class CheckCli : public TempDirTest {
 };
 
 TEST_F(CheckCli, RecordsAGoldenFileThenPassesAgainstIt) {
-  const auto recorded = run_drapelab({"check", scene_, "--golden", golden_, "--update", "--set", "duration=0.4"});
+  const auto recorded =
+      run_drapelab({"check", scene_, "--golden", golden_, "--update", "--set", "duration=0.4"});
   ASSERT_EQ(recorded.exit_code, 0) << recorded.output;
   EXPECT_NE(recorded.output.find("new golden file"), std::string::npos);
   const auto golden = nlohmann::json::parse(read_text(golden_));
@@ -51,7 +52,8 @@ TEST_F(CheckCli, RecordsAGoldenFileThenPassesAgainstIt) {
   EXPECT_EQ(checked.exit_code, 0) << checked.output;
   EXPECT_NE(checked.output.find("match"), std::string::npos) << checked.output;
   // Updating again changes nothing.
-  const auto again = run_drapelab({"check", scene_, "--golden", golden_, "--update", "--set", "duration=0.4"});
+  const auto again =
+      run_drapelab({"check", scene_, "--golden", golden_, "--update", "--set", "duration=0.4"});
   EXPECT_NE(again.output.find("no value changed"), std::string::npos) << again.output;
 }
 

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -32,47 +32,64 @@ using nlohmann::json;
 // A 9 x 9 sheet pinned at its corners, 0.1 s at 60 frames/s (6 frames after frame 0), 16 steps per
 // frame, well below the stable step (about 1.6e-3 s).
 const std::string kSmall =
-    "# A small sheet for the command-line tests.\n"  // 1
-    "name: cli_small\n"                              // 2
-    "duration: 0.1\n"                                // 3
-    "seed: 7\n"                                      // 4
-    "cloth:\n"                                       // 5
-    "  size: [0.4, 0.4]\n"                           // 6
-    "  resolution: [9, 9]\n"                         // 7
-    "  mass: 0.1\n"                                  // 8
-    "  perturbation: 0.001\n"                        // 9
-    "  springs:\n"                                   // 10
-    "    stretch: {ks: 200, kd: 0.01}\n"             // 11
-    "    shear: {ks: 20, kd: 0.005}\n"               // 12
-    "    bend: {ks: 2, kd: 0.001}\n"                 // 13
-    "  pins:\n"                                      // 14
-    "    - corners\n"                                // 15
-    "solvers:\n"                                     // 16
+    "# A small sheet for the command-line tests.\n"                        // 1
+    "name: cli_small\n"                                                    // 2
+    "duration: 0.1\n"                                                      // 3
+    "seed: 7\n"                                                            // 4
+    "cloth:\n"                                                             // 5
+    "  size: [0.4, 0.4]\n"                                                 // 6
+    "  resolution: [9, 9]\n"                                               // 7
+    "  mass: 0.1\n"                                                        // 8
+    "  perturbation: 0.001\n"                                              // 9
+    "  springs:\n"                                                         // 10
+    "    stretch: {ks: 200, kd: 0.01}\n"                                   // 11
+    "    shear: {ks: 20, kd: 0.005}\n"                                     // 12
+    "    bend: {ks: 2, kd: 0.001}\n"                                       // 13
+    "  pins:\n"                                                            // 14
+    "    - corners\n"                                                      // 15
+    "solvers:\n"                                                           // 16
     "  - {name: ours, type: spring_damper, dt: 0.0010416666666666667}\n";  // 17
 
 constexpr int kParticles = 81;
 constexpr int kTriangles = 2 * 8 * 8;
-constexpr int kFrames = 6;            // duration x frame_rate; frame 0 is recorded too
+constexpr int kFrames = 6;  // duration x frame_rate; frame 0 is recorded too
 constexpr int kStepsPerFrame = 16;
 
 // Two stable solvers side by side.
-const std::string kTwoSolvers = kSmall + "  - {name: fine, type: spring_damper, dt: 0.00052083333333333333}\n";
+const std::string kTwoSolvers =
+    kSmall + "  - {name: fine, type: spring_damper, dt: 0.00052083333333333333}\n";
 
 // One stable solver and one that explodes: explicit Euler at a quarter of a frame per step.
-const std::string kOneUnstable =
-    kSmall + "  - {name: wild, type: spring_damper, integrator: explicit_euler, dt: 0.0041666666666666667}\n";
+const std::string kOneUnstable = kSmall +
+                                 "  - {name: wild, type: spring_damper, integrator: "
+                                 "explicit_euler, dt: 0.0041666666666666667}\n";
 
-const std::vector<std::string> kMetricsColumns = {
-    "solver",         "frame",           "time",          "kinetic_energy", "gravity_energy", "spring_energy",
-    "max_stretch",    "mean_stretch",    "min_clearance", "max_penetration", "contact_count", "centroid_x",
-    "centroid_y",     "centroid_z",      "lowest_y",      "projected_area", "drape_coefficient", "drape_nodes"};
-const std::vector<std::string> kCompareColumns = {"solver_a",     "solver_b",     "frame",             "time",
-                                                  "rms_distance", "max_distance", "hausdorff_distance"};
-const std::vector<std::string> kContactsColumns = {"solver",       "frame",        "time",           "collider",
-                                                   "contact_count", "normal_force", "friction_force", "max_penetration"};
+const std::vector<std::string> kMetricsColumns = {"solver",
+                                                  "frame",
+                                                  "time",
+                                                  "kinetic_energy",
+                                                  "gravity_energy",
+                                                  "spring_energy",
+                                                  "max_stretch",
+                                                  "mean_stretch",
+                                                  "min_clearance",
+                                                  "max_penetration",
+                                                  "contact_count",
+                                                  "centroid_x",
+                                                  "centroid_y",
+                                                  "centroid_z",
+                                                  "lowest_y",
+                                                  "projected_area",
+                                                  "drape_coefficient",
+                                                  "drape_nodes"};
+const std::vector<std::string> kCompareColumns = {
+    "solver_a", "solver_b", "frame", "time", "rms_distance", "max_distance", "hausdorff_distance"};
+const std::vector<std::string> kContactsColumns = {
+    "solver",        "frame",        "time",           "collider",
+    "contact_count", "normal_force", "friction_force", "max_penetration"};
 // Empty while the scene has no colliders and no drape support.
-const std::vector<std::string> kEmptyMetricsColumns = {"min_clearance", "max_penetration", "contact_count",
-                                                       "drape_coefficient", "drape_nodes"};
+const std::vector<std::string> kEmptyMetricsColumns = {
+    "min_clearance", "max_penetration", "contact_count", "drape_coefficient", "drape_nodes"};
 
 // A parsed CSV file: header and rows, each row a map from column name to cell.
 struct Csv {
@@ -84,7 +101,9 @@ struct Csv {
       if (header[k] == name) return k;
     throw std::out_of_range("no column " + name);
   }
-  const std::string& cell(std::size_t row, const std::string& name) const { return rows.at(row).at(column(name)); }
+  const std::string& cell(std::size_t row, const std::string& name) const {
+    return rows.at(row).at(column(name));
+  }
   std::vector<std::size_t> rows_of(const std::string& key, const std::string& value) const {
     std::vector<std::size_t> picked;
     for (std::size_t r = 0; r < rows.size(); ++r)
@@ -144,7 +163,8 @@ class Cli : public drapelab::fixtures::TempDirTest {
     write_text(path, text);
     return path;
   }
-  CommandResult run(const fs::path& scene_file, const fs::path& out, std::vector<std::string> extra = {}) {
+  CommandResult run(const fs::path& scene_file, const fs::path& out,
+                    std::vector<std::string> extra = {}) {
     std::vector<std::string> arguments = {"run", scene_file.string(), "--out", out.string()};
     arguments.insert(arguments.end(), extra.begin(), extra.end());
     return run_drapelab(arguments);
@@ -153,7 +173,8 @@ class Cli : public drapelab::fixtures::TempDirTest {
   static std::map<std::string, std::string> snapshot(const fs::path& folder) {
     std::map<std::string, std::string> files;
     for (const auto& entry : fs::recursive_directory_iterator(folder))
-      if (entry.is_regular_file()) files[fs::relative(entry.path(), folder).string()] = read_text(entry.path());
+      if (entry.is_regular_file())
+        files[fs::relative(entry.path(), folder).string()] = read_text(entry.path());
     return files;
   }
 };
@@ -174,10 +195,12 @@ TEST_F(Cli, EachVerbHasHelpWithAnExample) {
     const auto result = run_drapelab({verb, "--help"});
     EXPECT_EQ(result.exit_code, 0) << verb << ": " << all_output(result);
     EXPECT_NE(result.output.find("Example"), std::string::npos) << verb << ": " << result.output;
-    EXPECT_NE(result.output.find(std::string("drapelab ") + verb), std::string::npos) << verb << ": " << result.output;
+    EXPECT_NE(result.output.find(std::string("drapelab ") + verb), std::string::npos)
+        << verb << ": " << result.output;
   }
   EXPECT_NE(run_drapelab({"run", "--help"}).output.find("--out"), std::string::npos);
-  EXPECT_NE(run_drapelab({"validate", "--help"}).output.find("--print-resolved"), std::string::npos);
+  EXPECT_NE(run_drapelab({"validate", "--help"}).output.find("--print-resolved"),
+            std::string::npos);
 }
 
 TEST_F(Cli, UnknownOptionIsBadInput) {
@@ -190,10 +213,10 @@ TEST_F(Cli, UnknownOptionIsBadInput) {
 
 TEST_F(Cli, OtherUsageErrorsAreBadInput) {
   const fs::path file = scene("small.yaml", kSmall);
-  EXPECT_EQ(run_drapelab({}).exit_code, 2);                                          // no verb
-  EXPECT_EQ(run_drapelab({"simulate", file.string()}).exit_code, 2);                 // unknown verb
-  EXPECT_EQ(run_drapelab({"run", file.string()}).exit_code, 2);                      // no --out
-  EXPECT_EQ(run(file, dir() / "out", {"--meshes", "maybe"}).exit_code, 2);           // not a choice
+  EXPECT_EQ(run_drapelab({}).exit_code, 2);                                 // no verb
+  EXPECT_EQ(run_drapelab({"simulate", file.string()}).exit_code, 2);        // unknown verb
+  EXPECT_EQ(run_drapelab({"run", file.string()}).exit_code, 2);             // no --out
+  EXPECT_EQ(run(file, dir() / "out", {"--meshes", "maybe"}).exit_code, 2);  // not a choice
   EXPECT_FALSE(fs::exists(dir() / "out"));
 }
 
@@ -206,7 +229,8 @@ TEST_F(Cli, RunWritesEveryFileOfTheContract) {
   const auto result = run(file, out);
   ASSERT_EQ(result.exit_code, 0) << all_output(result);
 
-  for (const char* name : {"scene.yaml", "resolved.yaml", "metrics.csv", "compare.csv", "contacts.csv", "summary.json"})
+  for (const char* name : {"scene.yaml", "resolved.yaml", "metrics.csv", "compare.csv",
+                           "contacts.csv", "summary.json"})
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
   EXPECT_FALSE(fs::exists(out / "meshes")) << "meshes are written on request only";
   for (const auto& entry : fs::directory_iterator(out))
@@ -224,11 +248,13 @@ TEST_F(Cli, MetricsCsvHasEveryColumnAndOneRowPerFrame) {
   ExpectWellFormedCsv(out / "metrics.csv");
   const Csv csv = read_csv(out / "metrics.csv");
   for (const auto& column : kMetricsColumns)
-    EXPECT_NE(std::find(csv.header.begin(), csv.header.end(), column), csv.header.end()) << "missing " << column;
+    EXPECT_NE(std::find(csv.header.begin(), csv.header.end(), column), csv.header.end())
+        << "missing " << column;
   EXPECT_EQ(std::set<std::string>(csv.header.begin(), csv.header.end()).size(), csv.header.size())
       << "a column appears twice";
 
-  ASSERT_EQ(csv.rows.size(), static_cast<std::size_t>(kFrames + 1)) << "one row per frame, frame 0 included";
+  ASSERT_EQ(csv.rows.size(), static_cast<std::size_t>(kFrames + 1))
+      << "one row per frame, frame 0 included";
   for (std::size_t r = 0; r < csv.rows.size(); ++r) {
     SCOPED_TRACE("row " + std::to_string(r + 1));
     EXPECT_EQ(csv.cell(r, "solver"), "ours");
@@ -236,8 +262,8 @@ TEST_F(Cli, MetricsCsvHasEveryColumnAndOneRowPerFrame) {
     EXPECT_NEAR(std::stod(csv.cell(r, "time")), static_cast<double>(r) / 60.0, 1e-12);
     for (const auto& column : kEmptyMetricsColumns) EXPECT_EQ(csv.cell(r, column), "") << column;
     for (const auto& column : kMetricsColumns) {
-      if (column == "solver" ||
-          std::find(kEmptyMetricsColumns.begin(), kEmptyMetricsColumns.end(), column) != kEmptyMetricsColumns.end())
+      if (column == "solver" || std::find(kEmptyMetricsColumns.begin(), kEmptyMetricsColumns.end(),
+                                          column) != kEmptyMetricsColumns.end())
         continue;
       EXPECT_TRUE(is_number(csv.cell(r, column))) << column << " = [" << csv.cell(r, column) << "]";
     }
@@ -286,8 +312,8 @@ TEST_F(Cli, SummaryJsonHasStatusStepsAndFinalMetrics) {
   const json& final_metrics = ours.at("final");
   const Csv csv = read_csv(out / "metrics.csv");
   const std::size_t last = csv.rows.size() - 1;
-  for (const char* key : {"kinetic_energy", "gravity_energy", "spring_energy", "max_stretch", "mean_stretch",
-                          "lowest_y", "projected_area"}) {
+  for (const char* key : {"kinetic_energy", "gravity_energy", "spring_energy", "max_stretch",
+                          "mean_stretch", "lowest_y", "projected_area"}) {
     ASSERT_TRUE(final_metrics.contains(key)) << key;
     ASSERT_TRUE(final_metrics.at(key).is_number()) << key;
     EXPECT_EQ(final_metrics.at(key).get<double>(), std::stod(csv.cell(last, key))) << key;
@@ -304,7 +330,8 @@ TEST_F(Cli, ResolvedYamlValidatesAndReproducesTheRun) {
   ASSERT_EQ(run(file, out).exit_code, 0);
   const fs::path resolved = out / "resolved.yaml";
   const std::string text = read_text(resolved);
-  for (const char* expected : {"frame_rate: 60", "gravity: [0, -9.81, 0]", "thickness: 0.005", "seed: 7"})
+  for (const char* expected :
+       {"frame_rate: 60", "gravity: [0, -9.81, 0]", "thickness: 0.005", "seed: 7"})
     EXPECT_NE(text.find(expected), std::string::npos) << expected << " missing from\n" << text;
 
   const auto validated = run_drapelab({"validate", resolved.string()});
@@ -328,15 +355,18 @@ TEST_F(Cli, AdaptiveSubstepsAreCountedRecordedAndShown) {
   ASSERT_TRUE(ours.contains("integrator_statistics")) << ours.dump();
   const auto& counts = ours.at("integrator_statistics");
   EXPECT_GE(counts.at("substeps").get<double>(), ours.at("steps").get<double>());
-  EXPECT_GE(counts.at("substeps_per_step_max").get<double>(), counts.at("substeps_per_step_min").get<double>());
+  EXPECT_GE(counts.at("substeps_per_step_max").get<double>(),
+            counts.at("substeps_per_step_min").get<double>());
   EXPECT_TRUE(ours.at("phase_seconds").contains("step_bound")) << ours.dump();
   EXPECT_NE(read_text(out / "resolved.yaml").find("adaptive_substeps: true"), std::string::npos);
   const fs::path again = dir() / "again";
   ASSERT_EQ(run(out / "resolved.yaml", again).exit_code, 0);
   EXPECT_EQ(read_text(again / "metrics.csv"), read_text(out / "metrics.csv"));
-  const auto validated = run_drapelab({"validate", file.string(), "--set", "solvers.0.adaptive_substeps=true"});
+  const auto validated =
+      run_drapelab({"validate", file.string(), "--set", "solvers.0.adaptive_substeps=true"});
   EXPECT_EQ(validated.exit_code, 0) << all_output(validated);
-  EXPECT_NE(validated.output.find("adaptive substeps: 0.9 x the shape's stable step"), std::string::npos)
+  EXPECT_NE(validated.output.find("adaptive substeps: 0.9 x the shape's stable step"),
+            std::string::npos)
       << validated.output;
 }
 
@@ -365,18 +395,22 @@ TEST_F(Cli, TwoSolversGetOneCompareRowPerFrame) {
     EXPECT_EQ(compare.cell(r, "frame"), std::to_string(r));
     EXPECT_TRUE(is_number(compare.cell(r, "rms_distance")));
     EXPECT_TRUE(is_number(compare.cell(r, "max_distance")));
-    EXPECT_LE(std::stod(compare.cell(r, "rms_distance")), std::stod(compare.cell(r, "max_distance")));
+    EXPECT_LE(std::stod(compare.cell(r, "rms_distance")),
+              std::stod(compare.cell(r, "max_distance")));
   }
   EXPECT_EQ(std::stod(compare.cell(0, "max_distance")), 0.0) << "both start from the same state";
-  EXPECT_GT(std::stod(compare.cell(kFrames, "max_distance")), 0.0) << "different steps give different states";
+  EXPECT_GT(std::stod(compare.cell(kFrames, "max_distance")), 0.0)
+      << "different steps give different states";
 
   const Csv metrics = read_csv(out / "metrics.csv");
   EXPECT_EQ(metrics.rows_of("solver", "ours").size(), static_cast<std::size_t>(kFrames + 1));
   EXPECT_EQ(metrics.rows_of("solver", "fine").size(), static_cast<std::size_t>(kFrames + 1));
 
   const json summary = json::parse(read_text(out / "summary.json"));
-  EXPECT_EQ(summary.at("solvers").at("ours").at("steps").get<long long>(), kFrames * kStepsPerFrame);
-  EXPECT_EQ(summary.at("solvers").at("fine").at("steps").get<long long>(), kFrames * 2 * kStepsPerFrame);
+  EXPECT_EQ(summary.at("solvers").at("ours").at("steps").get<long long>(),
+            kFrames * kStepsPerFrame);
+  EXPECT_EQ(summary.at("solvers").at("fine").at("steps").get<long long>(),
+            kFrames * 2 * kStepsPerFrame);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -470,8 +504,10 @@ TEST_F(Cli, BadSetIsExit2) {
   const fs::path out = dir() / "out";
   const auto result = run(file, out, {"--set", "cloth.springs.stretch.ks=-3"});
   EXPECT_EQ(result.exit_code, 2) << all_output(result);
-  EXPECT_NE(result.output.find("--set cloth.springs.stretch.ks=-3"), std::string::npos) << result.output;
-  EXPECT_NE(result.output.find("cloth.springs.stretch.ks must be > 0"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("--set cloth.springs.stretch.ks=-3"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("cloth.springs.stretch.ks must be > 0"), std::string::npos)
+      << result.output;
   EXPECT_FALSE(fs::exists(out));
 
   const auto malformed = run(file, out, {"--set", "seed"});
@@ -483,7 +519,8 @@ TEST_F(Cli, BadSetIsExit2) {
 TEST_F(Cli, GoodSetChangesTheRun) {
   const fs::path file = scene("small.yaml", kSmall);
   const fs::path out = dir() / "out";
-  const auto result = run(file, out, {"--set", "gravity=[0,-1.62,0]", "--set", "cloth.resolution=[5,7]"});
+  const auto result =
+      run(file, out, {"--set", "gravity=[0,-1.62,0]", "--set", "cloth.resolution=[5,7]"});
   ASSERT_EQ(result.exit_code, 0) << all_output(result);
   const std::string resolved = read_text(out / "resolved.yaml");
   EXPECT_NE(resolved.find("gravity: [0, -1.62, 0]"), std::string::npos) << resolved;
@@ -511,7 +548,8 @@ TEST_F(Cli, RunningTwiceGivesByteIdenticalTables) {
   ASSERT_EQ(run(file, dir() / "second").exit_code, 0);
   const std::string metrics = read_text(dir() / "first" / "metrics.csv");
   EXPECT_EQ(read_text(dir() / "second" / "metrics.csv"), metrics);
-  EXPECT_EQ(read_text(dir() / "second" / "compare.csv"), read_text(dir() / "first" / "compare.csv"));
+  EXPECT_EQ(read_text(dir() / "second" / "compare.csv"),
+            read_text(dir() / "first" / "compare.csv"));
   // ...and the seed matters: another seed perturbs the sheet differently.
   ASSERT_EQ(run(file, dir() / "third", {"--set", "seed=8"}).exit_code, 0);
   EXPECT_NE(read_text(dir() / "third" / "metrics.csv"), metrics);
@@ -587,14 +625,16 @@ TEST_F(Cli, UnstableRunIsExit1WithAHelpfulMessageAndValidFiles) {
   EXPECT_EQ(result.exit_code, 1) << all_output(result);
   EXPECT_NE(result.output.find("unstable"), std::string::npos) << result.output;
 
-  const json summary = json::parse(read_text(out / "summary.json"));  // throws (fails) if not valid JSON
+  const json summary =
+      json::parse(read_text(out / "summary.json"));  // throws (fails) if not valid JSON
   const json& ours = summary.at("solvers").at("ours");
   EXPECT_EQ(ours.at("status"), "unstable");
   const std::string message = ours.at("message");
   EXPECT_NE(message.find("particle"), std::string::npos) << message;
   EXPECT_NE(message.find("step"), std::string::npos) << message;
   EXPECT_NE(message.find("Try"), std::string::npos) << message;
-  EXPECT_LT(ours.at("steps").get<long long>(), kFrames) << "the solver stops when it becomes unstable";
+  EXPECT_LT(ours.at("steps").get<long long>(), kFrames)
+      << "the solver stops when it becomes unstable";
 
   ExpectWellFormedCsv(out / "metrics.csv");
   ExpectWellFormedCsv(out / "compare.csv");
@@ -608,13 +648,15 @@ TEST_F(Cli, UnstableRunIsExit1WithAHelpfulMessageAndValidFiles) {
 TEST_F(Cli, ExplicitEulerWithABigStepIsUnstable) {
   const fs::path file = scene("small.yaml", kSmall);
   const fs::path out = dir() / "out";
-  const auto result =
-      run(file, out, {"--set", "solvers.0.integrator=explicit_euler", "--set", "solvers.0.dt=0.0041666666666666667"});
+  const auto result = run(file, out,
+                          {"--set", "solvers.0.integrator=explicit_euler", "--set",
+                           "solvers.0.dt=0.0041666666666666667"});
   EXPECT_EQ(result.exit_code, 1) << all_output(result);
   const json summary = json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(summary.at("solvers").at("ours").at("status"), "unstable");
-  EXPECT_NE(summary.at("solvers").at("ours").at("message").get<std::string>().find("symplectic_euler"),
-            std::string::npos)
+  EXPECT_NE(
+      summary.at("solvers").at("ours").at("message").get<std::string>().find("symplectic_euler"),
+      std::string::npos)
       << "the advice names the stable integrator";
 }
 
@@ -636,8 +678,10 @@ TEST_F(Cli, OneUnstableSolverStopsAloneAndTheOtherFinishes) {
   ExpectWellFormedCsv(out / "compare.csv");
   const Csv metrics = read_csv(out / "metrics.csv");
   const auto ours_rows = metrics.rows_of("solver", "ours");
-  ASSERT_EQ(ours_rows.size(), static_cast<std::size_t>(kFrames + 1)) << "every frame of the stable solver";
-  for (std::size_t k = 0; k < ours_rows.size(); ++k) EXPECT_EQ(metrics.cell(ours_rows[k], "frame"), std::to_string(k));
+  ASSERT_EQ(ours_rows.size(), static_cast<std::size_t>(kFrames + 1))
+      << "every frame of the stable solver";
+  for (std::size_t k = 0; k < ours_rows.size(); ++k)
+    EXPECT_EQ(metrics.cell(ours_rows[k], "frame"), std::to_string(k));
   const auto wild_rows = metrics.rows_of("solver", "wild");
   EXPECT_GE(wild_rows.size(), 1u);
   EXPECT_LT(wild_rows.size(), static_cast<std::size_t>(kFrames + 1));
@@ -670,14 +714,16 @@ TEST_F(Cli, ValidateBadSceneIsExit2WithFileAndLine) {
   EXPECT_NE(result.output.find(file.string() + ":7:"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("cloth.resolution"), std::string::npos) << result.output;
 
-  const auto bad_set = run_drapelab({"validate", scene("good.yaml", kSmall).string(), "--set", "duration=-1"});
+  const auto bad_set =
+      run_drapelab({"validate", scene("good.yaml", kSmall).string(), "--set", "duration=-1"});
   EXPECT_EQ(bad_set.exit_code, 2) << all_output(bad_set);
   EXPECT_NE(bad_set.output.find("--set duration=-1"), std::string::npos) << bad_set.output;
 }
 
 TEST_F(Cli, ValidatePrintResolvedGivesALoadableScene) {
   const fs::path file = scene("small.yaml", kSmall);
-  const auto result = run_drapelab({"validate", file.string(), "--print-resolved", "--set", "seed=11"});
+  const auto result =
+      run_drapelab({"validate", file.string(), "--print-resolved", "--set", "seed=11"});
   ASSERT_EQ(result.exit_code, 0) << all_output(result);
   EXPECT_NE(result.output.find("seed: 11"), std::string::npos) << result.output;
   const fs::path printed = scene("printed.yaml", result.output);

@@ -43,15 +43,17 @@ class CliInterrupt : public TempDirTest {};
 
 TEST_F(CliInterrupt, CtrlCLeavesCompleteFilesAndExits130) {
   const fs::path scene = dir() / "long.yaml";
-  std::ofstream(scene) << "name: long_run\nduration: 600\nframe_rate: 60\n"
-                          "cloth: {resolution: [33, 33], mass: 0.25, plane: xy, pins: [top_corners],\n"
-                          "        springs: {stretch: {ks: 2000, kd: 0.02}, shear: {ks: 200, kd: 0.01},\n"
-                          "                  bend: {ks: 20, kd: 0.002}}}\n"
-                          "solvers: [{name: ours, dt: 0.000166666666666666667}]\n";
+  std::ofstream(scene)
+      << "name: long_run\nduration: 600\nframe_rate: 60\n"
+         "cloth: {resolution: [33, 33], mass: 0.25, plane: xy, pins: [top_corners],\n"
+         "        springs: {stretch: {ks: 2000, kd: 0.02}, shear: {ks: 200, kd: 0.01},\n"
+         "                  bend: {ks: 20, kd: 0.002}}}\n"
+         "solvers: [{name: ours, dt: 0.000166666666666666667}]\n";
   const fs::path out = dir() / "run";
   // Interrupted once a few frames are on disk.
-  const int exit_code = interrupt_drapelab_when({"run", scene.string(), "--out", out.string()},
-                                                [&] { return count_lines(out / "metrics.csv") >= 4; });
+  const int exit_code =
+      interrupt_drapelab_when({"run", scene.string(), "--out", out.string()},
+                              [&] { return count_lines(out / "metrics.csv") >= 4; });
   EXPECT_EQ(exit_code, 130);
   const std::size_t frames = whole_rows(out / "metrics.csv").size();
   EXPECT_GE(frames, 3u);
@@ -63,15 +65,16 @@ TEST_F(CliInterrupt, CtrlCLeavesCompleteFilesAndExits130) {
   EXPECT_EQ(summary["run"]["frames_done"].get<std::size_t>() + 1, frames);
 }
 
-// Ctrl-C during drapelab bench --repeat: the cells already measured stay in bench.csv as whole rows,
-// and the program exits with 130. The second cell (65 x 65, Bullet's deformable cloth at tens of
-// seconds per run) is still running when the signal comes.
+// Ctrl-C during drapelab bench --repeat: the cells already measured stay in bench.csv as whole
+// rows, and the program exits with 130. The second cell (65 x 65, Bullet's deformable cloth at tens
+// of seconds per run) is still running when the signal comes.
 TEST_F(CliInterrupt, CtrlCDuringABenchKeepsTheMeasuredRowsAndExits130) {
   const fs::path out = dir() / "bench";
   const std::string scene = std::string(DRAPELAB_SOURCE_DIR) + "/scenes/sphere_drape.yaml";
   // Interrupted once the first cell's three rows are on disk.
   const int exit_code = interrupt_drapelab_when(
-      {"bench", "--sizes", "5,65", "--repeat", "2", "--duration", "1", "--scenes", scene, "--out", out.string()},
+      {"bench", "--sizes", "5,65", "--repeat", "2", "--duration", "1", "--scenes", scene, "--out",
+       out.string()},
       [&] { return count_lines(out / "bench.csv") >= 4; }, std::chrono::seconds(120));
   EXPECT_EQ(exit_code, 130);
   std::size_t small_cell = 0;

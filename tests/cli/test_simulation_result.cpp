@@ -38,7 +38,8 @@ solvers:
   const auto loaded = scene::load_scene_text(text, "short_fall.yaml", {});
   ASSERT_TRUE(loaded.ok()) << (loaded.errors.empty() ? "" : loaded.errors.front());
   const runner::SceneSetup setup = runner::build_scene_setup(*loaded.scene);
-  const runner::SimulationResult result = runner::simulate_solver(*loaded.scene, loaded.scene->solvers.front(), setup);
+  const runner::SimulationResult result =
+      runner::simulate_solver(*loaded.scene, loaded.scene->solvers.front(), setup);
   ASSERT_EQ(result.status, SolverStatus::ok) << result.message;
   ASSERT_EQ(result.frames_recorded, 5);  // frames 0 to 4
   ASSERT_EQ(result.stepping_seconds_at_frame.size(), 5u);

@@ -27,7 +27,8 @@ TEST(StepSearch, BisectsToNeighbouringStepsPerFrame) {
       SyntheticRule rule{threshold, {}};
       drapelab::runner::StepSearchLimits limits;
       limits.tolerance = 0.0;
-      const auto outcome = drapelab::runner::search_largest_stable_step(start, limits, std::ref(rule));
+      const auto outcome =
+          drapelab::runner::search_largest_stable_step(start, limits, std::ref(rule));
       ASSERT_TRUE(outcome.stable_k);
       EXPECT_EQ(*outcome.stable_k, threshold) << "start " << start;
       if (threshold > 1) {

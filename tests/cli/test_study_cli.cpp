@@ -1,5 +1,5 @@
-// `drapelab stability` and `drapelab study` end to end on tiny scenes written by the tests (the step
-// search alone: test_step_search.cpp).
+// `drapelab stability` and `drapelab study` end to end on tiny scenes written by the tests (the
+// step search alone: test_step_search.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -131,7 +131,8 @@ TEST_F(StudyCli, StabilityMaxDtCapsTheSearch) {
 
 // Both solver-choosing verbs on the sheet with `options` exit 2, say every one of `expected`, and
 // write nothing.
-void expect_both_verbs_refuse(const fs::path& sheet, const fs::path& out, const std::vector<std::string>& options,
+void expect_both_verbs_refuse(const fs::path& sheet, const fs::path& out,
+                              const std::vector<std::string>& options,
                               const std::vector<std::string>& expected) {
   for (const std::string verb : {"stability", "study"}) {
     std::vector<std::string> arguments = {verb, sheet.string()};
@@ -139,7 +140,8 @@ void expect_both_verbs_refuse(const fs::path& sheet, const fs::path& out, const 
     if (verb == "study") arguments.insert(arguments.end(), {"--out", out.string()});
     const auto result = run_drapelab(arguments);
     EXPECT_EQ(result.exit_code, 2) << verb << ": " << result.output;
-    for (const auto& text : expected) EXPECT_NE(result.output.find(text), std::string::npos) << result.output;
+    for (const auto& text : expected)
+      EXPECT_NE(result.output.find(text), std::string::npos) << result.output;
   }
   EXPECT_FALSE(fs::exists(out));
 }
@@ -150,7 +152,8 @@ TEST_F(StudyCli, UnknownSolverIsBadInputNamingTheChoices) {
 }
 
 TEST_F(StudyCli, AdaptiveSolverIsBadInputForTheStepVaryingVerbs) {
-  expect_both_verbs_refuse(scene("sheet.yaml", kSheet), dir() / "out", {"--set", "solvers.0.adaptive_substeps=true"},
+  expect_both_verbs_refuse(scene("sheet.yaml", kSheet), dir() / "out",
+                           {"--set", "solvers.0.adaptive_substeps=true"},
                            {"adaptive_substeps: true", "solvers.0.adaptive_substeps=false"});
 }
 

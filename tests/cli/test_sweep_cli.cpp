@@ -162,9 +162,9 @@ TEST_F(SweepCli, RunsEveryCombinationOnceInOdometerOrder) {
 TEST_F(SweepCli, FailedRunsAreRowsAndExitOne) {
   const fs::path out = dir() / "sweep";
   // ks = -1 is out of range (bad input, refused before running); dt = 1/60 s blows up (unstable).
-  const auto result =
-      run_drapelab({"sweep", scene().string(), "--vary", "cloth.springs.bend.ks=1,-1", "--vary",
-                    "solvers.0.dt=0.00026041666666666666," + kSweepUnstableDt, "--out", out.string()});
+  const auto result = run_drapelab(
+      {"sweep", scene().string(), "--vary", "cloth.springs.bend.ks=1,-1", "--vary",
+       "solvers.0.dt=0.00026041666666666666," + kSweepUnstableDt, "--out", out.string()});
   EXPECT_EQ(result.exit_code, 1) << result.output;
   const Table table = read_table(out / "sweep.csv");
   ASSERT_EQ(table.rows.size(), 4u) << read_text(out / "sweep.csv");
@@ -268,8 +268,8 @@ TEST_F(SweepCli, CtrlCStopsTheRunsAndKeepsTheTableValid) {
     }
     return running == 2;
   };
-  EXPECT_EQ(interrupt_drapelab_when({"sweep", scene().string(), "--vary", "duration=600,601,602", "--jobs", "2", "--out",
-                                     out.string()},
+  EXPECT_EQ(interrupt_drapelab_when({"sweep", scene().string(), "--vary", "duration=600,601,602",
+                                     "--jobs", "2", "--out", out.string()},
                                     frames_written),
             130);
   const Table table = read_table(out / "sweep.csv");

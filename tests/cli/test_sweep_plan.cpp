@@ -1,5 +1,5 @@
-// The parts of `drapelab sweep` on their own: splitting --vary values, the combination order, folder
-// names, and telling a misspelt key from a bad value in the scene loader's errors.
+// The parts of `drapelab sweep` on their own: splitting --vary values, the combination order,
+// folder names, and telling a misspelt key from a bad value in the scene loader's errors.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -13,7 +13,6 @@
 namespace {
 
 using drapelab::fixtures::kSweepSheet;
-
 
 TEST(SweepPlan, SplitsValuesOnCommasOutsideBracketsAndQuotes) {
   std::string error;

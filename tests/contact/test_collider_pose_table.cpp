@@ -6,10 +6,10 @@
 #include <memory>
 #include <numbers>
 
+#include "contact/penalty_contact.hpp"
 #include "drapelab/collider_pose_table.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "contact/penalty_contact.hpp"
 #include "fixtures/sheets.hpp"
 
 namespace drapelab {
@@ -19,22 +19,26 @@ TEST(ColliderPoseTable, EndsAreExactAndBetweenThemTheMotionIsRigidWithConstantVe
   ColliderSubstepMotion m;
   m.start.translation() = Eigen::Vector3d(1.0, 2.0, 3.0);
   m.start.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  m.velocity = {0.5, 0.0, -1.0};      // m/s
+  m.velocity = {0.5, 0.0, -1.0};         // m/s
   m.angular_velocity = {0.0, 2.0, 0.0};  // rad/s
-  const double t0 = 0.25, h = 0.01;  // s
+  const double t0 = 0.25, h = 0.01;      // s
   m.end = m.start;
   m.end.translation() += h * m.velocity;
-  m.end.linear() = Eigen::AngleAxisd(2.0 * h, Eigen::Vector3d::UnitY()).toRotationMatrix() * m.start.linear();
+  m.end.linear() =
+      Eigen::AngleAxisd(2.0 * h, Eigen::Vector3d::UnitY()).toRotationMatrix() * m.start.linear();
   ColliderPoseTable table(1);
   table.set_substep(t0, t0 + h);
   table.set(0, m);
   EXPECT_TRUE(table.at(0, t0).pose.isApprox(m.start, 0.0));  // the host's poses, bit for bit
   EXPECT_TRUE(table.at(0, t0 + h).pose.isApprox(m.end, 0.0));
   const ColliderKinematics middle = table.at(0, t0 + 0.5 * h);
-  EXPECT_LT((middle.pose.translation() - (m.start.translation() + 0.5 * h * m.velocity)).norm(), 1e-15);
-  const Eigen::Matrix3d half_turn = Eigen::AngleAxisd(h, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  EXPECT_LT((middle.pose.translation() - (m.start.translation() + 0.5 * h * m.velocity)).norm(),
+            1e-15);
+  const Eigen::Matrix3d half_turn =
+      Eigen::AngleAxisd(h, Eigen::Vector3d::UnitY()).toRotationMatrix();
   EXPECT_LT((middle.pose.linear() - half_turn * m.start.linear()).cwiseAbs().maxCoeff(), 1e-15);
-  // A point 1 m along x from the collider's origin moves with v + w x r = (0.5, 0, -1) + (0, 0, -2).
+  // A point 1 m along x from the collider's origin moves with v + w x r = (0.5, 0, -1) + (0, 0,
+  // -2).
   const Eigen::Vector3d p = middle.pose.translation() + Eigen::Vector3d::UnitX();
   EXPECT_LT((middle.point_velocity(p) - Eigen::Vector3d(0.5, 0.0, -3.0)).norm(), 1e-15);
   EXPECT_TRUE(middle.moving());
@@ -58,10 +62,12 @@ TEST(ColliderPoseTable, ContactModelPushesWhereTheTablePutsTheCollider) {
   moved.velocity = {0.0, 0.5, 0.0};  // m/s, rising
   table->set_substep(0.0, 1e-3);
   table->set(0, moved);
-  const double depth = 0.004;  // m
+  const double depth = 0.004;                                                        // m
   Eigen::Matrix3Xd x = Eigen::Matrix3Xd::Constant(3, model.particle_count(), 10.0);  // far from all
-  x.col(0) = Eigen::Vector3d(2.0, ball.radius + spec.thickness - depth, 0.0);       // on the table's ball
-  x.col(1) = Eigen::Vector3d(0.0, ball.radius + spec.thickness - depth, 0.0);       // on the scene's ball
+  x.col(0) =
+      Eigen::Vector3d(2.0, ball.radius + spec.thickness - depth, 0.0);  // on the table's ball
+  x.col(1) =
+      Eigen::Vector3d(0.0, ball.radius + spec.thickness - depth, 0.0);  // on the scene's ball
   const Eigen::Matrix3Xd v = Eigen::Matrix3Xd::Zero(3, model.particle_count());
   std::vector<ColliderContactTotals> totals;
 
@@ -69,7 +75,8 @@ TEST(ColliderPoseTable, ContactModelPushesWhereTheTablePutsTheCollider) {
   Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, model.particle_count());
   hosted.add_contact_forces(model, 0.0, 1e-3, x, v, force, totals);
   // The particle is at rest and the surface rises at 0.5 m/s: it approaches at 0.5 m/s.
-  const double expected = penalty_normal_force(depth, -0.5, parameters.stiffness, parameters.damping);  // N
+  const double expected =
+      penalty_normal_force(depth, -0.5, parameters.stiffness, parameters.damping);  // N
   EXPECT_NEAR(force(1, 0), expected, 1e-12);
   EXPECT_EQ(force.col(1), Eigen::Vector3d::Zero());
   EXPECT_EQ(totals.at(0).contact_count, 1);
@@ -83,8 +90,9 @@ TEST(ColliderPoseTable, ContactModelPushesWhereTheTablePutsTheCollider) {
 }
 
 TEST(ColliderPoseTable, ContactModelRefusesATableOfTheWrongSize) {
-  EXPECT_THROW(ContactModel({Collider{}}, ContactParameters{}, 0.01, std::make_shared<ColliderPoseTable>(2)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      ContactModel({Collider{}}, ContactParameters{}, 0.01, std::make_shared<ColliderPoseTable>(2)),
+      std::invalid_argument);
 }
 
 }  // namespace

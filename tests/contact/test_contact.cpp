@@ -8,9 +8,9 @@
 #include <numbers>
 #include <random>
 
+#include "contact/penalty_contact.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/contact_fcl.hpp"
-#include "contact/penalty_contact.hpp"
 
 namespace drapelab {
 namespace {
@@ -18,14 +18,16 @@ namespace {
 // Closed-form signed distances in the collider's local frame (negative inside).
 double sphere_sdf(const Eigen::Vector3d& p, double radius) { return p.norm() - radius; }
 
-double cylinder_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& axis, double radius, double height) {
+double cylinder_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& axis, double radius,
+                    double height) {
   const double along = p.dot(axis);
   const double across = (p - along * axis).norm();
   const Eigen::Vector2d q(across - radius, std::abs(along) - 0.5 * height);
   return std::min(q.maxCoeff(), 0.0) + q.cwiseMax(0.0).norm();
 }
 
-double capsule_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& axis, double radius, double height) {
+double capsule_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& axis, double radius,
+                   double height) {
   const double along = std::clamp(p.dot(axis), -0.5 * height, 0.5 * height);
   return (p - along * axis).norm() - radius;
 }
@@ -35,7 +37,9 @@ double box_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& half) {
   return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
 }
 
-double plane_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& normal) { return p.dot(normal.normalized()); }
+double plane_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& normal) {
+  return p.dot(normal.normalized());
+}
 
 struct ShapeCase {
   Collider collider;
@@ -54,13 +58,19 @@ std::vector<ShapeCase> shape_cases() {
   cylinder.radius = 0.4;
   cylinder.height = 0.6;
   cylinder.axis = Eigen::Vector3d(0.2, 1.0, -0.3).normalized();
-  cases.push_back({cylinder, [a = cylinder.axis](const Eigen::Vector3d& p) { return cylinder_sdf(p, a, 0.4, 0.6); }, 0.6});
+  cases.push_back(
+      {cylinder,
+       [a = cylinder.axis](const Eigen::Vector3d& p) { return cylinder_sdf(p, a, 0.4, 0.6); },
+       0.6});
   Collider capsule;
   capsule.shape = ColliderShape::capsule;
   capsule.radius = 0.1;
   capsule.height = 0.5;
   capsule.axis = Eigen::Vector3d::UnitX();
-  cases.push_back({capsule, [](const Eigen::Vector3d& p) { return capsule_sdf(p, Eigen::Vector3d::UnitX(), 0.1, 0.5); }, 0.45});
+  cases.push_back(
+      {capsule,
+       [](const Eigen::Vector3d& p) { return capsule_sdf(p, Eigen::Vector3d::UnitX(), 0.1, 0.5); },
+       0.45});
   Collider box;
   box.shape = ColliderShape::box;
   box.half_extents = {0.5, 0.2, 0.3};
@@ -68,13 +78,14 @@ std::vector<ShapeCase> shape_cases() {
   Collider plane;
   plane.shape = ColliderShape::plane;
   plane.normal = Eigen::Vector3d(0.1, 1.0, 0.2).normalized();
-  cases.push_back({plane, [n = plane.normal](const Eigen::Vector3d& p) { return plane_sdf(p, n); }, 0.5});
+  cases.push_back(
+      {plane, [n = plane.normal](const Eigen::Vector3d& p) { return plane_sdf(p, n); }, 0.5});
   return cases;
 }
 
 // Gradient of a signed distance by central differences; nothing where it is not differentiable.
-std::optional<Eigen::Vector3d> sdf_gradient(const std::function<double(const Eigen::Vector3d&)>& sdf,
-                                            const Eigen::Vector3d& p) {
+std::optional<Eigen::Vector3d> sdf_gradient(
+    const std::function<double(const Eigen::Vector3d&)>& sdf, const Eigen::Vector3d& p) {
   const double step = 1e-6;
   Eigen::Vector3d g;
   for (int c = 0; c < 3; ++c) {
@@ -101,7 +112,8 @@ TEST(FclConversion, DepthAndNormalMatchClosedFormsUnderRotation) {
     const Eigen::Isometry3d shape_pose = collider_in_world * fcl.shape_in_collider;
     int penetrating = 0, separated = 0;
     for (int trial = 0; trial < 4000; ++trial) {
-      const Eigen::Vector3d local(u(random) * shape.extent, u(random) * shape.extent, u(random) * shape.extent);
+      const Eigen::Vector3d local(u(random) * shape.extent, u(random) * shape.extent,
+                                  u(random) * shape.extent);
       const double sd = shape.local_sdf(local);
       if (sd < -0.8 * shape.extent) continue;
       const Eigen::Vector3d world = collider_in_world * local;
@@ -169,7 +181,8 @@ TEST(FclConversion, PlaneIsAHalfSpaceNotATwoSidedPlane) {
   const FclCollider fcl = make_fcl_collider(floor);
   const ParticleContactQuery query(0.01);
   const Eigen::Isometry3d pose = collider_pose(floor, 0.0) * fcl.shape_in_collider;
-  const auto deep = query.contact(fcl, pose, Eigen::Vector3d(3, 0.2 - 0.5, 1));  // half a metre below
+  const auto deep =
+      query.contact(fcl, pose, Eigen::Vector3d(3, 0.2 - 0.5, 1));  // half a metre below
   ASSERT_TRUE(deep.has_value());
   EXPECT_NEAR(deep->depth, 0.51, 1e-12);
   EXPECT_LT((deep->normal - Eigen::Vector3d::UnitY()).norm(), 1e-12);  // pushed up, never down
@@ -186,7 +199,8 @@ TEST(FclConversion, BoundsHoldTheShape) {
     const Eigen::Isometry3d pose = collider_pose(shape.collider, 0.0);
     const Eigen::AlignedBox3d bounds = collider_bounds(fcl, pose * fcl.shape_in_collider, 0.0);
     for (int trial = 0; trial < 2000; ++trial) {
-      const Eigen::Vector3d local(u(random) * shape.extent, u(random) * shape.extent, u(random) * shape.extent);
+      const Eigen::Vector3d local(u(random) * shape.extent, u(random) * shape.extent,
+                                  u(random) * shape.extent);
       if (shape.local_sdf(local) <= 0.0) {
         EXPECT_TRUE(bounds.contains(pose * local));
       }
@@ -195,8 +209,8 @@ TEST(FclConversion, BoundsHoldTheShape) {
 }
 
 // The broad phase's bounding sphere: every point of the shape lies within it, and it is tight (the
-// farthest point of each shape, a sphere's surface, a capsule's tip, a cylinder's rim, a box's corner,
-// is on it).
+// farthest point of each shape, a sphere's surface, a capsule's tip, a cylinder's rim, a box's
+// corner, is on it).
 TEST(FclConversion, BoundingRadiusHoldsTheShapeAndIsTight) {
   std::mt19937_64 random(9);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -212,7 +226,8 @@ TEST(FclConversion, BoundingRadiusHoldsTheShapeAndIsTight) {
     EXPECT_NEAR(radius, expected[checked++], 1e-12);
     double farthest = 0.0;  // m, of the sampled points inside the shape
     for (int trial = 0; trial < 20000; ++trial) {
-      const Eigen::Vector3d local(u(random) * shape.extent, u(random) * shape.extent, u(random) * shape.extent);
+      const Eigen::Vector3d local(u(random) * shape.extent, u(random) * shape.extent,
+                                  u(random) * shape.extent);
       if (shape.local_sdf(local) > 0.0) continue;
       EXPECT_LE(local.norm(), radius) << local.transpose();
       farthest = std::max(farthest, local.norm());
@@ -235,13 +250,15 @@ TEST(ColliderMotion, ConstantVelocityAndSpin) {
   // Point velocity is the derivative of the posed material point.
   const Eigen::Vector3d local(0.3, -0.2, 0.1);
   const double dt = 1e-6;
-  const Eigen::Vector3d numeric = (collider_pose(c, 1.0 + dt) * local - collider_pose(c, 1.0 - dt) * local) / (2 * dt);
+  const Eigen::Vector3d numeric =
+      (collider_pose(c, 1.0 + dt) * local - collider_pose(c, 1.0 - dt) * local) / (2 * dt);
   EXPECT_LT((collider_point_velocity(c, 1.0, pose * local) - numeric).norm(), 1e-7);
 }
 
 TEST(ColliderMotion, KeyframesInterpolateAndHoldAtTheEnds) {
   Collider c;
-  c.motion.keyframes = {{0.5, {0, 0, 0}, {0, 0, 0}}, {1.5, {2, 0, 0}, {0, 0, 90}}, {2.5, {2, 1, 0}, {0, 0, 90}}};
+  c.motion.keyframes = {
+      {0.5, {0, 0, 0}, {0, 0, 0}}, {1.5, {2, 0, 0}, {0, 0, 90}}, {2.5, {2, 1, 0}, {0, 0, 90}}};
   EXPECT_LT((collider_pose(c, 0.0).translation()).norm(), 1e-15);
   EXPECT_LT((collider_pose(c, 1.0).translation() - Eigen::Vector3d(1, 0, 0)).norm(), 1e-15);
   EXPECT_LT((collider_pose(c, 2.0).translation() - Eigen::Vector3d(2, 0.5, 0)).norm(), 1e-15);
@@ -252,15 +269,18 @@ TEST(ColliderMotion, KeyframesInterpolateAndHoldAtTheEnds) {
   const Eigen::Vector3d local(0.2, 0.3, -0.1);
   for (double t : {0.7, 1.2, 2.0}) {
     const double dt = 1e-6;
-    const Eigen::Vector3d numeric = (collider_pose(c, t + dt) * local - collider_pose(c, t - dt) * local) / (2 * dt);
-    EXPECT_LT((collider_point_velocity(c, t, collider_pose(c, t) * local) - numeric).norm(), 1e-6) << t;
+    const Eigen::Vector3d numeric =
+        (collider_pose(c, t + dt) * local - collider_pose(c, t - dt) * local) / (2 * dt);
+    EXPECT_LT((collider_point_velocity(c, t, collider_pose(c, t) * local) - numeric).norm(), 1e-6)
+        << t;
   }
   EXPECT_EQ(collider_point_velocity(c, 0.1, Eigen::Vector3d(1, 1, 1)).norm(), 0.0);
   EXPECT_EQ(collider_point_velocity(c, 3.0, Eigen::Vector3d(1, 1, 1)).norm(), 0.0);
 }
 
-// The keyframes' rotation acts after the collider's own: R(t) = R_keyframes(t) R(rotation), about the
-// keyframe centre; the velocity field is that of the keyframes alone (the fixed rotation cancels).
+// The keyframes' rotation acts after the collider's own: R(t) = R_keyframes(t) R(rotation), about
+// the keyframe centre; the velocity field is that of the keyframes alone (the fixed rotation
+// cancels).
 TEST(ColliderMotion, KeyframesTurnTheCollidersOwnRotationFurther) {
   Collider c;
   c.rotation = {30, 0, 0};
@@ -268,7 +288,8 @@ TEST(ColliderMotion, KeyframesTurnTheCollidersOwnRotationFurther) {
   const Eigen::Matrix3d own = euler_rotation(c.rotation);
   for (double t : {0.0, 0.25, 0.5, 1.0, 2.0}) {
     const double s = std::clamp(t, 0.0, 1.0);
-    const Eigen::Matrix3d keyed = Eigen::AngleAxisd(s * std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Matrix3d keyed =
+        Eigen::AngleAxisd(s * std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const Eigen::Isometry3d pose = collider_pose(c, t);
     EXPECT_LT((pose.linear() - keyed * own).cwiseAbs().maxCoeff(), 1e-12) << t;
     EXPECT_LT((pose.translation() - Eigen::Vector3d(s, 1, 0)).norm(), 1e-15) << t;
@@ -276,16 +297,21 @@ TEST(ColliderMotion, KeyframesTurnTheCollidersOwnRotationFurther) {
   Collider plain = c;
   plain.rotation.setZero();
   const Eigen::Vector3d p(0.3, 1.2, -0.4);
-  EXPECT_LT((collider_point_velocity(c, 0.5, p) - collider_point_velocity(plain, 0.5, p)).norm(), 1e-12);
+  EXPECT_LT((collider_point_velocity(c, 0.5, p) - collider_point_velocity(plain, 0.5, p)).norm(),
+            1e-12);
   const Eigen::Vector3d local(0.2, 0.3, -0.1);
   const double dt = 1e-6;
-  const Eigen::Vector3d numeric = (collider_pose(c, 0.5 + dt) * local - collider_pose(c, 0.5 - dt) * local) / (2 * dt);
-  EXPECT_LT((collider_point_velocity(c, 0.5, collider_pose(c, 0.5) * local) - numeric).norm(), 1e-6);
+  const Eigen::Vector3d numeric =
+      (collider_pose(c, 0.5 + dt) * local - collider_pose(c, 0.5 - dt) * local) / (2 * dt);
+  EXPECT_LT((collider_point_velocity(c, 0.5, collider_pose(c, 0.5) * local) - numeric).norm(),
+            1e-6);
 }
 
 TEST(PenaltyKernels, NormalForceIsSpringPlusDamperAndNeverPulls) {
-  EXPECT_DOUBLE_EQ(penalty_normal_force(0.002, -0.1, 5000, 5), 5000 * 0.002 + 5 * 0.1);  // approaching
-  EXPECT_DOUBLE_EQ(penalty_normal_force(0.002, 0.1, 5000, 5), 5000 * 0.002 - 5 * 0.1);   // separating
+  EXPECT_DOUBLE_EQ(penalty_normal_force(0.002, -0.1, 5000, 5),
+                   5000 * 0.002 + 5 * 0.1);  // approaching
+  EXPECT_DOUBLE_EQ(penalty_normal_force(0.002, 0.1, 5000, 5),
+                   5000 * 0.002 - 5 * 0.1);                    // separating
   EXPECT_EQ(penalty_normal_force(0.002, 10.0, 5000, 5), 0.0);  // separating fast: no pull
 }
 
@@ -301,14 +327,15 @@ TEST(PenaltyKernels, FrictionSticksWithinTheStaticConeAndSlidesBeyondIt) {
   const FrictionForce slide = coulomb_friction_force(fast, m, h, fn, 0.3, 0.2);
   EXPECT_LT((slide.force - Eigen::Vector3d(0, 0, 0.02)).norm(), 1e-15);
   EXPECT_EQ(slide.magnitude, slide.force.norm());
-  const FrictionForce unloaded = coulomb_friction_force(fast, m, h, 0.0, 0.3, 0.2);  // no load, no friction
+  const FrictionForce unloaded =
+      coulomb_friction_force(fast, m, h, 0.0, 0.3, 0.2);  // no load, no friction
   EXPECT_EQ(unloaded.force.norm(), 0.0);
   EXPECT_EQ(unloaded.magnitude, 0.0);
 }
 
-// The contact totals sum each friction's magnitude as returned, so it must be the force's norm to the
-// last bit in both branches; along oblique directions (where a norm rounds) a magnitude taken from
-// another expression, such as mu_k fn for sliding, differs from it in the last bits.
+// The contact totals sum each friction's magnitude as returned, so it must be the force's norm to
+// the last bit in both branches; along oblique directions (where a norm rounds) a magnitude taken
+// from another expression, such as mu_k fn for sliding, differs from it in the last bits.
 TEST(PenaltyKernels, FrictionMagnitudeIsTheForcesNormBitForBit) {
   const double m = 0.01, h = 1e-3, fn = 0.1;  // kg, s, N
   std::mt19937_64 random(23);
@@ -316,11 +343,14 @@ TEST(PenaltyKernels, FrictionMagnitudeIsTheForcesNormBitForBit) {
   int sticking = 0, sliding = 0;
   for (int k = 0; k < 400; ++k) {
     const Eigen::Vector3d direction = Eigen::Vector3d(u(random), u(random), u(random)).normalized();
-    const double speed = 0.001 + 0.004 * (0.5 + 0.5 * u(random));  // m/s: 0.02 to 0.05 N to stop, either side of 0.03
+    const double speed =
+        0.001 +
+        0.004 * (0.5 + 0.5 * u(random));  // m/s: 0.02 to 0.05 N to stop, either side of 0.03
     const FrictionForce friction = coulomb_friction_force(speed * direction, m, h, fn, 0.3, 0.2);
     const bool sticks = speed * m / h <= 0.3 * fn;
     (sticks ? sticking : sliding) += 1;
-    ASSERT_EQ(friction.magnitude, friction.force.norm()) << "direction " << direction.transpose() << ", speed " << speed;
+    ASSERT_EQ(friction.magnitude, friction.force.norm())
+        << "direction " << direction.transpose() << ", speed " << speed;
     EXPECT_NEAR(friction.magnitude, sticks ? speed * m / h : 0.2 * fn, 1e-15);
   }
   EXPECT_GT(sticking, 50);

@@ -1,6 +1,6 @@
-// Collision response with known answers (docs/validation.md, "V8 Cloth on a sphere" and "V9 Friction
-// on an incline") and the penalty model's bounds: weight balance, depth against stiffness, a cloth at
-// rest on a cylinder's cap, and a moving collider pushing through a pinned cloth.
+// Collision response with known answers (docs/validation.md, "V8 Cloth on a sphere" and "V9
+// Friction on an incline") and the penalty model's bounds: weight balance, depth against stiffness,
+// a cloth at rest on a cylinder's cap, and a moving collider pushing through a pinned cloth.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,9 +39,11 @@ struct Simulation {
 // A solver at 0.8 x its integrator's stable step estimate for the cloth with its contacts (implicit
 // Euler: 1/240 s, the loader's default for it; adaptive substeps: steps of 1/120 s, the loader's
 // default, each split by the solver).
-Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> colliders, ContactParameters contact,
-                           double air_damping, const ClothState* initial = nullptr,
-                           Integrator integrator = Integrator::symplectic_euler, bool adaptive = false) {
+Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> colliders,
+                           ContactParameters contact, double air_damping,
+                           const ClothState* initial = nullptr,
+                           Integrator integrator = Integrator::symplectic_euler,
+                           bool adaptive = false) {
   Simulation s;
   s.model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   s.contacts = std::make_shared<const ContactModel>(std::move(colliders), contact, spec.thickness);
@@ -52,7 +54,8 @@ Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> coll
   settings.adaptive_substeps = adaptive;
   s.h = integrator == Integrator::implicit_euler
             ? 1.0 / 240.0
-            : 0.8 * stable_step_estimate(*s.model, air_damping, {contact.stiffness, contact.damping}, integrator);
+            : 0.8 * stable_step_estimate(*s.model, air_damping,
+                                         {contact.stiffness, contact.damping}, integrator);
   if (adaptive) s.h = 1.0 / 120.0;
   const ClothState start = initial ? *initial : initial_grid_state(*s.model, spec, 0.0, 0);
   s.solver = std::make_unique<SpringDamperSolver>("test", s.model, start, settings);
@@ -71,8 +74,8 @@ TEST(ContactPhysics, RestingClothNormalForcesBalanceItsWeightAndSagIsMgOverK) {
   for (double stiffness : {100.0, 1000.0}) {
     // Particles resting at clearance 0.
     const GridClothSpec spec = fixtures::soft_sheet(11, 0.5, {0, 0.005, 0}, 0.1);
-    const double particle_mass = 0.1 / 121;                          // kg
-    const double damping = std::sqrt(stiffness * particle_mass);     // N*s/m: damping ratio 1/2
+    const double particle_mass = 0.1 / 121;                       // kg
+    const double damping = std::sqrt(stiffness * particle_mass);  // N*s/m: damping ratio 1/2
     Simulation s = make_simulation(spec, {fixtures::floor_collider()}, {stiffness, damping}, 2.0);
     s.run_for(2.0);
     const double weight = 0.1 * kGravity;  // N
@@ -93,8 +96,9 @@ void check_v8_sphere_drape(bool adaptive) {
   for (double k : {stiffness, 3.0 * stiffness}) {
     const GridClothSpec spec = fixtures::soft_sheet(41, 1.0, {0, 0.5 + radius + 0.2, 0}, 0.25);
     const double damping = std::sqrt(k * 0.25 / 1681);  // N*s/m: contact damping ratio about 1/2
-    Simulation s = make_simulation(spec, {fixtures::ball_collider({0, 0.5, 0}, radius)}, {k, damping}, 2.0, nullptr,
-                                   Integrator::symplectic_euler, adaptive);
+    Simulation s =
+        make_simulation(spec, {fixtures::ball_collider({0, 0.5, 0}, radius)}, {k, damping}, 2.0,
+                        nullptr, Integrator::symplectic_euler, adaptive);
     s.run_for(4.0);
     const CollisionMetrics c = s.collisions();
     const double mean_sag_bound = 0.25 * kGravity / (c.contact_count * k);  // M g / (N_c k)
@@ -123,7 +127,9 @@ void check_v8_sphere_drape(bool adaptive) {
   EXPECT_NEAR(penetrations[1] / penetrations[0], 1.0 / 3.0, 0.1);
 }
 
-TEST(ContactPhysics, V8ClothDrapedOnASphereRestsAtTheThicknessSymmetrically) { check_v8_sphere_drape(false); }
+TEST(ContactPhysics, V8ClothDrapedOnASphereRestsAtTheThicknessSymmetrically) {
+  check_v8_sphere_drape(false);
+}
 
 TEST(ContactPhysics, V8DrapeHoldsWithAdaptiveSubsteps) { check_v8_sphere_drape(true); }
 
@@ -136,9 +142,10 @@ TEST(ContactPhysics, ClothRestsFlatOnACylindersCap) {
   table.radius = 0.4;
   table.height = 0.8;  // top at y = 0.8
   const double stiffness = 1000.0;
-  const double damping = std::sqrt(stiffness * 0.1 / 625);  // N*s/m: contact damping ratio about 1/2
-  Simulation s =
-      make_simulation(fixtures::soft_sheet(25, 0.6, {0, 0.85, 0}, 0.1), {table}, {stiffness, damping}, 1.0);
+  const double damping =
+      std::sqrt(stiffness * 0.1 / 625);  // N*s/m: contact damping ratio about 1/2
+  Simulation s = make_simulation(fixtures::soft_sheet(25, 0.6, {0, 0.85, 0}, 0.1), {table},
+                                 {stiffness, damping}, 1.0);
   s.run_for(2.0);
   const auto& x = s.solver->state().x;
   const double particle_weight = (0.1 / 625) * kGravity;  // N
@@ -151,8 +158,8 @@ TEST(ContactPhysics, ClothRestsFlatOnACylindersCap) {
   EXPECT_GT(on_cap, 200);
 }
 
-// V9: a small patch on a plane tilted by theta with mu = 0.3 sticks iff tan(theta) <= mu (16.70 deg),
-// and otherwise slides with a = g (sin(theta) - mu cos(theta)).
+// V9: a small patch on a plane tilted by theta with mu = 0.3 sticks iff tan(theta) <= mu (16.70
+// deg), and otherwise slides with a = g (sin(theta) - mu cos(theta)).
 struct InclineRun {
   double creep = 0.0;         // m, distance moved along the slope between t = 0.5 s and 2.5 s
   double acceleration = 0.0;  // m/s^2 along the slope, from the velocity at 1 s and 2 s

@@ -16,11 +16,13 @@ namespace {
 const Eigen::Vector3d kUp = Eigen::Vector3d::UnitY();
 
 // A flat 0.3 m square specimen at height 0.5 m, 61 x 61 particles, over a support of radius 0.09 m.
-ClothModel specimen() { return build_grid_cloth(fixtures::flat_sheet(61, 0.3, {0.0, 0.5, 0.0}, 0.05)); }
+ClothModel specimen() {
+  return build_grid_cloth(fixtures::flat_sheet(61, 0.3, {0.0, 0.5, 0.0}, 0.05));
+}
 
-// Maps the square onto a star: the particle at angle theta and fraction f of the way from the centre
-// to the square's edge goes to radius f R(theta), R(theta) = radius (1 + depth cos(lobes theta)),
-// dropped below the table by how far it moved in.
+// Maps the square onto a star: the particle at angle theta and fraction f of the way from the
+// centre to the square's edge goes to radius f R(theta), R(theta) = radius (1 + depth cos(lobes
+// theta)), dropped below the table by how far it moved in.
 Eigen::Matrix3Xd star_shape(const ClothModel& model, int lobes, double radius, double depth) {
   Eigen::Matrix3Xd x = model.rest_positions;
   for (int i = 0; i < x.cols(); ++i) {
@@ -41,7 +43,7 @@ TEST(DrapeCoefficient, FlatSpecimenIsOne) {
   const DrapeMeter meter(model, {{0.0, 0.45, 0.0}, 0.09}, kUp);
   const DrapeMeasure m = meter.measure(model, model.rest_positions);
   EXPECT_DOUBLE_EQ(m.coefficient, 1.0);
-  EXPECT_NEAR(m.flat_area, 0.09, 0.09 * 2e-3);                         // 0.3 m squared
+  EXPECT_NEAR(m.flat_area, 0.09, 0.09 * 2e-3);                            // 0.3 m squared
   EXPECT_NEAR(m.support_area, std::numbers::pi * 0.0081, 0.0254 * 2e-3);  // pi R_d^2
   EXPECT_EQ(m.nodes, 4) << "a square's shadow has four corners";
 }
@@ -69,7 +71,8 @@ TEST(DrapeCoefficient, GrowsWithTheShadow) {
   double previous = 0.0;
   for (double radius : {0.1, 0.12, 0.14}) {
     const DrapeMeasure m = meter.measure(model, star_shape(model, 5, radius, 0.0));
-    const double expected = (std::numbers::pi * radius * radius - m.support_area) / (m.flat_area - m.support_area);
+    const double expected =
+        (std::numbers::pi * radius * radius - m.support_area) / (m.flat_area - m.support_area);
     EXPECT_NEAR(m.coefficient, expected, 0.01);
     EXPECT_GT(m.coefficient, previous);
     previous = m.coefficient;
@@ -80,7 +83,8 @@ TEST(DrapeNodes, ShadowsWithThreeToEightLobesCountTheirLobes) {
   const ClothModel model = specimen();
   const DrapeMeter meter(model, {{0.0, 0.45, 0.0}, 0.09}, kUp);
   for (int lobes = 3; lobes <= 8; ++lobes)
-    EXPECT_EQ(meter.measure(model, star_shape(model, lobes, 0.12, 0.12)).nodes, lobes) << lobes << " lobes";
+    EXPECT_EQ(meter.measure(model, star_shape(model, lobes, 0.12, 0.12)).nodes, lobes)
+        << lobes << " lobes";
 }
 
 TEST(DrapeNodes, OutlineCountIgnoresRipplesBelowTheProminence) {

@@ -64,12 +64,14 @@ struct DrapeResult {
 DrapeResult run_cusick(const std::vector<std::string>& overrides) {
   const auto loaded = scene::load_scene_text(kCusick, "cusick_v10.yaml", overrides);
   if (!loaded.ok()) {
-    ADD_FAILURE() << "the V10 scene does not load: " << (loaded.errors.empty() ? "" : loaded.errors.front());
+    ADD_FAILURE() << "the V10 scene does not load: "
+                  << (loaded.errors.empty() ? "" : loaded.errors.front());
     return {};
   }
   const scene::Scene& scene = *loaded.scene;
   const runner::SceneSetup setup = runner::build_scene_setup(scene);
-  const runner::SimulationResult result = runner::simulate_solver(scene, scene.solvers.front(), setup);
+  const runner::SimulationResult result =
+      runner::simulate_solver(scene, scene.solvers.front(), setup);
   EXPECT_EQ(result.status, SolverStatus::ok) << result.message;
   EXPECT_TRUE(result.final_metrics.drape_coefficient.has_value());
   DrapeResult out;
@@ -103,11 +105,12 @@ TEST(DrapeValidationV10, AVeryStiffClothStaysNearlyFlat) {
 
 // No bending, no shear, four times the weight: measured 0.241. It cannot reach 0 on this mesh: the
 // stretch springs resist compression as much as tension, so the skirt, whose rim is 0.94 m long
-// around a 0.57 m support, must fold, and folds cannot be narrower than two ring spacings (3.75 cm),
-// so they stand out from the support. Finer meshes lower this floor (cotton with no bending: 0.62
-// here, 0.45 at the 12 rings of scenes/cusick.yaml).
+// around a 0.57 m support, must fold, and folds cannot be narrower than two ring spacings (3.75
+// cm), so they stand out from the support. Finer meshes lower this floor (cotton with no bending:
+// 0.62 here, 0.45 at the 12 rings of scenes/cusick.yaml).
 TEST(DrapeValidationV10, ALimpHeavyClothHangsDown) {
-  const DrapeResult limp = run_cusick({bend(0.0), "cloth.springs.shear.ks=0", "cloth.areal_density=0.5"});
+  const DrapeResult limp =
+      run_cusick({bend(0.0), "cloth.springs.shear.ks=0", "cloth.areal_density=0.5"});
   EXPECT_LT(limp.coefficient, 0.3);
   const DrapeResult cotton_like = run_cusick({});
   EXPECT_LT(limp.coefficient, cotton_like.coefficient - 0.5);

@@ -9,14 +9,14 @@
 #include <random>
 #include <vector>
 
-#include "integrators/family_implicit.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "forces/spring_families.hpp"
-#include "forces/spring_family_loops.hpp"
 #include "fixtures/colliders.hpp"
 #include "fixtures/sheets.hpp"
+#include "forces/spring_families.hpp"
+#include "forces/spring_family_loops.hpp"
+#include "integrators/family_implicit.hpp"
 
 namespace drapelab {
 namespace {
@@ -51,7 +51,8 @@ struct BothSystems {
     std::mt19937_64 random(6);
     for (int i = 3; i < n; i += 7) {
       if (model->is_pinned(i)) continue;
-      const Eigen::Vector3d normal = random_field(1, 1.0, static_cast<unsigned>(100 + i)).col(0).normalized();
+      const Eigen::Vector3d normal =
+          random_field(1, 1.0, static_cast<unsigned>(100 + i)).col(0).normalized();
       contacts.push_back({i, normal});
     }
   }
@@ -67,28 +68,32 @@ struct BothSystems {
 };
 
 // Both systems solved once from the same inputs, and the checks that they are one system: the same
-// right-hand side, and A p equal on the moving particles (p zero on the pins, whose rows the assembled
-// matrix keeps as I) while the matrix-free product is zero on the pins.
+// right-hand side, and A p equal on the moving particles (p zero on the pins, whose rows the
+// assembled matrix keeps as I) while the matrix-free product is zero on the pins.
 struct SolvedBoth {
   SolvedBoth(const BothSystems& inputs, ImplicitSolveSettings settings)
-      : both(inputs), assembled(*inputs.model, settings), matrix_free(*inputs.model, *inputs.families, settings) {
+      : both(inputs),
+        assembled(*inputs.model, settings),
+        matrix_free(*inputs.model, *inputs.families, settings) {
     const int n = both.model->particle_count();
     dv_assembled.resize(3, n);
     dv_free.resize(3, n);
-    assembled.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air, both.contact,
-                    both.contacts, dv_assembled);
-    matrix_free.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air, both.contact,
-                      both.contacts, dv_free);
+    assembled.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
+                    both.contact, both.contacts, dv_assembled);
+    matrix_free.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
+                      both.contact, both.contacts, dv_free);
   }
   void expect_same_system(unsigned seed) {
     const int n = both.model->particle_count();
-    const Eigen::Matrix3Xd rhs = Eigen::Map<const Eigen::Matrix3Xd>(assembled.right_hand_side().data(), 3, n);
+    const Eigen::Matrix3Xd rhs =
+        Eigen::Map<const Eigen::Matrix3Xd>(assembled.right_hand_side().data(), 3, n);
     EXPECT_LT(max_abs(matrix_free.right_hand_side() - rhs), 1e-12 * max_abs(rhs));
     Eigen::Matrix3Xd p = random_field(n, 1.0, seed);
     for (int i = 0; i < n; ++i)
       if (both.model->is_pinned(i)) p.col(i).setZero();
     const Eigen::Matrix3Xd ap_free = matrix_free.apply(p);  // on the current thread count
-    const Eigen::VectorXd ap_flat = assembled.matrix() * Eigen::Map<const Eigen::VectorXd>(p.data(), 3 * n);
+    const Eigen::VectorXd ap_flat =
+        assembled.matrix() * Eigen::Map<const Eigen::VectorXd>(p.data(), 3 * n);
     const Eigen::Matrix3Xd ap_assembled = Eigen::Map<const Eigen::Matrix3Xd>(ap_flat.data(), 3, n);
     double worst = 0.0;  // over the moving particles
     for (int i = 0; i < n; ++i) {
@@ -134,30 +139,32 @@ TEST(FamilyImplicit, StopsAtItsToleranceAndCountsLikeEigen) {
   for (double tolerance : {1e-3, 1e-8}) {
     FamilyImplicitSystem system(*both.model, *both.families, {tolerance, 1000});
     Eigen::Matrix3Xd dv(3, n);
-    system.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air, both.contact, both.contacts,
-                 dv);
-    const double residual = (system.apply(dv) - system.right_hand_side()).norm() / system.right_hand_side().norm();
+    system.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
+                 both.contact, both.contacts, dv);
+    const double residual =
+        (system.apply(dv) - system.right_hand_side()).norm() / system.right_hand_side().norm();
     EXPECT_LE(residual, tolerance * 1.0001);
     // The CG's updated residual drifts from the true one by rounding only.
     EXPECT_NEAR(residual, system.stats().residual_last, 1e-3 * tolerance);
     EXPECT_GT(system.stats().iterations_last, 0);
     // Started from the last solution, a second solve of the same system is already converged.
-    system.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air, both.contact, both.contacts,
-                 dv);
+    system.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
+                 both.contact, both.contacts, dv);
     EXPECT_EQ(system.stats().iterations_last, 0);
     EXPECT_EQ(system.stats().solves, 2);
   }
   // An iteration cap below what the tolerance needs is counted as unconverged.
   FamilyImplicitSystem capped(*both.model, *both.families, {1e-12, 2});
   Eigen::Matrix3Xd dv(3, n);
-  capped.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air, both.contact, both.contacts, dv);
+  capped.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air, both.contact,
+               both.contacts, dv);
   EXPECT_EQ(capped.stats().unconverged, 1);
   EXPECT_EQ(capped.stats().iterations_last, 2);
   EXPECT_GT(capped.stats().residual_last, 1e-12);
 }
 
-// The solver picks the matrix-free solve on a grid and the assembled one without the fast path; both
-// runs of a stiff sheet swinging from its pins at 1/60 s agree to the CG tolerance.
+// The solver picks the matrix-free solve on a grid and the assembled one without the fast path;
+// both runs of a stiff sheet swinging from its pins at 1/60 s agree to the CG tolerance.
 TEST(FamilyImplicit, SolverRunsAgreeWithTheAssembledPath) {
   GridClothSpec spec = fixtures::stiff_sheet(15, 15);
   spec.plane = GridPlane::xz;  // horizontal, held at two corners: it swings down like a pendulum
@@ -188,18 +195,19 @@ TEST(FamilyImplicit, SolverRunsAgreeWithTheAssembledPath) {
   EXPECT_LT((fast.v - assembled.v).cwiseAbs().maxCoeff(), 1e-6);
 }
 
-// A 97 x 97 sheet (above the threading threshold) pressed onto a sphere: implicit steps with contacts
-// give the same bits on one and two threads.
+// A 97 x 97 sheet (above the threading threshold) pressed onto a sphere: implicit steps with
+// contacts give the same bits on one and two threads.
 TEST(FamilyImplicit, OneAndTwoThreadsGiveIdenticalBits) {
-  const GridClothSpec spec = fixtures::flat_sheet(97, 1.0, {0.0, 0.79, 0.0}, 0.25);  // 1 cm into the top of the ball
+  const GridClothSpec spec =
+      fixtures::flat_sheet(97, 1.0, {0.0, 0.79, 0.0}, 0.25);  // 1 cm into the top of the ball
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const Collider ball = fixtures::ball_collider();
   SpringDamperSettings settings;
   settings.integrator = Integrator::implicit_euler;
   settings.implicit = {1e-6, 500};
   settings.air_damping = 0.1;
-  settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball}, ContactParameters{1000.0, 0.2},
-                                                           spec.thickness);
+  settings.contacts = std::make_shared<const ContactModel>(
+      std::vector<Collider>{ball}, ContactParameters{1000.0, 0.2}, spec.thickness);
   auto run = [&](int threads) {
     kernels::set_thread_count(threads);
     SpringDamperSolver solver("s", model, initial_grid_state(*model, spec, 0.002, 3), settings);

@@ -23,7 +23,8 @@ GridClothSpec grid(int nx, int ny, GridPlane plane = GridPlane::xz) {
 std::size_t clamp0(int n) { return n > 0 ? static_cast<std::size_t>(n) : 0; }
 
 TEST(GridCloth, SpringCountsFollowTheGridFormulas) {
-  for (const auto& [nx, ny] : std::vector<std::pair<int, int>>{{2, 2}, {3, 5}, {7, 4}, {33, 33}, {1, 10}, {12, 1}}) {
+  for (const auto& [nx, ny] :
+       std::vector<std::pair<int, int>>{{2, 2}, {3, 5}, {7, 4}, {33, 33}, {1, 10}, {12, 1}}) {
     const ClothModel model = build_grid_cloth(grid(nx, ny));
     SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny));
     EXPECT_EQ(model.particle_count(), nx * ny);
@@ -45,9 +46,15 @@ TEST(GridCloth, RestLengthsAreTheLatticeDistances) {
     const double expected = std::hypot(di * dx, dj * dz);
     EXPECT_NEAR(s.rest_length[e], expected, 1e-14);
     switch (s.kind[e]) {
-      case SpringKind::stretch: EXPECT_EQ(di + dj, 1); break;
-      case SpringKind::shear: EXPECT_TRUE(di == 1 && dj == 1); break;
-      case SpringKind::bend: EXPECT_TRUE((di == 2 && dj == 0) || (di == 0 && dj == 2)); break;
+      case SpringKind::stretch:
+        EXPECT_EQ(di + dj, 1);
+        break;
+      case SpringKind::shear:
+        EXPECT_TRUE(di == 1 && dj == 1);
+        break;
+      case SpringKind::bend:
+        EXPECT_TRUE((di == 2 && dj == 0) || (di == 0 && dj == 2));
+        break;
     }
     EXPECT_LT(a, model.particle_count());
     EXPECT_LT(b, model.particle_count());
@@ -63,7 +70,7 @@ TEST(GridCloth, SpringParametersComeFromTheirKind) {
   for (std::size_t e = 0; e < model.springs.size(); ++e) {
     const SpringParams& expected = model.springs.kind[e] == SpringKind::stretch ? spec.stretch
                                    : model.springs.kind[e] == SpringKind::shear ? spec.shear
-                                                                                 : spec.bend;
+                                                                                : spec.bend;
     EXPECT_EQ(model.springs.ks[e], expected.ks);
     EXPECT_EQ(model.springs.kd[e], expected.kd);
   }
@@ -73,10 +80,12 @@ TEST(GridCloth, RestPositionsFollowTheSceneFormat) {
   for (GridPlane plane : {GridPlane::xz, GridPlane::xy}) {
     const GridClothSpec spec = grid(5, 3, plane);
     const ClothModel model = build_grid_cloth(spec);
-    const Eigen::Vector3d second = plane == GridPlane::xz ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d second =
+        plane == GridPlane::xz ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 5; ++i) {
-        const Eigen::Vector3d expected = spec.center + (i / 4.0 - 0.5) * 2.0 * Eigen::Vector3d::UnitX() +
+        const Eigen::Vector3d expected = spec.center +
+                                         (i / 4.0 - 0.5) * 2.0 * Eigen::Vector3d::UnitX() +
                                          (j / 2.0 - 0.5) * 1.0 * second;
         EXPECT_NEAR((model.rest_positions.col(j * 5 + i) - expected).norm(), 0.0, 1e-15);
         EXPECT_DOUBLE_EQ(model.uvs(0, j * 5 + i), i / 4.0);
@@ -90,9 +99,13 @@ TEST(GridCloth, RotationTurnsTheSheetAboutItsCentreAndItsNormal) {
   const ClothModel flat = build_grid_cloth(spec);
   spec.rotation = {0, 0, 30};  // deg about z
   const ClothModel turned = build_grid_cloth(spec);
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(30.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   for (int k = 0; k < 15; ++k)
-    EXPECT_LT((turned.rest_positions.col(k) - (spec.center + r * (flat.rest_positions.col(k) - spec.center))).norm(), 1e-14);
+    EXPECT_LT((turned.rest_positions.col(k) -
+               (spec.center + r * (flat.rest_positions.col(k) - spec.center)))
+                  .norm(),
+              1e-14);
   for (std::size_t e = 0; e < flat.springs.size(); ++e)
     EXPECT_NEAR(turned.springs.rest_length[e], flat.springs.rest_length[e], 1e-14);
   // The perturbation follows the turned normal.
@@ -116,11 +129,13 @@ TEST(GridCloth, ASingleParticleSideSitsAtTheCentre) {
 TEST(GridCloth, TrianglesFaceAlongTheSheetNormal) {
   for (GridPlane plane : {GridPlane::xz, GridPlane::xy}) {
     const ClothModel model = build_grid_cloth(grid(6, 5, plane));
-    const Eigen::Vector3d normal = plane == GridPlane::xz ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d normal =
+        plane == GridPlane::xz ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
     for (Eigen::Index t = 0; t < model.triangles.cols(); ++t) {
       const auto& x = model.rest_positions;
-      const Eigen::Vector3d n = (x.col(model.triangles(1, t)) - x.col(model.triangles(0, t)))
-                                    .cross(x.col(model.triangles(2, t)) - x.col(model.triangles(0, t)));
+      const Eigen::Vector3d n =
+          (x.col(model.triangles(1, t)) - x.col(model.triangles(0, t)))
+              .cross(x.col(model.triangles(2, t)) - x.col(model.triangles(0, t)));
       EXPECT_GT(n.dot(normal), 0.0);
     }
   }
@@ -144,9 +159,11 @@ TEST(GridCloth, ArealDensityUsesVertexAreasThatSumToTheSheetArea) {
   EXPECT_NEAR(model.total_mass(), 0.2 * 2.0, 1e-14);
   const double cell = (2.0 / 6) * (1.0 / 3);
   for (int j = 1; j < 3; ++j)
-    for (int i = 1; i < 6; ++i) EXPECT_NEAR(model.vertex_area[j * 7 + i], cell, 1e-14);  // six half-cells / 3
-  EXPECT_NEAR(model.vertex_area[3], cell / 2, 1e-14);  // edge: three half-cells / 3
-  for (int k = 0; k < model.particle_count(); ++k) EXPECT_NEAR(model.mass[k], 0.2 * model.vertex_area[k], 1e-15);
+    for (int i = 1; i < 6; ++i)
+      EXPECT_NEAR(model.vertex_area[j * 7 + i], cell, 1e-14);  // six half-cells / 3
+  EXPECT_NEAR(model.vertex_area[3], cell / 2, 1e-14);          // edge: three half-cells / 3
+  for (int k = 0; k < model.particle_count(); ++k)
+    EXPECT_NEAR(model.mass[k], 0.2 * model.vertex_area[k], 1e-15);
 }
 
 TEST(GridCloth, ArealDensityIsRefusedForAChain) {

@@ -1,6 +1,6 @@
-// Implicit Euler: the linear system and its conjugate-gradient solve, and the point of the scheme: a
-// stiff cloth stays stable at h = 1/60 s where every explicit scheme explodes (the spring Jacobians
-// it assembles: test_spring_jacobian.cpp).
+// Implicit Euler: the linear system and its conjugate-gradient solve, and the point of the scheme:
+// a stiff cloth stays stable at h = 1/60 s where every explicit scheme explodes (the spring
+// Jacobians it assembles: test_spring_jacobian.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,7 +18,8 @@ double max_strain(const ClothModel& model, const ClothState& state) {
   const SpringSet& s = model.springs;
   for (std::size_t e = 0; e < s.size(); ++e)
     if (s.kind[e] == SpringKind::stretch)
-      worst = std::max(worst, (state.x.col(s.v0[e]) - state.x.col(s.v1[e])).norm() / s.rest_length[e] - 1.0);
+      worst = std::max(
+          worst, (state.x.col(s.v0[e]) - state.x.col(s.v1[e])).norm() / s.rest_length[e] - 1.0);
   return worst;
 }
 
@@ -29,8 +30,9 @@ TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
   const double h = 1.0 / 60.0;
   SpringDamperSettings settings;
   settings.integrator = Integrator::implicit_euler;
-  settings.implicit.max_iterations = 3000;  // h^2 k / m ~ 1e5: the Jacobi-preconditioned CG needs many
-  settings.air_damping = 1.0;               // 1/s, so the pendulum swing dies out within the run
+  settings.implicit.max_iterations =
+      3000;                    // h^2 k / m ~ 1e5: the Jacobi-preconditioned CG needs many
+  settings.air_damping = 1.0;  // 1/s, so the pendulum swing dies out within the run
   SpringDamperSolver solver("stiff", model, initial_grid_state(*model, spec, 1e-3, 1), settings);
   double peak_speed = 0.0;
   for (int k = 0; k < 8 * 60; ++k) {  // 8 s
@@ -39,7 +41,7 @@ TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
     peak_speed = std::max(peak_speed, solver.state().v.colwise().norm().maxCoeff());
   }
   EXPECT_TRUE(solver.state().x.allFinite());
-  EXPECT_GT(peak_speed, 1.0);  // it swung ...
+  EXPECT_GT(peak_speed, 1.0);                                                  // it swung ...
   EXPECT_LT(solver.state().v.colwise().norm().maxCoeff(), 0.01 * peak_speed);  // ... and settled
   EXPECT_LT(max_strain(*model, solver.state()), 0.02);  // stiff springs barely stretch
   EXPECT_LT(solver.state().x.row(1).mean(), 0.8);       // and it hangs below the pins
@@ -50,8 +52,10 @@ TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
     if (integrator == Integrator::implicit_euler) continue;
     SpringDamperSettings explicit_settings;
     explicit_settings.integrator = integrator;
-    SpringDamperSolver explicit_solver("stiff", model, initial_grid_state(*model, spec, 1e-3, 1), explicit_settings);
-    for (int k = 0; k < 60 && explicit_solver.status() == SolverStatus::ok; ++k) explicit_solver.step(h);
+    SpringDamperSolver explicit_solver("stiff", model, initial_grid_state(*model, spec, 1e-3, 1),
+                                       explicit_settings);
+    for (int k = 0; k < 60 && explicit_solver.status() == SolverStatus::ok; ++k)
+      explicit_solver.step(h);
     EXPECT_EQ(explicit_solver.status(), SolverStatus::unstable) << integrator_name(integrator);
   }
 }
@@ -64,7 +68,8 @@ TEST(ImplicitEuler, ConjugateGradientReachesItsToleranceOnTheAssembledSystem) {
     settings.integrator = Integrator::implicit_euler;
     settings.implicit = {tolerance, 1000};
     settings.air_damping = 0.3;
-    settings.fast_springs = false;  // the assembled matrix (the grid's matrix-free solve: test_family_implicit)
+    settings.fast_springs =
+        false;  // the assembled matrix (the grid's matrix-free solve: test_family_implicit)
     SpringDamperSolver solver("cg", model, initial_grid_state(*model, spec, 1e-2, 3), settings);
     for (int k = 0; k < 30; ++k) {
       const Eigen::Matrix3Xd v_before = solver.state().v;
@@ -78,7 +83,8 @@ TEST(ImplicitEuler, ConjugateGradientReachesItsToleranceOnTheAssembledSystem) {
       EXPECT_LE(system.stats().residual_last, tolerance);
     }
     const Eigen::SparseMatrix<double>& a = solver.implicit_system()->matrix();
-    EXPECT_LT((Eigen::MatrixXd(a) - Eigen::MatrixXd(a).transpose()).norm(), 1e-12 * Eigen::MatrixXd(a).norm());
+    EXPECT_LT((Eigen::MatrixXd(a) - Eigen::MatrixXd(a).transpose()).norm(),
+              1e-12 * Eigen::MatrixXd(a).norm());
     EXPECT_EQ(solver.implicit_system()->stats().unconverged, 0);
     EXPECT_EQ(solver.implicit_system()->stats().solves, 30);
     EXPECT_GT(solver.implicit_system()->stats().iterations_total, 30);

@@ -1,6 +1,7 @@
 // docs/validation.md, "V4 Integrators on a linear spring": every integrator on a linear spring
 // x'' = -w^2 x, its convergence order from two step sizes, energy behaviour, and stability just
-// inside and just outside its bound; and the stable-step estimates the loader and the advice rely on.
+// inside and just outside its bound; and the stable-step estimates the loader and the advice rely
+// on.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,17 +20,18 @@ namespace {
 // Particle 1 (mass m) hangs on one spring from pinned particle 0, with no gravity: along the spring
 // its displacement u obeys m u'' = -ks u - kd u' exactly while the spring keeps a positive length.
 struct Oscillator {
-  double mass = 1.0;         // kg
-  double stiffness = 1.0;    // N/m
-  double damping = 0.0;      // N*s/m
-  double amplitude = 1e-3;   // m, initial displacement (rest length 1 m, so the spring never folds)
+  double mass = 1.0;        // kg
+  double stiffness = 1.0;   // N/m
+  double damping = 0.0;     // N*s/m
+  double amplitude = 1e-3;  // m, initial displacement (rest length 1 m, so the spring never folds)
 
   double omega() const { return std::sqrt(stiffness / mass); }
 };
 
 class OscillatorRun {
  public:
-  OscillatorRun(const Oscillator& o, Integrator integrator, ImplicitSolveSettings implicit = {1e-14, 50}) {
+  OscillatorRun(const Oscillator& o, Integrator integrator,
+                ImplicitSolveSettings implicit = {1e-14, 50}) {
     const GridClothSpec spec = fixtures::spring_pendulum(1.0, o.mass, {o.stiffness, o.damping});
     auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
     ClothState start = initial_grid_state(*model, spec, 0.0, 0);
@@ -44,7 +46,9 @@ class OscillatorRun {
     oscillator_ = o;
   }
   void step(double h) { solver_->step(h); }
-  double displacement() const { return -(solver_->state().x(1, 0) - rest_y_); }  // m, stretching positive
+  double displacement() const {
+    return -(solver_->state().x(1, 0) - rest_y_);
+  }  // m, stretching positive
   double velocity() const { return -solver_->state().v(1, 0); }
   // Oscillator energy 1/2 m v^2 + 1/2 k u^2 (J).
   double energy() const {
@@ -73,20 +77,24 @@ double error_at_ten_seconds(Integrator integrator, double h) {
 TEST(V4Integrators, ConvergenceOrderFromTwoStepSizes) {
   for (Integrator integrator : all_integrators()) {
     SCOPED_TRACE(integrator_name(integrator));
-    // Small enough to be in the asymptotic range, large enough that RK4's error stays above rounding.
+    // Small enough to be in the asymptotic range, large enough that RK4's error stays above
+    // rounding.
     const double h = integrator == Integrator::rk4 ? 0.05 : 0.01;
-    const double measured = std::log2(error_at_ten_seconds(integrator, h) / error_at_ten_seconds(integrator, h / 2));
+    const double measured =
+        std::log2(error_at_ten_seconds(integrator, h) / error_at_ten_seconds(integrator, h / 2));
     EXPECT_NEAR(measured, order_of_accuracy(integrator), 0.1);
   }
 }
 
 TEST(V4Integrators, SymplecticSchemesKeepEnergyBoundedOverAHundredThousandSteps) {
   const double h = 0.05;  // w h = 0.05
-  for (Integrator integrator : {Integrator::symplectic_euler, Integrator::verlet, Integrator::leapfrog}) {
+  for (Integrator integrator :
+       {Integrator::symplectic_euler, Integrator::verlet, Integrator::leapfrog}) {
     SCOPED_TRACE(integrator_name(integrator));
     OscillatorRun run(Oscillator{}, integrator);
     const double start = run.energy();
-    double first_window = 0.0, last_window = 0.0;  // largest |E - E0| / E0 over the first and last 2000 steps
+    double first_window = 0.0,
+           last_window = 0.0;  // largest |E - E0| / E0 over the first and last 2000 steps
     const int steps = 100000;
     for (int k = 0; k < steps; ++k) {
       run.step(h);
@@ -104,7 +112,8 @@ TEST(V4Integrators, EulerSchemesChangeEnergyByTheirExactFactorPerStep) {
   for (Integrator integrator : {Integrator::explicit_euler, Integrator::implicit_euler}) {
     SCOPED_TRACE(integrator_name(integrator));
     OscillatorRun run(Oscillator{}, integrator);
-    const double factor = integrator == Integrator::explicit_euler ? 1.0 + h * h : 1.0 / (1.0 + h * h);
+    const double factor =
+        integrator == Integrator::explicit_euler ? 1.0 + h * h : 1.0 / (1.0 + h * h);
     for (int k = 0; k < 200; ++k) {
       const double before = run.energy();
       run.step(h);
@@ -125,7 +134,8 @@ double growth(Integrator integrator, double omega_h) {
 }
 
 TEST(V4Integrators, BoundedJustInsideAndDivergingJustOutsideEachStabilityLimit) {
-  for (Integrator integrator : {Integrator::symplectic_euler, Integrator::verlet, Integrator::leapfrog, Integrator::rk4}) {
+  for (Integrator integrator :
+       {Integrator::symplectic_euler, Integrator::verlet, Integrator::leapfrog, Integrator::rk4}) {
     SCOPED_TRACE(integrator_name(integrator));
     const double limit = undamped_stability_limit(integrator);
     EXPECT_LT(growth(integrator, 0.95 * limit), 20.0);
@@ -156,15 +166,18 @@ TEST(V4Integrators, ExplicitEulerOnADampedSpringIsStableBelowKdOverKs) {
       run.step(ratio * bound);
       if (k >= 19000) last_peak = std::max(last_peak, std::abs(run.displacement()));
     }
-    if (ratio < 1.0) EXPECT_LT(last_peak, o.amplitude);
-    else EXPECT_GT(last_peak, 10.0 * o.amplitude);
+    if (ratio < 1.0)
+      EXPECT_LT(last_peak, o.amplitude);
+    else
+      EXPECT_GT(last_peak, 10.0 * o.amplitude);
   }
 }
 
 // The stable-step estimate of each explicit scheme is safe on a real cloth: 2 s of a pinned, damped
 // sheet at 0.95 x the estimate stays finite and unstretched.
 TEST(V4Integrators, StableStepEstimateHoldsOnACloth) {
-  const GridClothSpec spec = fixtures::hanging_sheet(9, 0.1, {{800.0, 0.1}, {80.0, 0.01}, {8.0, 0.001}});
+  const GridClothSpec spec =
+      fixtures::hanging_sheet(9, 0.1, {{800.0, 0.1}, {80.0, 0.01}, {8.0, 0.001}});
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   for (Integrator integrator : all_integrators()) {
     if (integrator == Integrator::implicit_euler) continue;
@@ -174,12 +187,15 @@ TEST(V4Integrators, StableStepEstimateHoldsOnACloth) {
     SpringDamperSettings settings;
     settings.integrator = integrator;
     SpringDamperSolver solver("sheet", model, initial_grid_state(*model, spec, 1e-3, 1), settings);
-    for (int k = 0; k < static_cast<int>(2.0 / h) && solver.status() == SolverStatus::ok; ++k) solver.step(h);
+    for (int k = 0; k < static_cast<int>(2.0 / h) && solver.status() == SolverStatus::ok; ++k)
+      solver.step(h);
     ASSERT_EQ(solver.status(), SolverStatus::ok) << solver.message();
     double worst = 0.0;
     const SpringSet& s = model->springs;
     for (std::size_t e = 0; e < s.size(); ++e)
-      worst = std::max(worst, (solver.state().x.col(s.v0[e]) - solver.state().x.col(s.v1[e])).norm() / s.rest_length[e]);
+      worst =
+          std::max(worst, (solver.state().x.col(s.v0[e]) - solver.state().x.col(s.v1[e])).norm() /
+                              s.rest_length[e]);
     EXPECT_LT(worst, 1.2);
   }
 }

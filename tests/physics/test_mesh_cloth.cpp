@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -61,12 +60,13 @@ TEST(DiscCloth, SpringCountsAreaAndWinding) {
   // Ring k of an evenly spaced disc has round(2 pi k) particles.
   EXPECT_EQ(disc_ring_count(spec, 1), 6);
   EXPECT_EQ(disc_ring_count(spec, 10), 63);
-  // A disc is a topological disc: V - E + F = 1, every edge a stretch spring, and every interior edge
-  // one spring across it: shear where the edge is the long diagonal of both its triangles (where
-  // neighbouring rings' particles line up), bend elsewhere.
+  // A disc is a topological disc: V - E + F = 1, every edge a stretch spring, and every interior
+  // edge one spring across it: shear where the edge is the long diagonal of both its triangles
+  // (where neighbouring rings' particles line up), bend elsewhere.
   const int edges = v + f - 1;
   EXPECT_EQ(static_cast<int>(model.springs.count(SpringKind::stretch)), edges);
-  EXPECT_EQ(static_cast<int>(model.springs.count(SpringKind::bend) + model.springs.count(SpringKind::shear)),
+  EXPECT_EQ(static_cast<int>(model.springs.count(SpringKind::bend) +
+                             model.springs.count(SpringKind::shear)),
             edges - rim);
   EXPECT_GT(model.springs.count(SpringKind::bend), 2 * model.springs.count(SpringKind::shear));
   // Vertex areas add up to the triangles' area, the inscribed rim polygon's, close to pi R^2.
@@ -77,13 +77,14 @@ TEST(DiscCloth, SpringCountsAreaAndWinding) {
   EXPECT_NEAR(model.total_mass(), 0.2 * model.rest_area(), 1e-15);
   for (Eigen::Index t = 0; t < model.triangles.cols(); ++t) {
     const auto& x = model.rest_positions;
-    const Eigen::Vector3d n = (x.col(model.triangles(1, t)) - x.col(model.triangles(0, t)))
-                                  .cross(x.col(model.triangles(2, t)) - x.col(model.triangles(0, t)));
+    const Eigen::Vector3d n =
+        (x.col(model.triangles(1, t)) - x.col(model.triangles(0, t)))
+            .cross(x.col(model.triangles(2, t)) - x.col(model.triangles(0, t)));
     ASSERT_GT(n.y(), 0.0) << "triangle " << t << " is wound clockwise about +y";
   }
   // The flat disc's union shadow is its area.
-  EXPECT_NEAR(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY()), polygon,
-              0.005 * polygon);
+  EXPECT_NEAR(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY()),
+              polygon, 0.005 * polygon);
 }
 
 TEST(DiscCloth, FlatDiscOverItsSupportHasDrapeCoefficientOne) {
@@ -184,9 +185,11 @@ TEST(MeshCloth, MeshesThatAreNotAClothSurfaceAreRefused) {
     EXPECT_TRUE(result.mesh) << result.error;
     return result.mesh ? mesh_problem(*result.mesh).value_or("") : std::string("unreadable");
   };
-  EXPECT_NE(problem("v 0 0 0\nv 1 0 0\nv 0 0 1\nv 5 5 5\nf 1 2 3\n").find("vertex 3 is used by no triangle"),
+  EXPECT_NE(problem("v 0 0 0\nv 1 0 0\nv 0 0 1\nv 5 5 5\nf 1 2 3\n")
+                .find("vertex 3 is used by no triangle"),
             std::string::npos);
-  EXPECT_NE(problem("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n").find("triangle 0 has no area"), std::string::npos);
+  EXPECT_NE(problem("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n").find("triangle 0 has no area"),
+            std::string::npos);
   EXPECT_NE(problem("v 0 0 0\nv 1 0 0\nv 0 0 1\nv 0 1 0\nv 0 -1 0\nf 1 2 3\nf 1 2 4\nf 1 2 5\n")
                 .find("shared by 3 triangles"),
             std::string::npos);

@@ -5,14 +5,16 @@
 
 #include "drapelab/cloth_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "metrics/projected_area.hpp"
 #include "fixtures/sheets.hpp"
+#include "metrics/projected_area.hpp"
 
 namespace drapelab {
 namespace {
 
 // A flat n x n sheet of 1 kg, `size` m square, centred at the origin.
-GridClothSpec flat(int n, double size) { return fixtures::flat_sheet(n, size, Eigen::Vector3d::Zero(), 1.0); }
+GridClothSpec flat(int n, double size) {
+  return fixtures::flat_sheet(n, size, Eigen::Vector3d::Zero(), 1.0);
+}
 
 TEST(Metrics, RestStateHasNoSpringEnergyOrStretch) {
   const ClothModel model = build_grid_cloth(flat(5, 1.0));
@@ -47,13 +49,15 @@ TEST(Metrics, UniformScalingStretchesEverySpring) {
 
 TEST(ProjectedArea, FlatSquareIsItsArea) {
   const ClothModel model = build_grid_cloth(flat(11, 0.8));
-  const double area = projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY());
+  const double area =
+      projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY());
   // Rasterisation error is at most about perimeter x cell size = 3.2 m x 0.8/1024 m.
   EXPECT_NEAR(area, 0.64, 3.2 * 0.8 / 1024);
 }
 
 TEST(ProjectedArea, FoldedSheetCountsOverlapOnce) {
-  // Fold the 1 m square sheet along x = 0: the half at x > 0 is mirrored onto the other, 1 cm above.
+  // Fold the 1 m square sheet along x = 0: the half at x > 0 is mirrored onto the other, 1 cm
+  // above.
   const ClothModel model = build_grid_cloth(flat(21, 1.0));
   Eigen::Matrix3Xd x = model.rest_positions;
   for (int i = 0; i < x.cols(); ++i)
@@ -69,9 +73,11 @@ TEST(ProjectedArea, VerticalSheetProjectsToALine) {
   GridClothSpec spec = flat(9, 1.0);
   spec.plane = GridPlane::xy;
   const ClothModel model = build_grid_cloth(spec);
-  EXPECT_LT(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY()), 1e-2);
+  EXPECT_LT(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY()),
+            1e-2);
   // Seen along z it is the full square.
-  EXPECT_NEAR(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitZ()), 1.0, 4.0 / 1024);
+  EXPECT_NEAR(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitZ()),
+              1.0, 4.0 / 1024);
 }
 
 TEST(ProjectedArea, TiltedDiscOfTrianglesShrinksByTheCosine) {
@@ -80,14 +86,16 @@ TEST(ProjectedArea, TiltedDiscOfTrianglesShrinksByTheCosine) {
   Eigen::Matrix3d rotation;
   rotation << 1, 0, 0, 0, std::cos(angle), -std::sin(angle), 0, std::sin(angle), std::cos(angle);
   const Eigen::Matrix3Xd x = rotation * model.rest_positions;
-  EXPECT_NEAR(projected_union_area(x, model.triangles, Eigen::Vector3d::UnitY()), std::cos(angle), 4.0 / 1024);
+  EXPECT_NEAR(projected_union_area(x, model.triangles, Eigen::Vector3d::UnitY()), std::cos(angle),
+              4.0 / 1024);
 }
 
 TEST(ProjectedArea, AChainHasNoArea) {
   GridClothSpec spec = flat(1, 1.0);
   spec.ny = 5;
   const ClothModel model = build_grid_cloth(spec);
-  EXPECT_EQ(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY()), 0.0);
+  EXPECT_EQ(projected_union_area(model.rest_positions, model.triangles, Eigen::Vector3d::UnitY()),
+            0.0);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
-// The per-particle passes and the block-parallel contact phase (particle_loops.hpp, contact_model.hpp):
-// the Euler passes apply their formulas exactly, the health scan names the first bad particle (and
-// only a bad one), the vectorised broad phase keeps exactly the particles the direct test keeps, and
-// contact forces and totals are bitwise identical for 1 and 2 threads and equal a direct sum.
+// The per-particle passes and the block-parallel contact phase (particle_loops.hpp,
+// contact_model.hpp): the Euler passes apply their formulas exactly, the health scan names the
+// first bad particle (and only a bad one), the vectorised broad phase keeps exactly the particles
+// the direct test keeps, and contact forces and totals are bitwise identical for 1 and 2 threads
+// and equal a direct sum.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,13 +11,13 @@
 #include <tuple>
 #include <vector>
 
-#include "drapelab/grid_cloth.hpp"
-#include "integrators/particle_loops.hpp"
 #include "contact/penalty_contact.hpp"
+#include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "forces/spring_family_loops.hpp"
 #include "fixtures/colliders.hpp"
 #include "fixtures/sheets.hpp"
+#include "forces/spring_family_loops.hpp"
+#include "integrators/particle_loops.hpp"
 
 namespace drapelab {
 namespace {
@@ -35,8 +36,12 @@ TEST(ParticleLoops, EulerPassesApplyTheirFormulasAndHoldPinnedParticles) {
   }
   const double h = 0.01;
   std::vector<double> xs = x, vs = v, xe = x, ve = v;
-  EXPECT_EQ(kernels::symplectic_euler_pass(n, inverse_mass.data(), f.data(), h, xs.data(), vs.data(), 1e6), -1);
-  EXPECT_EQ(kernels::explicit_euler_pass(n, inverse_mass.data(), f.data(), h, xe.data(), ve.data(), 1e6), -1);
+  EXPECT_EQ(kernels::symplectic_euler_pass(n, inverse_mass.data(), f.data(), h, xs.data(),
+                                           vs.data(), 1e6),
+            -1);
+  EXPECT_EQ(
+      kernels::explicit_euler_pass(n, inverse_mass.data(), f.data(), h, xe.data(), ve.data(), 1e6),
+      -1);
   for (int k = 0; k < 3 * n; ++k) {
     const double v_new = v[k] + h * (f[k] * inverse_mass[k]);
     EXPECT_EQ(vs[k], v_new) << k;
@@ -70,19 +75,19 @@ struct Particles {
 
 std::int64_t first_unhealthy(const Particles& p, double max_speed, int threads) {
   kernels::set_thread_count(threads);
-  const std::int64_t first = kernels::first_unhealthy_particle(static_cast<std::int64_t>(p.x.size() / 3), p.x.data(),
-                                                               p.v.data(), max_speed * max_speed);
+  const std::int64_t first = kernels::first_unhealthy_particle(
+      static_cast<std::int64_t>(p.x.size() / 3), p.x.data(), p.v.data(), max_speed * max_speed);
   kernels::set_thread_count(1);
   return first;
 }
 
 TEST(ParticleLoops, HealthScanNamesTheFirstBadParticleWhateverTheThreadCount) {
-  const int n = 10000;  // above the threading threshold
+  const int n = 10000;         // above the threading threshold
   const double limit = 100.0;  // m/s
   Particles p(n);
   // Healthy: particle 10 at 0.999 of the limit along the diagonal passes the quick per-coordinate
-  // test; particle 20, with one coordinate at 0.99 of the limit, fails it and is cleared by the exact
-  // per-particle test.
+  // test; particle 20, with one coordinate at 0.99 of the limit, fails it and is cleared by the
+  // exact per-particle test.
   const double diagonal = 0.999 * limit / std::sqrt(3.0);
   p.v[3 * 10] = p.v[3 * 10 + 1] = p.v[3 * 10 + 2] = diagonal;
   p.v[3 * 20 + 1] = 0.99 * limit;
@@ -92,7 +97,8 @@ TEST(ParticleLoops, HealthScanNamesTheFirstBadParticleWhateverTheThreadCount) {
   p.v[3 * 9500] = std::nextafter(limit, 2.0 * limit);  // one step of rounding above the limit
   for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), 9500) << threads;
 
-  p.v[3 * 9000] = p.v[3 * 9000 + 1] = p.v[3 * 9000 + 2] = 1.001 * limit / std::sqrt(3.0);  // just too fast
+  p.v[3 * 9000] = p.v[3 * 9000 + 1] = p.v[3 * 9000 + 2] =
+      1.001 * limit / std::sqrt(3.0);  // just too fast
   for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), 9000) << threads;
   p.v[3 * 7001 + 2] = std::numeric_limits<double>::infinity();
   for (int threads : {1, 2}) EXPECT_EQ(first_unhealthy(p, limit, threads), 7001) << threads;
@@ -114,11 +120,12 @@ TEST(ParticleLoops, EulerPassesReportTheParticleTheyMadeUnhealthy) {
   std::vector<double> inverse_mass(3 * n, 1.0), f(3 * n, 0.0);
   f[3 * 4321 + 1] = 2.0e7;  // N on 1 kg for 1e-5 s: 200 m/s, twice the limit
   Particles symplectic(n), forward(n);
-  EXPECT_EQ(kernels::symplectic_euler_pass(n, inverse_mass.data(), f.data(), 1e-5, symplectic.x.data(),
-                                           symplectic.v.data(), 1e4),
+  EXPECT_EQ(kernels::symplectic_euler_pass(n, inverse_mass.data(), f.data(), 1e-5,
+                                           symplectic.x.data(), symplectic.v.data(), 1e4),
             4321);
   // Forward Euler moves x with the old velocity, but the scan checks the new one.
-  EXPECT_EQ(kernels::explicit_euler_pass(n, inverse_mass.data(), f.data(), 1e-5, forward.x.data(), forward.v.data(), 1e4),
+  EXPECT_EQ(kernels::explicit_euler_pass(n, inverse_mass.data(), f.data(), 1e-5, forward.x.data(),
+                                         forward.v.data(), 1e4),
             4321);
   EXPECT_EQ(forward.x[3 * 4321 + 1], 1.0);
 }
@@ -127,7 +134,8 @@ TEST(ParticleLoops, BroadPhaseKeepsExactlyTheParticlesOfTheDirectTest) {
   const int n = 3000;
   std::vector<double> x(3 * n);
   for (int i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) x[3 * i + c] = wave(i, 2.3 + 0.77 * c);  // scattered in a cube of side 2 m
+    for (int c = 0; c < 3; ++c)
+      x[3 * i + c] = wave(i, 2.3 + 0.77 * c);  // scattered in a cube of side 2 m
   kernels::NearCollider plane;
   plane.plane = true;
   plane.normal[0] = 0.6;
@@ -150,8 +158,9 @@ TEST(ParticleLoops, BroadPhaseKeepsExactlyTheParticlesOfTheDirectTest) {
       const double* p = &x[3 * i];
       bool keep = false;
       if (collider->plane) {
-        keep = collider->normal[0] * p[0] + collider->normal[1] * p[1] + collider->normal[2] * p[2] -
-                   collider->offset < collider->radius;
+        keep = collider->normal[0] * p[0] + collider->normal[1] * p[1] +
+                   collider->normal[2] * p[2] - collider->offset <
+               collider->radius;
       } else {
         double d2 = 0.0;
         keep = true;
@@ -163,19 +172,20 @@ TEST(ParticleLoops, BroadPhaseKeepsExactlyTheParticlesOfTheDirectTest) {
       }
       if (keep) expected.push_back(i);
     }
-    ASSERT_GT(expected.size(), 10u);          // the test sees both outcomes
+    ASSERT_GT(expected.size(), 10u);  // the test sees both outcomes
     ASSERT_LT(expected.size(), 2800u);
     EXPECT_EQ(std::vector<int>(near.begin(), near.begin() + count), expected);
   }
 }
 
-// Particles in a row along x, 1 mm apart, so that whole chunks of the broad phase lie near a collider
-// (every one listed without the per-particle pass), far from it (skipped), or across its edge.
+// Particles in a row along x, 1 mm apart, so that whole chunks of the broad phase lie near a
+// collider (every one listed without the per-particle pass), far from it (skipped), or across its
+// edge.
 TEST(ParticleLoops, BroadPhaseListsWholeChunksNearAndSkipsChunksFar) {
   const int n = 3000;
   std::vector<double> x(3 * n, 0.0);
   for (int i = 0; i < n; ++i) x[3 * i] = 0.001 * i;  // m
-  kernels::NearCollider wall;  // x < 1.05 m passes: particles 0 to 1049
+  kernels::NearCollider wall;                        // x < 1.05 m passes: particles 0 to 1049
   wall.plane = true;
   wall.normal[0] = 1.0;
   wall.offset = 1.0;
@@ -187,13 +197,15 @@ TEST(ParticleLoops, BroadPhaseListsWholeChunksNearAndSkipsChunksFar) {
   box.high[1] = box.high[2] = 1.0;
   box.center[0] = 2.0;
   box.reach_squared = 0.6 * 0.6;
-  for (const auto& [collider, first, last] : {std::tuple{&wall, 0, 1049}, std::tuple{&box, 1500, 2599}}) {
+  for (const auto& [collider, first, last] :
+       {std::tuple{&wall, 0, 1049}, std::tuple{&box, 1500, 2599}}) {
     for (const auto& [begin, end] : {std::pair{0, n}, std::pair{13, 2951}}) {
       std::vector<int> near(n);
       const int count = kernels::near_particles(*collider, x.data(), begin, end, near.data());
       std::vector<int> expected;
       for (int i = std::max(begin, first); i <= std::min(end - 1, last); ++i) expected.push_back(i);
-      EXPECT_EQ(std::vector<int>(near.begin(), near.begin() + count), expected) << begin << ".." << end;
+      EXPECT_EQ(std::vector<int>(near.begin(), near.begin() + count), expected)
+          << begin << ".." << end;
     }
   }
 }
@@ -209,12 +221,13 @@ struct ContactScene {
     // The cloth's edges rest 5 mm above the floor: within the contact radius.
     const Collider floor = fixtures::floor_collider(0.785);
     settings.air_damping = 0.1;
-    settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball, floor},
-                                                             ContactParameters{1000.0, 0.2}, spec.thickness);
+    settings.contacts = std::make_shared<const ContactModel>(
+        std::vector<Collider>{ball, floor}, ContactParameters{1000.0, 0.2}, spec.thickness);
   }
   ClothState state() const {
     ClothState s = initial_grid_state(*model, spec, 0.002, 3);
-    for (int i = 0; i < model->particle_count(); ++i) s.v.col(i) = 0.05 * Eigen::Vector3d(wave(i, 0.7), wave(i, 1.3), wave(i, 2.1));
+    for (int i = 0; i < model->particle_count(); ++i)
+      s.v.col(i) = 0.05 * Eigen::Vector3d(wave(i, 0.7), wave(i, 1.3), wave(i, 2.1));
     return s;
   }
   GridClothSpec spec;
@@ -243,8 +256,10 @@ TEST(ContactPhase, RunsWithContactsAreBitwiseIdenticalForOneAndTwoThreads) {
   ASSERT_EQ(one.totals.size(), 2u);
   EXPECT_GT(one.totals[0].contact_count, 100);  // the sphere holds a patch of the cloth
   EXPECT_GT(one.totals[1].contact_count, 100);  // and the floor its edges
-  EXPECT_TRUE((one.state.x.array() == two.state.x.array()).all()) << "thread count changed the positions";
-  EXPECT_TRUE((one.state.v.array() == two.state.v.array()).all()) << "thread count changed the velocities";
+  EXPECT_TRUE((one.state.x.array() == two.state.x.array()).all())
+      << "thread count changed the positions";
+  EXPECT_TRUE((one.state.v.array() == two.state.v.array()).all())
+      << "thread count changed the velocities";
   for (std::size_t c = 0; c < 2; ++c) {
     EXPECT_EQ(one.totals[c].contact_count, two.totals[c].contact_count);
     EXPECT_EQ(one.totals[c].normal_force, two.totals[c].normal_force);
@@ -273,12 +288,13 @@ TEST(ContactPhase, BlockTotalsEqualADirectSumOverEveryParticle) {
   int direct_counts[2] = {0, 0};
   double direct_normals[2] = {0.0, 0.0};  // N
   for (int i = 0; i < scene.model->particle_count(); ++i) {
-    // Both colliders' overlaps, ball first; symplectic Euler solves a particle's contacts together at
-    // the step's end, starting from the contact-free force (penalty_contact.hpp).
+    // Both colliders' overlaps, ball first; symplectic Euler solves a particle's contacts together
+    // at the step's end, starting from the contact-free force (penalty_contact.hpp).
     std::vector<NormalContact> overlaps;
     std::vector<int> colliders;
     for (int c = 0; c < 2; ++c) {
-      const auto touching = contacts.query().contact(contacts.fcl_collider(c), contacts.shape_pose(c, 0.0), state.x.col(i));
+      const auto touching = contacts.query().contact(contacts.fcl_collider(c),
+                                                     contacts.shape_pose(c, 0.0), state.x.col(i));
       if (!touching) continue;
       overlaps.push_back({touching->normal, touching->depth,
                           collider_point_velocity(contacts.collider(c), 0.0, state.x.col(i))});
@@ -291,8 +307,9 @@ TEST(ContactPhase, BlockTotalsEqualADirectSumOverEveryParticle) {
       EXPECT_GT(pushed.dot(overlaps[0].normal), 0.0) << "particle " << i;
     }
     double fn[2] = {0.0, 0.0};
-    linearly_implicit_normal_forces(overlaps.data(), static_cast<int>(overlaps.size()), state.v.col(i),
-                                    without_contacts.col(i), scene.model->mass[i], 2e-5, 1000.0, 0.2, fn);
+    linearly_implicit_normal_forces(overlaps.data(), static_cast<int>(overlaps.size()),
+                                    state.v.col(i), without_contacts.col(i), scene.model->mass[i],
+                                    2e-5, 1000.0, 0.2, fn);
     for (std::size_t a = 0; a < overlaps.size(); ++a) {
       ++direct_counts[colliders[a]];
       direct_normals[colliders[a]] += fn[a];
@@ -302,7 +319,8 @@ TEST(ContactPhase, BlockTotalsEqualADirectSumOverEveryParticle) {
   for (int c = 0; c < 2; ++c) {
     const ColliderContactTotals& total = solver.contact_totals()[static_cast<std::size_t>(c)];
     EXPECT_EQ(total.contact_count, direct_counts[c]) << "collider " << c;
-    EXPECT_NEAR(total.normal_force, direct_normals[c], 1e-12 * direct_normals[c]) << "collider " << c;  // N, summation order only
+    EXPECT_NEAR(total.normal_force, direct_normals[c], 1e-12 * direct_normals[c])
+        << "collider " << c;  // N, summation order only
   }
   EXPECT_GT(direct_normals[0], 0.0);
 }

@@ -6,14 +6,14 @@
 #include <random>
 #include <string>
 
-#include "forces/forces.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "integrators/particle_loops.hpp"
-#include "forces/spring_family_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
-#include "forces/spring_force.hpp"
 #include "drapelab/stability.hpp"
 #include "fixtures/sheets.hpp"
+#include "forces/forces.hpp"
+#include "forces/spring_family_loops.hpp"
+#include "forces/spring_force.hpp"
+#include "integrators/particle_loops.hpp"
 
 namespace drapelab {
 namespace {
@@ -49,8 +49,9 @@ TEST(SolverStep, ForcesAreGravityPlusEverySpringPlusAirDamping) {
     expected.col(i) = model->mass[i] * settings.gravity - 0.7 * model->mass[i] * state.v.col(i);
   const SpringSet& s = model->springs;
   for (std::size_t e = 0; e < s.size(); ++e) {
-    const Eigen::Vector3d f = damped_spring_force(state.x.col(s.v0[e]), state.x.col(s.v1[e]), state.v.col(s.v0[e]),
-                                                  state.v.col(s.v1[e]), s.ks[e], s.kd[e], s.rest_length[e]);
+    const Eigen::Vector3d f =
+        damped_spring_force(state.x.col(s.v0[e]), state.x.col(s.v1[e]), state.v.col(s.v0[e]),
+                            state.v.col(s.v1[e]), s.ks[e], s.kd[e], s.rest_length[e]);
     expected.col(s.v0[e]) += f;
     expected.col(s.v1[e]) -= f;
   }
@@ -76,7 +77,8 @@ TEST(SolverStep, EachIntegratorTakesItsDocumentedUpdate) {
     const Eigen::Matrix3Xd a = force * model->inverse_mass.asDiagonal();
     solver.step(h);
     const Eigen::Matrix3Xd v1 = zeroed_pins.v + h * a;
-    const Eigen::Matrix3Xd x1 = zeroed_pins.x + h * (integrator == Integrator::explicit_euler ? zeroed_pins.v : v1);
+    const Eigen::Matrix3Xd x1 =
+        zeroed_pins.x + h * (integrator == Integrator::explicit_euler ? zeroed_pins.v : v1);
     EXPECT_LT((solver.state().v - v1).cwiseAbs().maxCoeff(), 1e-12) << integrator_name(integrator);
     EXPECT_LT((solver.state().x - x1).cwiseAbs().maxCoeff(), 1e-15) << integrator_name(integrator);
     EXPECT_DOUBLE_EQ(solver.state().time, h);
@@ -86,7 +88,8 @@ TEST(SolverStep, EachIntegratorTakesItsDocumentedUpdate) {
 
 TEST(SolverStep, PinnedParticlesNeverMove) {
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(sheet(9)));
-  ClothState start = random_state(*model, 9);  // pins start with a velocity: the solver must zero it
+  ClothState start =
+      random_state(*model, 9);  // pins start with a velocity: the solver must zero it
   for (Integrator integrator : {Integrator::explicit_euler, Integrator::symplectic_euler}) {
     SpringDamperSettings settings;
     settings.integrator = integrator;
@@ -117,7 +120,8 @@ TEST(SolverStep, AirDampingDecaysVelocityGeometrically) {
   for (int k = 0; k < 100; ++k) solver.step(h);
   const double factor = std::pow(1.0 - 3.0 * h, 100);
   for (int i = 0; i < model->particle_count(); ++i)
-    EXPECT_NEAR((solver.state().v.col(i) - factor * Eigen::Vector3d(1.0, -2.0, 0.5)).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((solver.state().v.col(i) - factor * Eigen::Vector3d(1.0, -2.0, 0.5)).norm(), 0.0,
+                1e-9);
 }
 
 TEST(SolverStep, StableStepBoundHoldsAndTwiceTheTrueLimitBlowsUp) {
@@ -174,8 +178,9 @@ TEST(SolverStep, StepStatsCountEveryPhase) {
   EXPECT_GT(total, 0.0);
 }
 
-// A sheet of 80 x 80 particles (13 contact blocks, so both threads take several) sagging into a sphere
-// and a tilted floor, with random velocities: about a third of the particles touch something.
+// A sheet of 80 x 80 particles (13 contact blocks, so both threads take several) sagging into a
+// sphere and a tilted floor, with random velocities: about a third of the particles touch
+// something.
 struct ContactSheet {
   std::shared_ptr<const ClothModel> model;
   ClothState start;
@@ -199,13 +204,14 @@ ContactSheet contact_sheet(Integrator integrator) {
   floor.center = {0.0, 0.27, 0.0};
   sheet.settings.integrator = integrator;
   sheet.settings.air_damping = 0.1;
-  sheet.settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball, floor},
-                                                                 ContactParameters{1000.0, 0.2}, 0.005);
+  sheet.settings.contacts = std::make_shared<const ContactModel>(
+      std::vector<Collider>{ball, floor}, ContactParameters{1000.0, 0.2}, 0.005);
   return sheet;
 }
 
-// With colliders, the Euler pair updates each block of particles inside the contact phase. That must
-// be exactly the force of evaluate_forces followed by the whole-cloth update pass, on any thread count.
+// With colliders, the Euler pair updates each block of particles inside the contact phase. That
+// must be exactly the force of evaluate_forces followed by the whole-cloth update pass, on any
+// thread count.
 TEST(SolverStep, WithCollidersEachEulerStepIsTheForceThenTheUpdatePass) {
   const int threads_before = kernels::thread_count();
   for (Integrator integrator : {Integrator::symplectic_euler, Integrator::explicit_euler})
@@ -215,24 +221,32 @@ TEST(SolverStep, WithCollidersEachEulerStepIsTheForceThenTheUpdatePass) {
       const double h = 2e-5;  // s
       SpringDamperSolver stepped("stepped", sheet.model, sheet.start, sheet.settings);
       SpringDamperSolver reference("reference", sheet.model, sheet.start, sheet.settings);
-      ClothState expected = reference.state();  // the pins' velocities zeroed, as the solver holds them
+      ClothState expected =
+          reference.state();  // the pins' velocities zeroed, as the solver holds them
       for (int step = 0; step < 3; ++step) {
-        const Eigen::Matrix3Xd force = reference.evaluate_forces(expected.x, expected.v, expected.time, h);
+        const Eigen::Matrix3Xd force =
+            reference.evaluate_forces(expected.x, expected.v, expected.time, h);
         int touching = 0;
-        for (const ColliderContactTotals& total : reference.contact_totals()) touching += total.contact_count;
-        ASSERT_GT(touching, sheet.model->particle_count() / 10) << "the sheet must press on the colliders";
+        for (const ColliderContactTotals& total : reference.contact_totals())
+          touching += total.contact_count;
+        ASSERT_GT(touching, sheet.model->particle_count() / 10)
+            << "the sheet must press on the colliders";
         Eigen::Matrix3Xd inverse_mass(3, sheet.model->particle_count());
-        for (int i = 0; i < sheet.model->particle_count(); ++i) inverse_mass.col(i).setConstant(sheet.model->inverse_mass[i]);
-        const auto pass =
-            integrator == Integrator::symplectic_euler ? kernels::symplectic_euler_pass : kernels::explicit_euler_pass;
-        ASSERT_EQ(pass(sheet.model->particle_count(), inverse_mass.data(), force.data(), h, expected.x.data(),
-                       expected.v.data(), 1e6),
+        for (int i = 0; i < sheet.model->particle_count(); ++i)
+          inverse_mass.col(i).setConstant(sheet.model->inverse_mass[i]);
+        const auto pass = integrator == Integrator::symplectic_euler
+                              ? kernels::symplectic_euler_pass
+                              : kernels::explicit_euler_pass;
+        ASSERT_EQ(pass(sheet.model->particle_count(), inverse_mass.data(), force.data(), h,
+                       expected.x.data(), expected.v.data(), 1e6),
                   -1);
         expected.time += h;
         stepped.step(h);
         ASSERT_EQ(stepped.status(), SolverStatus::ok) << stepped.message();
-        EXPECT_TRUE(stepped.state().x == expected.x) << integrator_name(integrator) << ", " << threads << " threads";
-        EXPECT_TRUE(stepped.state().v == expected.v) << integrator_name(integrator) << ", " << threads << " threads";
+        EXPECT_TRUE(stepped.state().x == expected.x)
+            << integrator_name(integrator) << ", " << threads << " threads";
+        EXPECT_TRUE(stepped.state().v == expected.v)
+            << integrator_name(integrator) << ", " << threads << " threads";
       }
     }
   kernels::set_thread_count(threads_before);
@@ -250,7 +264,8 @@ TEST(SolverStep, WithCollidersTheFirstRunawayParticleIsNamed) {
     SpringDamperSolver solver("runaway", sheet.model, sheet.start, sheet.settings);
     solver.step(1e-6);
     ASSERT_EQ(solver.status(), SolverStatus::unstable);
-    EXPECT_NE(solver.message().find(sheet.model->describe_particle(5200) + " moves at"), std::string::npos)
+    EXPECT_NE(solver.message().find(sheet.model->describe_particle(5200) + " moves at"),
+              std::string::npos)
         << solver.message();
   }
   kernels::set_thread_count(threads_before);

@@ -7,13 +7,13 @@
 #include <memory>
 
 #include "drapelab/disc_cloth.hpp"
-#include "forces/forces.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "integrators/particle_loops.hpp"
 #include "drapelab/spring_damper_solver.hpp"
+#include "fixtures/sheets.hpp"
+#include "forces/forces.hpp"
 #include "forces/spring_families.hpp"
 #include "forces/spring_family_loops.hpp"
-#include "fixtures/sheets.hpp"
+#include "integrators/particle_loops.hpp"
 
 namespace drapelab {
 namespace {
@@ -51,8 +51,9 @@ TEST(SpringFamilies, ForcesEqualThePlainLoopToRoundingOnEveryGrid) {
   }
 }
 
-// The solver's fast path starts the force from gravity and air drag inside the spring kernel's first
-// pass: the same bits as the separate body-force pass followed by the springs, on 1 and 2 threads.
+// The solver's fast path starts the force from gravity and air drag inside the spring kernel's
+// first pass: the same bits as the separate body-force pass followed by the springs, on 1 and 2
+// threads.
 TEST(SpringFamilies, BodyForcesInTheFirstPassEqualTheSeparatePassBitForBit) {
   for (int n : {9, 97}) {  // one thread's region, and one large enough to split among threads
     SCOPED_TRACE(n);
@@ -61,16 +62,18 @@ TEST(SpringFamilies, BodyForcesInTheFirstPassEqualTheSeparatePassBitForBit) {
     const ClothState state = shaken(model, spec);
     auto families = SpringFamilies::build(model);
     ASSERT_TRUE(families);
-    const Eigen::Matrix3Xd mass = model.mass.transpose().replicate(3, 1);          // kg per coordinate
+    const Eigen::Matrix3Xd mass = model.mass.transpose().replicate(3, 1);  // kg per coordinate
     const Eigen::Matrix3Xd weight = Eigen::Vector3d(0.3, -9.81, 0.1) * model.mass.transpose();  // N
-    const double air = 0.7;                                                         // 1/s
+    const double air = 0.7;  // 1/s
     const int threads_before = kernels::thread_count();
     for (int threads : {1, 2}) {
       kernels::set_thread_count(threads);
       Eigen::Matrix3Xd separate(3, model.particle_count());
-      kernels::set_body_forces(model.particle_count(), weight.data(), mass.data(), air, state.v.data(), separate.data());
+      kernels::set_body_forces(model.particle_count(), weight.data(), mass.data(), air,
+                               state.v.data(), separate.data());
       families->add_forces(state.x, state.v, separate);
-      Eigen::Matrix3Xd fused = Eigen::Matrix3Xd::Constant(3, model.particle_count(), 123.0);  // overwritten
+      Eigen::Matrix3Xd fused =
+          Eigen::Matrix3Xd::Constant(3, model.particle_count(), 123.0);  // overwritten
       families->set_body_and_spring_forces(state.x, state.v, weight, mass, air, fused);
       EXPECT_TRUE((fused.array() == separate.array()).all()) << threads << " thread(s)";
     }
@@ -79,8 +82,8 @@ TEST(SpringFamilies, BodyForcesInTheFirstPassEqualTheSeparatePassBitForBit) {
 }
 
 TEST(SpringFamilies, FamiliesWithVaryingSpringsReadPerSpringValuesAndStillEqualThePlainLoop) {
-  // A grid's families are uniform (one rest length, ks and kd each); varying one spring of every kind
-  // sends those families through the per-slot arrays instead.
+  // A grid's families are uniform (one rest length, ks and kd each); varying one spring of every
+  // kind sends those families through the per-slot arrays instead.
   const GridClothSpec spec = grid(33, 17);
   ClothModel model = build_grid_cloth(spec);
   for (std::size_t e = 0; e < model.springs.size(); e += 97) {
@@ -114,7 +117,8 @@ TEST(SpringFamilies, PerturbedRestLengthsReadOnlyTheRestArrayAndStillEqualThePla
   for (const SpringFamily& family : families->families()) {
     EXPECT_TRUE(family.uniform_stiffness) << "offset " << family.offset;
     EXPECT_FALSE(family.uniform) << "offset " << family.offset;
-    EXPECT_FALSE(family.empty_slots.empty()) << "offset " << family.offset;  // row ends: cleared slots
+    EXPECT_FALSE(family.empty_slots.empty())
+        << "offset " << family.offset;  // row ends: cleared slots
   }
   Eigen::Matrix3Xd plain = Eigen::Matrix3Xd::Constant(3, model.particle_count(), 0.25);
   Eigen::Matrix3Xd fast = plain;
@@ -131,7 +135,8 @@ TEST(SpringFamilies, MeshesWithManyOffsetsKeepThePlainLoop) {
   EXPECT_FALSE(SpringFamilies::build(build_mesh_cloth(spec)));
 }
 
-ClothState run(const std::shared_ptr<const ClothModel>& model, const GridClothSpec& spec, bool fast, int threads) {
+ClothState run(const std::shared_ptr<const ClothModel>& model, const GridClothSpec& spec, bool fast,
+               int threads) {
   kernels::set_thread_count(threads);
   SpringDamperSettings settings;
   settings.fast_springs = fast;
@@ -145,7 +150,8 @@ ClothState run(const std::shared_ptr<const ClothModel>& model, const GridClothSp
 
 TEST(SpringFamilies, RunsMatchThePlainPathAndAreBitwiseIdenticalForOneAndTwoThreads) {
   // Large enough that the loops really split among threads (families of >= 8192 springs).
-  const GridClothSpec spec = grid(97, 97);  // 97 x 96 = 9312 springs along x: above the threading threshold
+  const GridClothSpec spec =
+      grid(97, 97);  // 97 x 96 = 9312 springs along x: above the threading threshold
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState plain = run(model, spec, false, 1);
   const ClothState one = run(model, spec, true, 1);
@@ -157,8 +163,9 @@ TEST(SpringFamilies, RunsMatchThePlainPathAndAreBitwiseIdenticalForOneAndTwoThre
 
 TEST(SpringFamilies, ShortThreadRunsAndMoreThreadsThanBlocksGiveTheSameBits) {
   // A wide, short sheet (400 x 12: largest offset 800, ten blocks of 512 particles) run on 3 and 16
-  // threads: runs shorter than the largest offset, whose gathers all wait for the barrier, and threads
-  // with no block at all. Perturbed rest lengths send every family through the rest-array layout.
+  // threads: runs shorter than the largest offset, whose gathers all wait for the barrier, and
+  // threads with no block at all. Perturbed rest lengths send every family through the rest-array
+  // layout.
   const GridClothSpec spec = grid(400, 12);
   ClothModel perturbed = build_grid_cloth(spec);
   for (std::size_t e = 0; e < perturbed.springs.size(); ++e)
@@ -169,8 +176,10 @@ TEST(SpringFamilies, ShortThreadRunsAndMoreThreadsThanBlocksGiveTheSameBits) {
   EXPECT_LT((one.x - plain.x).cwiseAbs().maxCoeff(), 1e-12);  // m
   for (int threads : {3, 16}) {
     const ClothState many = run(model, spec, true, threads);
-    EXPECT_TRUE((one.x.array() == many.x.array()).all()) << threads << " threads changed the positions";
-    EXPECT_TRUE((one.v.array() == many.v.array()).all()) << threads << " threads changed the velocities";
+    EXPECT_TRUE((one.x.array() == many.x.array()).all())
+        << threads << " threads changed the positions";
+    EXPECT_TRUE((one.v.array() == many.v.array()).all())
+        << threads << " threads changed the velocities";
   }
 }
 

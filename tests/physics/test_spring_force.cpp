@@ -48,7 +48,8 @@ TEST(SpringForce, ElasticForceIsMinusTheEnergyGradient) {
       Eigen::Vector3d plus = x1, minus = x1;
       plus[c] += step;
       minus[c] -= step;
-      gradient[c] = (spring_energy(plus, x2, ks, rest) - spring_energy(minus, x2, ks, rest)) / (2 * step);
+      gradient[c] =
+          (spring_energy(plus, x2, ks, rest) - spring_energy(minus, x2, ks, rest)) / (2 * step);
     }
     EXPECT_LT((force + gradient).norm(), 1e-6 * (1.0 + force.norm()));
   }
@@ -62,7 +63,8 @@ TEST(SpringForce, DampingNeverAddsEnergy) {
     const Eigen::Vector3d x1(u(random), u(random), u(random)), x2(u(random), u(random), u(random));
     const Eigen::Vector3d v1(u(random), u(random), u(random)), v2(u(random), u(random), u(random));
     const double rest = (x1 - x2).norm();  // at rest length the force is purely viscous
-    const Eigen::Vector3d f1 = damped_spring_force(x1, x2, v1, v2, 1000.0, 2.0 * (u(random) + 1.0), rest);
+    const Eigen::Vector3d f1 =
+        damped_spring_force(x1, x2, v1, v2, 1000.0, 2.0 * (u(random) + 1.0), rest);
     EXPECT_LE(f1.dot(v1 - v2), 1e-12);
   }
 }

@@ -11,7 +11,8 @@
 namespace drapelab {
 namespace {
 
-// Central differences of the spring force on particle 1 w.r.t. x1 (column by column), step eps (m or m/s).
+// Central differences of the spring force on particle 1 w.r.t. x1 (column by column), step eps (m
+// or m/s).
 template <typename Force>
 Eigen::Matrix3d central_difference(const Force& force, const Eigen::Vector3d& at, double eps) {
   Eigen::Matrix3d jacobian;
@@ -24,7 +25,9 @@ Eigen::Matrix3d central_difference(const Force& force, const Eigen::Vector3d& at
   return jacobian;
 }
 
-double relative_error(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return (a - b).norm() / b.norm(); }
+double relative_error(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return (a - b).norm() / b.norm();
+}
 
 TEST(SpringJacobian, MatchesFiniteDifferencesStretchedAndCompressed) {
   std::mt19937_64 random(7);
@@ -38,11 +41,14 @@ TEST(SpringJacobian, MatchesFiniteDifferencesStretchedAndCompressed) {
     const SpringJacobian j = spring_jacobian_exact(x1, x2, v1, v2, ks, kd, rest);
     const double eps = 1e-6 * (x1 - x2).norm();
     const Eigen::Matrix3d by_x1 = central_difference(
-        [&](const Eigen::Vector3d& p) { return damped_spring_force(p, x2, v1, v2, ks, kd, rest); }, x1, eps);
+        [&](const Eigen::Vector3d& p) { return damped_spring_force(p, x2, v1, v2, ks, kd, rest); },
+        x1, eps);
     const Eigen::Matrix3d by_x2 = central_difference(
-        [&](const Eigen::Vector3d& p) { return damped_spring_force(x1, p, v1, v2, ks, kd, rest); }, x2, eps);
+        [&](const Eigen::Vector3d& p) { return damped_spring_force(x1, p, v1, v2, ks, kd, rest); },
+        x2, eps);
     const Eigen::Matrix3d by_v1 = central_difference(
-        [&](const Eigen::Vector3d& p) { return damped_spring_force(x1, x2, p, v2, ks, kd, rest); }, v1, 1e-6);
+        [&](const Eigen::Vector3d& p) { return damped_spring_force(x1, x2, p, v2, ks, kd, rest); },
+        v1, 1e-6);
     EXPECT_LT(relative_error(j.dforce_dx, by_x1), 1e-6) << "trial " << trial;
     EXPECT_LT(relative_error(-j.dforce_dx, by_x2), 1e-6) << "trial " << trial;
     EXPECT_LT(relative_error(j.dforce_dv, by_v1), 1e-6) << "trial " << trial;
@@ -57,11 +63,19 @@ TEST(SpringJacobian, SolveFormIsTheElasticPartWhenStretchedAndSemidefiniteWhenCo
   const SpringJacobian solve = spring_jacobian_for_solve(x1, x2, 200.0, 0.0, 0.8 * length);
   EXPECT_LT((exact.dforce_dx - solve.dforce_dx).norm(), 1e-12 * exact.dforce_dx.norm());
   // Compressed: the exact form has a positive eigenvalue (across the spring); the solve form none.
-  const SpringJacobian compressed_exact = spring_jacobian_exact(x1, x2, zero, zero, 200.0, 0.0, 1.5 * length);
+  const SpringJacobian compressed_exact =
+      spring_jacobian_exact(x1, x2, zero, zero, 200.0, 0.0, 1.5 * length);
   const SpringJacobian compressed = spring_jacobian_for_solve(x1, x2, 200.0, 0.3, 1.5 * length);
-  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(compressed_exact.dforce_dx).eigenvalues().maxCoeff(), 1.0);
-  EXPECT_LE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(compressed.dforce_dx).eigenvalues().maxCoeff(), 1e-12);
-  EXPECT_LE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(compressed.dforce_dv).eigenvalues().maxCoeff(), 1e-12);
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(compressed_exact.dforce_dx)
+                .eigenvalues()
+                .maxCoeff(),
+            1.0);
+  EXPECT_LE(
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(compressed.dforce_dx).eigenvalues().maxCoeff(),
+      1e-12);
+  EXPECT_LE(
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(compressed.dforce_dv).eigenvalues().maxCoeff(),
+      1e-12);
   EXPECT_LT((compressed.dforce_dx - compressed.dforce_dx.transpose()).norm(), 1e-12);
 }
 

@@ -45,7 +45,8 @@ namespace drapelab {
 namespace {
 
 TEST(StepAllocations, CounterSeesAnAllocation) {
-  if (!DRAPELAB_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+  if (!DRAPELAB_COUNT_ALLOCATIONS)
+    GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
   const long before = g_allocations.load();
   auto* block = static_cast<volatile char*>(std::malloc(64));
   block[0] = 1;
@@ -56,7 +57,8 @@ TEST(StepAllocations, CounterSeesAnAllocation) {
 // Every explicit scheme. Implicit Euler is left out: Eigen's conjugate gradient allocates its work
 // vectors on each solve (a few 3N vectors per step, small beside the solve itself).
 TEST(StepAllocations, StepAllocatesNothingForEveryExplicitIntegrator) {
-  if (!DRAPELAB_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+  if (!DRAPELAB_COUNT_ALLOCATIONS)
+    GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
   GridClothSpec spec = fixtures::hanging_sheet(17, 0.1, fixtures::default_springs());
   spec.stretch = {500.0, 0.01};
   for (Integrator integrator : all_integrators()) {
@@ -76,7 +78,8 @@ TEST(StepAllocations, StepAllocatesNothingForEveryExplicitIntegrator) {
       solver.step(h);  // first step outside the count, in case a library initialises lazily
       const long before = g_allocations.load();
       for (int k = 0; k < 200; ++k) solver.step(h);
-      EXPECT_EQ(g_allocations.load() - before, 0) << integrator_name(integrator) << (adaptive ? ", adaptive" : "");
+      EXPECT_EQ(g_allocations.load() - before, 0)
+          << integrator_name(integrator) << (adaptive ? ", adaptive" : "");
       EXPECT_EQ(solver.status(), SolverStatus::ok);
       if (adaptive) {
         EXPECT_GT(solver.stats().steps, 201);  // really split into substeps
@@ -86,7 +89,8 @@ TEST(StepAllocations, StepAllocatesNothingForEveryExplicitIntegrator) {
 }
 
 TEST(StepAllocations, StepWithContactsAndFrictionAllocatesNothing) {
-  if (!DRAPELAB_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+  if (!DRAPELAB_COUNT_ALLOCATIONS)
+    GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
   // Resting on the floor (and the sphere's top), sagging m g / k.
   const GridClothSpec spec = fixtures::flat_sheet(17, 0.6, {0, 0.8 + 0.005 - 3e-6, 0}, 0.05);
   Collider ball = fixtures::ball_collider();
@@ -94,8 +98,8 @@ TEST(StepAllocations, StepWithContactsAndFrictionAllocatesNothing) {
   const Collider floor = fixtures::floor_collider(0.8);
   auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   SpringDamperSettings settings;
-  settings.contacts = std::make_shared<const ContactModel>(std::vector<Collider>{ball, floor},
-                                                           ContactParameters{500.0, 0.05}, spec.thickness);
+  settings.contacts = std::make_shared<const ContactModel>(
+      std::vector<Collider>{ball, floor}, ContactParameters{500.0, 0.05}, spec.thickness);
   SpringDamperSolver solver("s", model, initial_grid_state(*model, spec, 0.0, 0), settings);
   solver.step(1e-5);
   const long before = g_allocations.load();

@@ -14,7 +14,9 @@ namespace drapelab {
 namespace {
 
 // A flat n x n sheet of 1 kg, `size` m square, centred at the origin.
-GridClothSpec flat(int n, double size) { return fixtures::flat_sheet(n, size, Eigen::Vector3d::Zero(), 1.0); }
+GridClothSpec flat(int n, double size) {
+  return fixtures::flat_sheet(n, size, Eigen::Vector3d::Zero(), 1.0);
+}
 
 TEST(SurfaceDistance, PointTriangleDistanceMatchesDenseSampling) {
   std::mt19937_64 random(4);

@@ -19,7 +19,8 @@ namespace {
 
 const std::vector<Integrator> kIntegrators = all_integrators();
 
-std::unique_ptr<SpringDamperSolver> make_solver(const GridClothSpec& spec, SpringDamperSettings settings,
+std::unique_ptr<SpringDamperSolver> make_solver(const GridClothSpec& spec,
+                                                SpringDamperSettings settings,
                                                 const ClothState* initial = nullptr) {
   auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   ClothState state = initial ? *initial : initial_grid_state(*model, spec, 0.0, 0);
@@ -30,17 +31,20 @@ std::unique_ptr<SpringDamperSolver> make_solver(const GridClothSpec& spec, Sprin
 // g h^2 n(n+1)/2 (symplectic and implicit Euler) or g h^2 n^2/2 (midpoint, RK4, Verlet, leapfrog).
 double discrete_free_fall_steps(Integrator integrator, double n) {
   switch (integrator) {
-    case Integrator::explicit_euler: return n * (n - 1) / 2;
+    case Integrator::explicit_euler:
+      return n * (n - 1) / 2;
     case Integrator::symplectic_euler:
-    case Integrator::implicit_euler: return n * (n + 1) / 2;
-    default: return n * n / 2;
+    case Integrator::implicit_euler:
+      return n * (n + 1) / 2;
+    default:
+      return n * n / 2;
   }
 }
 
 TEST(V1FreeFall, DiscreteDropIsExactForEachIntegrator) {
   // No springs acting: particles fall freely.
-  const GridClothSpec spec =
-      fixtures::with_springs(fixtures::flat_sheet(3, 1.0, {0.0, 1.0, 0.0}, 0.09), fixtures::kNoSprings);
+  const GridClothSpec spec = fixtures::with_springs(
+      fixtures::flat_sheet(3, 1.0, {0.0, 1.0, 0.0}, 0.09), fixtures::kNoSprings);
   for (Integrator integrator : kIntegrators) {
     SpringDamperSettings settings;
     settings.integrator = integrator;
@@ -62,24 +66,31 @@ TEST(V1FreeFall, DiscreteDropIsExactForEachIntegrator) {
 // V2: N = 10 particles of m = 0.01 kg hang below a pinned one on springs k = 100 N/m, L = 0.05 m.
 // Spring j from the top carries (N - j + 1) m g; the total extension is (m g / k) N (N + 1) / 2.
 TEST(V2HangingChain, RestsAtTheStaticsOfHookesLaw) {
-  const GridClothSpec spec = fixtures::hanging_chain(0.05);  // 0.01 kg each, the pinned particle included
+  const GridClothSpec spec =
+      fixtures::hanging_chain(0.05);  // 0.01 kg each, the pinned particle included
   for (Integrator integrator : kIntegrators) {
     SpringDamperSettings settings;
     settings.integrator = integrator;
     settings.air_damping = 5.0;  // 1/s: the slowest mode decays like exp(-2.5 t)
     auto solver = make_solver(spec, settings);
-    // Explicit Euler and midpoint are stable only below kd / ks = 5e-4 s; implicit Euler at any step.
-    const bool needs_damping = integrator == Integrator::explicit_euler || integrator == Integrator::midpoint;
-    const double h = needs_damping ? 2e-4 : integrator == Integrator::implicit_euler ? 1e-2 : 1e-3;  // s
+    // Explicit Euler and midpoint are stable only below kd / ks = 5e-4 s; implicit Euler at any
+    // step.
+    const bool needs_damping =
+        integrator == Integrator::explicit_euler || integrator == Integrator::midpoint;
+    const double h = needs_damping                              ? 2e-4
+                     : integrator == Integrator::implicit_euler ? 1e-2
+                                                                : 1e-3;  // s
     for (int k = 0; k < static_cast<int>(30.0 / h); ++k) solver->step(h);
     ASSERT_EQ(solver->status(), SolverStatus::ok);
     const double m = 0.01, g = 9.81, k = 100.0, L = 0.05;
     const auto& x = solver->state().x;
     double total = 0.0;
-    for (int j = 0; j < 10; ++j) {  // particle 10 is the top; spring j from the top joins 10-j+1 and 10-j
+    for (int j = 0; j < 10;
+         ++j) {  // particle 10 is the top; spring j from the top joins 10-j+1 and 10-j
       const double extension = (x.col(10 - j) - x.col(9 - j)).norm() - L;
       const int carried = 10 - j;  // particles below the spring
-      EXPECT_NEAR(extension, carried * m * g / k, 1e-6 * carried * m * g / k) << integrator_name(integrator);
+      EXPECT_NEAR(extension, carried * m * g / k, 1e-6 * carried * m * g / k)
+          << integrator_name(integrator);
       total += extension;
     }
     EXPECT_NEAR(total, 0.053955, 1e-6 * 0.053955);
@@ -87,10 +98,11 @@ TEST(V2HangingChain, RestsAtTheStaticsOfHookesLaw) {
   }
 }
 
-// One particle of 0.1 kg on a spring k = 10 N/m to a pinned particle, damping c = 0.1 N*s/m, no gravity.
+// One particle of 0.1 kg on a spring k = 10 N/m to a pinned particle, damping c = 0.1 N*s/m, no
+// gravity.
 struct OscillatorTrace {
-  double period = 0.0;      // s, mean time between successive upward zero crossings
-  double decrement = 0.0;   // mean ln(x_k / x_{k+1}) over successive maxima
+  double period = 0.0;     // s, mean time between successive upward zero crossings
+  double decrement = 0.0;  // mean ln(x_k / x_{k+1}) over successive maxima
 };
 
 OscillatorTrace trace_oscillator(Integrator integrator, double h) {
@@ -110,7 +122,8 @@ OscillatorTrace trace_oscillator(Integrator integrator, double h) {
   for (int k = 1; k <= steps; ++k) {
     solver.step(h);
     const double u = solver.state().x(1, 0) - rest_y;  // displacement, m
-    if (previous < 0.0 && u >= 0.0) crossings.push_back((k - 1) * h + h * (-previous) / (u - previous));
+    if (previous < 0.0 && u >= 0.0)
+      crossings.push_back((k - 1) * h + h * (-previous) / (u - previous));
     if (previous > before_previous && previous >= u && previous > 0.0) {
       // Parabola through the three samples around the maximum gives its height to O(h^3).
       const double a = 0.5 * (before_previous + u) - previous, b = 0.5 * (u - before_previous);
@@ -121,7 +134,8 @@ OscillatorTrace trace_oscillator(Integrator integrator, double h) {
   }
   OscillatorTrace trace;
   trace.period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  trace.decrement = std::log(maxima.front() / maxima.back()) / static_cast<double>(maxima.size() - 1);
+  trace.decrement =
+      std::log(maxima.front() / maxima.back()) / static_cast<double>(maxima.size() - 1);
   return trace;
 }
 
@@ -133,11 +147,12 @@ TEST(V3DampedOscillator, PeriodAndDecrementMatchTheClosedForm) {
   EXPECT_NEAR(period, 0.62911, 1e-5);
   EXPECT_NEAR(decrement, 0.31455, 1e-5);
   // Second-order schemes meet the tolerance at omega0 h = 0.05. Symplectic Euler treats the damper
-  // explicitly, which shifts its frequency to first order in h (+0.14 % at omega0 h = 0.05, +0.05 % at
-  // 0.02), so it is checked at 0.02. Explicit Euler adds energy at the rate omega0^2 h / 2 per second,
-  // which shifts the decrement by omega0^2 h T / 2: within 1 % it needs omega0 h = 1e-4.
-  for (Integrator integrator : {Integrator::symplectic_euler, Integrator::explicit_euler, Integrator::midpoint,
-                                Integrator::rk4, Integrator::verlet, Integrator::leapfrog}) {
+  // explicitly, which shifts its frequency to first order in h (+0.14 % at omega0 h = 0.05, +0.05 %
+  // at 0.02), so it is checked at 0.02. Explicit Euler adds energy at the rate omega0^2 h / 2 per
+  // second, which shifts the decrement by omega0^2 h T / 2: within 1 % it needs omega0 h = 1e-4.
+  for (Integrator integrator :
+       {Integrator::symplectic_euler, Integrator::explicit_euler, Integrator::midpoint,
+        Integrator::rk4, Integrator::verlet, Integrator::leapfrog}) {
     SCOPED_TRACE(integrator_name(integrator));
     const double omega_h = integrator == Integrator::explicit_euler     ? 1e-4
                            : integrator == Integrator::symplectic_euler ? 0.02
@@ -150,11 +165,12 @@ TEST(V3DampedOscillator, PeriodAndDecrementMatchTheClosedForm) {
 
 // Implicit Euler multiplies each oscillation mode by mu = 1 / (1 - h lambda) per step, lambda =
 // omega0 (-zeta + i sqrt(1 - zeta^2)): its period is 2 pi h / arg(mu) and its decrement
-// -ln|mu| 2 pi / arg(mu). The numerical damping adds about omega0 h / 2 to zeta (docs/validation.md,
-// "V3 Damped oscillator").
+// -ln|mu| 2 pi / arg(mu). The numerical damping adds about omega0 h / 2 to zeta
+// (docs/validation.md, "V3 Damped oscillator").
 TEST(V3DampedOscillator, ImplicitEulerMatchesItsDiscreteFormAndAddsDampingOfHalfOmegaH) {
   const double omega0 = 10.0, zeta = 0.05, h = 0.05 / omega0;
-  const std::complex<double> lambda = omega0 * std::complex<double>(-zeta, std::sqrt(1.0 - zeta * zeta));
+  const std::complex<double> lambda =
+      omega0 * std::complex<double>(-zeta, std::sqrt(1.0 - zeta * zeta));
   const std::complex<double> mu = 1.0 / (1.0 - h * lambda);
   const double period = 2.0 * std::numbers::pi * h / std::arg(mu);
   const double decrement = -std::log(std::abs(mu)) * 2.0 * std::numbers::pi / std::arg(mu);
@@ -163,12 +179,14 @@ TEST(V3DampedOscillator, ImplicitEulerMatchesItsDiscreteFormAndAddsDampingOfHalf
   EXPECT_NEAR(trace.decrement, decrement, 1e-2 * decrement);
   const double true_decrement = 0.31455;
   const double added_zeta = 0.05 / 2.0;  // omega0 h / 2
-  EXPECT_NEAR(trace.decrement - true_decrement, 2.0 * std::numbers::pi * added_zeta, 0.2 * 2.0 * std::numbers::pi * added_zeta);
+  EXPECT_NEAR(trace.decrement - true_decrement, 2.0 * std::numbers::pi * added_zeta,
+              0.2 * 2.0 * std::numbers::pi * added_zeta);
 }
 
 TEST(V3DampedOscillator, ExplicitEulerAtTheSymplecticStepVisiblyLosesDamping) {
   // The same oscillator with explicit Euler at omega0 h = 0.05: the anti-damping omega0^2 h / 2
-  // = 0.25 /s halves the decay rate zeta omega0 = 0.5 /s. This is why Forward Euler needs tiny steps.
+  // = 0.25 /s halves the decay rate zeta omega0 = 0.5 /s. This is why Forward Euler needs tiny
+  // steps.
   const double omega0 = 10.0;
   const OscillatorTrace trace = trace_oscillator(Integrator::explicit_euler, 0.05 / omega0);
   EXPECT_LT(trace.decrement, 0.6 * 0.31455);

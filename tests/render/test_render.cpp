@@ -1,10 +1,10 @@
-// `drapelab render` end to end: a tiny scene (a 9 x 9 cloth falling onto a sphere for 0.2 s, ours and
-// Bullet's classic cloth) is run once with point caches, then rendered at 320 x 240. The PNG files are
-// read back with libpng here and checked: their size, that the flat first frame differs from the
-// draped last one, and that the cloth's pixels lie where the projection of its particles (read from
-// the point cache here, projected with a pinhole written here) says. Also: a run without point caches
-// is refused, the video is encoded by whatever `ffmpeg` is on PATH, with the right arguments, and
-// without one the verb says how to get it.
+// `drapelab render` end to end: a tiny scene (a 9 x 9 cloth falling onto a sphere for 0.2 s, ours
+// and Bullet's classic cloth) is run once with point caches, then rendered at 320 x 240. The PNG
+// files are read back with libpng here and checked: their size, that the flat first frame differs
+// from the draped last one, and that the cloth's pixels lie where the projection of its particles
+// (read from the point cache here, projected with a pinhole written here) says. Also: a run without
+// point caches is refused, the video is encoded by whatever `ffmpeg` is on PATH, with the right
+// arguments, and without one the verb says how to get it.
 #include <gtest/gtest.h>
 #include <png.h>
 #include <unistd.h>
@@ -68,13 +68,16 @@ const std::string kCamera = "eye=0,2.4,0.6; target=0,0.65,0; fov=40";
 struct Rgba {
   int width = 0, height = 0;
   std::vector<std::uint8_t> pixels;  // RGBA, top row first
-  const std::uint8_t* at(int x, int y) const { return pixels.data() + (std::size_t(y) * width + x) * 4; }
+  const std::uint8_t* at(int x, int y) const {
+    return pixels.data() + (std::size_t(y) * width + x) * 4;
+  }
 };
 
 Rgba read_png(const fs::path& path) {
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, path.c_str())) throw std::runtime_error("cannot read " + path.string());
+  if (!png_image_begin_read_from_file(&png, path.c_str()))
+    throw std::runtime_error("cannot read " + path.string());
   png.format = PNG_FORMAT_RGBA;
   Rgba image;
   image.width = static_cast<int>(png.width);
@@ -122,7 +125,8 @@ Eigen::Vector2d project(const Eigen::Vector3d& p, int width, int height) {
   const Eigen::Vector3d d = p - kEye;
   const double half_height = std::tan(kFovDegrees / 2 * std::numbers::pi / 180.0) * d.dot(forward);
   const double half_width = half_height * width / height;
-  return {0.5 * width * (1.0 + d.dot(right) / half_width), 0.5 * height * (1.0 - d.dot(up) / half_height)};
+  return {0.5 * width * (1.0 + d.dot(right) / half_width),
+          0.5 * height * (1.0 - d.dot(up) / half_height)};
 }
 
 struct Box {
@@ -144,12 +148,14 @@ bool is_cloth(const std::uint8_t* p) { return p[1] > 40 && p[1] > 1.6 * p[0] && 
 class RenderCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = new fs::path(fs::temp_directory_path() / ("drapelab_render_" + std::to_string(::getpid())));
+    root_ =
+        new fs::path(fs::temp_directory_path() / ("drapelab_render_" + std::to_string(::getpid())));
     fs::remove_all(*root_);
     fs::create_directories(*root_);
     write_text(*root_ / "scene.yaml", kScene);
     run_result_ = new drapelab::fixtures::CommandResult(
-        run_drapelab({"run", (*root_ / "scene.yaml").string(), "--out", run_dir().string(), "--meshes", "pc2", "-q"}));
+        run_drapelab({"run", (*root_ / "scene.yaml").string(), "--out", run_dir().string(),
+                      "--meshes", "pc2", "-q"}));
   }
   static void TearDownTestSuite() {
     fs::remove_all(*root_);
@@ -179,7 +185,8 @@ class RenderCli : public ::testing::Test {
 TEST_F(RenderCli, WritesOneImageOfTheRequestedSizePerFrame) {
   without_ffmpeg();
   const fs::path out = root() / "frames";
-  const auto result = run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "320x240"});
+  const auto result =
+      run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "320x240"});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (int frame = 0; frame < kFrames; ++frame) {
     char name[32];
@@ -198,16 +205,22 @@ TEST_F(RenderCli, WritesOneImageOfTheRequestedSizePerFrame) {
 
 TEST_F(RenderCli, DefaultFolderIsInsideTheRunAndEveryNthFrame) {
   without_ffmpeg();
-  const auto result = run_drapelab({"render", run_dir().string(), "--size", "200x100", "--every", "3"});
+  const auto result =
+      run_drapelab({"render", run_dir().string(), "--size", "200x100", "--every", "3"});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(run_dir() / "render")) names.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(run_dir() / "render"))
+    names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"frame_0000.png", "frame_0003.png", "frame_0006.png"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"frame_0000.png", "frame_0003.png", "frame_0006.png"}));
   // A second render into the same folder replaces the first one's frames.
-  ASSERT_EQ(run_drapelab({"render", run_dir().string(), "--size", "200x100", "--every", "4"}).exit_code, 0);
+  ASSERT_EQ(
+      run_drapelab({"render", run_dir().string(), "--size", "200x100", "--every", "4"}).exit_code,
+      0);
   names.clear();
-  for (const auto& entry : fs::directory_iterator(run_dir() / "render")) names.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(run_dir() / "render"))
+    names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"frame_0000.png", "frame_0004.png"}));
   fs::remove_all(run_dir() / "render");
@@ -217,8 +230,9 @@ TEST_F(RenderCli, ClothPixelsAreWhereTheParticlesProject) {
   without_ffmpeg();
   write_flat_png(root() / "green.png", 0, 255, 0);
   const fs::path out = root() / "green";
-  const auto result = run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "320x240",
-                                    "--camera", kCamera, "--texture", (root() / "green.png").string()});
+  const auto result =
+      run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "320x240",
+                    "--camera", kCamera, "--texture", (root() / "green.png").string()});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const int panel_width = kWidth / kPanels;
   const std::vector<std::string> solvers{"ours", "classic"};  // summary.json's order, left to right
@@ -232,15 +246,16 @@ TEST_F(RenderCli, ClothPixelsAreWhereTheParticlesProject) {
       for (int y = 0; y < kHeight; ++y)
         for (int x = panel * panel_width; x < (panel + 1) * panel_width; ++x)
           if (is_cloth(image.at(x, y))) rendered.add(x - panel * panel_width, y);
-      const Eigen::Matrix3Xd particles = read_pc2_frame(run_dir() / "meshes" / (solvers[panel] + ".pc2"), frame);
+      const Eigen::Matrix3Xd particles =
+          read_pc2_frame(run_dir() / "meshes" / (solvers[panel] + ".pc2"), frame);
       for (int i = 0; i < particles.cols(); ++i) {
         const Eigen::Vector2d p = project(particles.col(i), panel_width, kHeight);
         projected.add(p.x(), p.y());
       }
       ASSERT_GT(rendered.count, 500) << "too few cloth pixels";
-      // Pixel x covers [x, x + 1): the box of covered pixels spans [x0, x1 + 1). Within a pixel: the
-      // antialiased border is partly background (a 1 degree error in the field of view moves the
-      // edges by 2 pixels here).
+      // Pixel x covers [x, x + 1): the box of covered pixels spans [x0, x1 + 1). Within a pixel:
+      // the antialiased border is partly background (a 1 degree error in the field of view moves
+      // the edges by 2 pixels here).
       constexpr double kTolerance = 1.0;
       EXPECT_NEAR(rendered.x0, projected.x0, kTolerance);
       EXPECT_NEAR(rendered.x1 + 1, projected.x1, kTolerance);
@@ -253,7 +268,9 @@ TEST_F(RenderCli, ClothPixelsAreWhereTheParticlesProject) {
 TEST_F(RenderCli, FlatAndDrapedFramesDiffer) {
   without_ffmpeg();
   const fs::path out = root() / "compare";
-  ASSERT_EQ(run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "320x240"}).exit_code, 0);
+  ASSERT_EQ(run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "320x240"})
+                .exit_code,
+            0);
   const Rgba flat = read_png(out / "frame_0000.png");
   const Rgba draped = read_png(out / "frame_0006.png");
   const Rgba almost_flat = read_png(out / "frame_0001.png");
@@ -261,13 +278,14 @@ TEST_F(RenderCli, FlatAndDrapedFramesDiffer) {
     int count = 0;
     for (std::size_t k = 0; k < a.pixels.size(); k += 4) {
       int difference = 0;
-      for (int c = 0; c < 3; ++c) difference = std::max(difference, std::abs(a.pixels[k + c] - b.pixels[k + c]));
+      for (int c = 0; c < 3; ++c)
+        difference = std::max(difference, std::abs(a.pixels[k + c] - b.pixels[k + c]));
       count += difference > 40;
     }
     return count;
   };
-  // The cloth has fallen onto the ball and its sides hang down: thousands of pixels change, far more
-  // than between the first two frames, where it has fallen 5 mm in free flight.
+  // The cloth has fallen onto the ball and its sides hang down: thousands of pixels change, far
+  // more than between the first two frames, where it has fallen 5 mm in free flight.
   const int draped_change = changed_pixels(flat, draped);
   EXPECT_GT(draped_change, kWidth * kHeight / 50);
   EXPECT_GT(draped_change, 4 * changed_pixels(flat, almost_flat));
@@ -277,33 +295,40 @@ TEST_F(RenderCli, VideoIsEncodedByTheFfmpegOnPath) {
   // A stand-in ffmpeg that records its arguments and writes the output file it was given last.
   const fs::path bin = root() / "fake_bin";
   fs::create_directories(bin);
-  write_text(bin / "ffmpeg", "#!/bin/sh\nprintf '%s\\n' \"$@\" > \"" + (root() / "ffmpeg_arguments.txt").string() +
+  write_text(bin / "ffmpeg", "#!/bin/sh\nprintf '%s\\n' \"$@\" > \"" +
+                                 (root() / "ffmpeg_arguments.txt").string() +
                                  "\"\nfor last; do :; done\necho video > \"$last\"\n");
   fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
   ::setenv("PATH", (bin.string() + ":/usr/bin:/bin").c_str(), 1);
   const fs::path out = root() / "video";
-  const auto result = run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "64x32", "--every", "2"});
+  const auto result = run_drapelab(
+      {"render", run_dir().string(), "--out", out.string(), "--size", "64x32", "--every", "2"});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   ASSERT_TRUE(fs::exists(out / "video.mp4")) << result.output;
   const std::string arguments = read_text(root() / "ffmpeg_arguments.txt");
   // Every second frame of a 30 frames/s run plays at 15 frames/s.
   EXPECT_NE(arguments.find("-framerate\n15\n"), std::string::npos) << arguments;
-  EXPECT_NE(arguments.find("-i\n" + (out / "frame_*.png").string() + "\n"), std::string::npos) << arguments;
+  EXPECT_NE(arguments.find("-i\n" + (out / "frame_*.png").string() + "\n"), std::string::npos)
+      << arguments;
   EXPECT_NE(arguments.find("-c:v\nlibx264\n"), std::string::npos) << arguments;
   EXPECT_NE(arguments.find("-pix_fmt\nyuv420p\n"), std::string::npos) << arguments;
 
   // An ffmpeg that fails: exit code 1, the frames stay.
   write_text(bin / "ffmpeg", "#!/bin/sh\nexit 3\n");
-  const auto failed = run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "64x32"});
+  const auto failed =
+      run_drapelab({"render", run_dir().string(), "--out", out.string(), "--size", "64x32"});
   EXPECT_EQ(failed.exit_code, 1) << failed.output;
-  EXPECT_NE(failed.output.find("ffmpeg failed (exit status 3)"), std::string::npos) << failed.output;
+  EXPECT_NE(failed.output.find("ffmpeg failed (exit status 3)"), std::string::npos)
+      << failed.output;
   EXPECT_TRUE(fs::exists(out / "frame_0006.png"));
 }
 
 TEST_F(RenderCli, RunWithoutPointCachesIsRefused) {
   const fs::path bare = root() / "bare";
   ASSERT_EQ(run_drapelab({"run", (root() / "scene.yaml").string(), "--out", bare.string(), "-q",
-                          "--set", "duration=0.0333333333333333333"}).exit_code, 0);
+                          "--set", "duration=0.0333333333333333333"})
+                .exit_code,
+            0);
   const auto result = run_drapelab({"render", bare.string()});
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("--meshes pc2"), std::string::npos) << result.output;
@@ -311,11 +336,15 @@ TEST_F(RenderCli, RunWithoutPointCachesIsRefused) {
 }
 
 TEST_F(RenderCli, BadArgumentsAreBadInput) {
-  for (const std::vector<std::string>& extra :
-       {std::vector<std::string>{"--size", "320"}, {"--size", "8x8"}, {"--camera", "eye=1,2"},
-        {"--camera", "fov=200"}, {"--camera", "zoom=2"}, {"--every", "0"},
-        {"--texture", (root() / "missing.png").string()}}) {
-    std::vector<std::string> arguments{"render", run_dir().string(), "--out", (root() / "bad").string()};
+  for (const std::vector<std::string>& extra : {std::vector<std::string>{"--size", "320"},
+                                                {"--size", "8x8"},
+                                                {"--camera", "eye=1,2"},
+                                                {"--camera", "fov=200"},
+                                                {"--camera", "zoom=2"},
+                                                {"--every", "0"},
+                                                {"--texture", (root() / "missing.png").string()}}) {
+    std::vector<std::string> arguments{"render", run_dir().string(), "--out",
+                                       (root() / "bad").string()};
     arguments.insert(arguments.end(), extra.begin(), extra.end());
     const auto result = run_drapelab(arguments);
     EXPECT_EQ(result.exit_code, 2) << extra[0] << " " << extra[1] << "\n" << result.output;

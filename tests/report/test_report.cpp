@@ -1,10 +1,10 @@
-// `drapelab report` end to end: on a tiny run made here with the CLI, the page is well-formed (parsed
-// as XML by libxml2: every element closed, attributes quoted, entities escaped), has one SVG per plot
-// with axes, axis titles and a legend naming every solver in one colour per solver, and references
-// only files inside the run folder; a sweep folder gets its table and a plot per varied key and
-// metric; a folder that is neither exits 2 naming what is missing. Then headless Chromium opens the
-// page: the screenshot must not be blank and the console must stay silent. Also the report's small
-// parts on their own: CSV reading, tick marks, base64, SVG with missing values.
+// `drapelab report` end to end: on a tiny run made here with the CLI, the page is well-formed
+// (parsed as XML by libxml2: every element closed, attributes quoted, entities escaped), has one
+// SVG per plot with axes, axis titles and a legend naming every solver in one colour per solver,
+// and references only files inside the run folder; a sweep folder gets its table and a plot per
+// varied key and metric; a folder that is neither exits 2 naming what is missing. Then headless
+// Chromium opens the page: the screenshot must not be blank and the console must stay silent. Also
+// the report's small parts on their own: CSV reading, tick marks, base64, SVG with missing values.
 #include <gtest/gtest.h>
 #include <libxml/parser.h>
 #include <libxml/tree.h>
@@ -22,11 +22,11 @@
 #include <string>
 #include <vector>
 
-#include "fixtures/cli.hpp"
 #include "drapelab/report/axis_ticks.hpp"
-#include "drapelab/run_folder/csv.hpp"
 #include "drapelab/report/html_page.hpp"
 #include "drapelab/report/svg_plot.hpp"
+#include "drapelab/run_folder/csv.hpp"
+#include "fixtures/cli.hpp"
 
 namespace {
 
@@ -62,9 +62,9 @@ const std::string kTinyDrape =
 
 const std::vector<std::string> kSolvers{"ours", "bullet_classic"};
 // The plots a run with colliders, two solvers and no drape support must have, by title.
-const std::vector<std::string> kRunPlots{"Kinetic energy", "Spring energy",  "Max stretch",
-                                         "Min clearance",  "Max penetration", "Contact force",
-                                         "Distance between solvers"};
+const std::vector<std::string> kRunPlots{
+    "Kinetic energy", "Spring energy",           "Max stretch", "Min clearance", "Max penetration",
+    "Contact force",  "Distance between solvers"};
 
 // ---- a parsed page -------------------------------------------------------------------------
 
@@ -94,11 +94,13 @@ void collect(xmlNode* node, std::vector<xmlNode*>& out) {
 }
 
 // Elements under `root` (itself included) with this tag and, if given, this class.
-std::vector<xmlNode*> find(xmlNode* root, const std::string& tag, const std::string& css_class = "") {
+std::vector<xmlNode*> find(xmlNode* root, const std::string& tag,
+                           const std::string& css_class = "") {
   std::vector<xmlNode*> all{root}, found;
   collect(root->children, all);
   for (xmlNode* node : all)
-    if (name_of(node) == tag && (css_class.empty() || attribute(node, "class") == css_class)) found.push_back(node);
+    if (name_of(node) == tag && (css_class.empty() || attribute(node, "class") == css_class))
+      found.push_back(node);
   return found;
 }
 
@@ -107,12 +109,13 @@ class Page {
  public:
   explicit Page(const std::string& html) {
     context_ = xmlNewParserCtxt();
-    doc_ = xmlCtxtReadMemory(context_, html.data(), static_cast<int>(html.size()), "report.html", "UTF-8",
-                             XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    doc_ = xmlCtxtReadMemory(context_, html.data(), static_cast<int>(html.size()), "report.html",
+                             "UTF-8", XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
     well_formed_ = doc_ != nullptr && context_->wellFormed;
     if (!well_formed_) {
       const xmlError* error = xmlCtxtGetLastError(context_);
-      error_ = error ? std::string(error->message) + " at line " + std::to_string(error->line) : "no document";
+      error_ = error ? std::string(error->message) + " at line " + std::to_string(error->line)
+                     : "no document";
     }
   }
   ~Page() {
@@ -135,14 +138,16 @@ class Page {
 
 // Block elements an HTML parser would move out of a <p> (XML would accept them there).
 void expect_no_blocks_in_paragraphs(xmlNode* root) {
-  static const std::set<std::string> kBlocks{"div", "p", "table", "figure", "pre", "h1", "h2", "h3", "ul", "svg"};
+  static const std::set<std::string> kBlocks{"div", "p",  "table", "figure", "pre",
+                                             "h1",  "h2", "h3",    "ul",     "svg"};
   std::vector<xmlNode*> all{root};
   collect(root->children, all);
   for (xmlNode* node : all) {
     if (name_of(node) != "p") continue;
     std::vector<xmlNode*> inside;
     collect(node->children, inside);
-    for (xmlNode* child : inside) EXPECT_EQ(kBlocks.count(name_of(child)), 0u) << "<" << name_of(child) << "> inside <p>";
+    for (xmlNode* child : inside)
+      EXPECT_EQ(kBlocks.count(name_of(child)), 0u) << "<" << name_of(child) << "> inside <p>";
   }
 }
 
@@ -163,14 +168,16 @@ int expect_references_inside(xmlNode* root, const fs::path& page, const fs::path
       ++checked;
       if (ref.rfind("data:", 0) == 0) continue;
       if (ref[0] == '#') {
-        EXPECT_EQ(ids.count(ref.substr(1)), 1u) << name << "=\"" << ref << "\" names no id on the page";
+        EXPECT_EQ(ids.count(ref.substr(1)), 1u)
+            << name << "=\"" << ref << "\" names no id on the page";
         continue;
       }
       EXPECT_EQ(ref.find(':'), std::string::npos) << name << "=\"" << ref << "\" has a scheme";
       EXPECT_FALSE(fs::path(ref).is_absolute()) << name << "=\"" << ref << "\" is absolute";
       const fs::path target = fs::weakly_canonical(page.parent_path() / ref);
       EXPECT_TRUE(fs::is_regular_file(target)) << name << "=\"" << ref << "\": no such file";
-      const auto [end, unused] = std::mismatch(inside.begin(), inside.end(), target.begin(), target.end());
+      const auto [end, unused] =
+          std::mismatch(inside.begin(), inside.end(), target.begin(), target.end());
       EXPECT_TRUE(end == inside.end()) << name << "=\"" << ref << "\" points outside " << folder;
     }
   }
@@ -189,14 +196,17 @@ void expect_finite_geometry(xmlNode* svg) {
       EXPECT_TRUE(number && std::isfinite(*number)) << name << "=\"" << value << "\"";
     }
     const std::string points = attribute(node, "points");
-    for (char c : points) EXPECT_TRUE(std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == ',' || c == ' ' || c == '-') << points;
+    for (char c : points)
+      EXPECT_TRUE(std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == ',' || c == ' ' ||
+                  c == '-')
+          << points;
   }
 }
 
 struct PlotInfo {
   xmlNode* svg = nullptr;
   std::string title;
-  std::vector<std::string> legend;          // legend labels
+  std::vector<std::string> legend;            // legend labels
   std::map<std::string, std::string> stroke;  // series label -> colour of its lines
 };
 
@@ -220,15 +230,18 @@ PlotInfo inspect_plot(xmlNode* svg, bool x_unit = true) {
     const auto axis_title = find(groups[0], "text", "axis-title");
     EXPECT_EQ(axis_title.size(), 1u) << info.title << ": " << axis << " title";
     if (!axis_title.empty() && (x_unit || std::string(axis) == "y-axis")) {
-      EXPECT_NE(text_of(axis_title[0]).find('('), std::string::npos) << info.title << ": a unit in parentheses";
+      EXPECT_NE(text_of(axis_title[0]).find('('), std::string::npos)
+          << info.title << ": a unit in parentheses";
     }
   }
   const auto legend = find(svg, "g", "legend");
   EXPECT_EQ(legend.size(), 1u) << info.title;
   if (!legend.empty())
-    for (xmlNode* label : find(legend[0], "text", "legend-label")) info.legend.push_back(text_of(label));
+    for (xmlNode* label : find(legend[0], "text", "legend-label"))
+      info.legend.push_back(text_of(label));
   for (xmlNode* series : find(svg, "g", "series"))
-    for (xmlNode* line : find(series, "polyline")) info.stroke[attribute(series, "data-label")] = attribute(line, "stroke");
+    for (xmlNode* line : find(series, "polyline"))
+      info.stroke[attribute(series, "data-label")] = attribute(line, "stroke");
   expect_finite_geometry(svg);
   return info;
 }
@@ -263,7 +276,8 @@ void write_gradient_png(const fs::path& path, int w, int h) {
       p[1] = static_cast<unsigned char>(255 * y / h);
       p[2] = 128;
     }
-  ASSERT_TRUE(png_image_write_to_file(&image, path.c_str(), 0, pixels.data(), 0, nullptr)) << image.message;
+  ASSERT_TRUE(png_image_write_to_file(&image, path.c_str(), 0, pixels.data(), 0, nullptr))
+      << image.message;
 }
 
 // The number of distinct RGBA colours in a PNG file; -1 when it cannot be decoded.
@@ -276,7 +290,8 @@ long distinct_colours(const fs::path& path) {
   if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr)) return -1;
   std::set<std::uint32_t> colours;
   for (std::size_t k = 0; k + 3 < pixels.size(); k += 4)
-    colours.insert(static_cast<std::uint32_t>(pixels[k]) << 24 | static_cast<std::uint32_t>(pixels[k + 1]) << 16 |
+    colours.insert(static_cast<std::uint32_t>(pixels[k]) << 24 |
+                   static_cast<std::uint32_t>(pixels[k + 1]) << 16 |
                    static_cast<std::uint32_t>(pixels[k + 2]) << 8 | pixels[k + 3]);
   return static_cast<long>(colours.size());
 }
@@ -315,7 +330,8 @@ TEST_F(ReportCli, RunReportIsWellFormedWithOneSvgPerPlotAndLocalReferencesOnly) 
   EXPECT_NE(html.find("<h1>tiny_drape</h1>"), std::string::npos);
   EXPECT_NE(html.find("a 7 x 7 sheet falls on a sphere"), std::string::npos);
   bool scene_shown = false;
-  for (xmlNode* pre : find(page.root(), "pre")) scene_shown = scene_shown || text_of(pre) == kTinyDrape;
+  for (xmlNode* pre : find(page.root(), "pre"))
+    scene_shown = scene_shown || text_of(pre) == kTinyDrape;
   EXPECT_TRUE(scene_shown) << "scene.yaml, verbatim, in a <pre>";
   EXPECT_NE(html.find("drapelab render " + run.string()), std::string::npos);
   EXPECT_EQ(find(page.root(), "img").size(), 0u);
@@ -342,7 +358,8 @@ TEST_F(ReportCli, RunReportIsWellFormedWithOneSvgPerPlotAndLocalReferencesOnly) 
       EXPECT_TRUE(contains(plot.legend, solver)) << plot.title << " legend lacks " << solver;
       ASSERT_EQ(plot.stroke.count(solver), 1u) << plot.title << " draws no line for " << solver;
       const auto [it, first] = colour.try_emplace(solver, plot.stroke.at(solver));
-      EXPECT_EQ(it->second, plot.stroke.at(solver)) << plot.title << ": " << solver << " changes colour";
+      EXPECT_EQ(it->second, plot.stroke.at(solver))
+          << plot.title << ": " << solver << " changes colour";
     }
   }
   EXPECT_NE(colour.at("ours"), colour.at("bullet_classic"));
@@ -367,7 +384,8 @@ TEST_F(ReportCli, EmbedsTheLastRenderedFrameAndLinksTheVideoRelativeToThePage) {
   const auto images = find(page.root(), "img");
   ASSERT_EQ(images.size(), 1u);
   EXPECT_EQ(attribute(images[0], "src"),
-            "data:image/png;base64," + drapelab::report::base64_encode(read_text(run / "render" / "frame_0010.png")));
+            "data:image/png;base64," +
+                drapelab::report::base64_encode(read_text(run / "render" / "frame_0010.png")));
   const auto videos = find(page.root(), "video");
   ASSERT_EQ(videos.size(), 1u);
   EXPECT_EQ(attribute(videos[0], "src"), "../render/video.mp4");
@@ -376,18 +394,35 @@ TEST_F(ReportCli, EmbedsTheLastRenderedFrameAndLinksTheVideoRelativeToThePage) {
 // A sweep folder as drapelab sweep writes it: two varied keys (one numeric over three decades, one
 // a list), two solvers, one failed run with no measurements, a message with a comma.
 const std::string kSweepCsv =
-    "combination,cloth.springs.stretch.ks,cloth.resolution,solver,type,status,exit_code,message,kinetic_energy,"
-    "max_stretch,mean_stretch,max_penetration,min_clearance,projected_area,drape_coefficient,drape_nodes,"
+    "combination,cloth.springs.stretch.ks,cloth.resolution,solver,type,status,exit_code,message,"
+    "kinetic_energy,"
+    "max_stretch,mean_stretch,max_penetration,min_clearance,projected_area,drape_coefficient,drape_"
+    "nodes,"
     "settle_time,rest_jitter,ms_per_step,wall_seconds_per_simulated_second,run_folder\n"
-    "0,10,\"[5, 5]\",ours,spring_damper,ok,0,\"\",0.01,0.2,0.05,0.001,-0.001,0.1,,,0.5,0.01,0.01,0.02,runs/000\n"
-    "0,10,\"[5, 5]\",other,spring_damper,ok,0,\"\",0.01,0.21,0.05,0.001,-0.001,0.1,,,0.6,0.01,0.02,0.03,runs/000\n"
-    "1,10,\"[9, 9]\",ours,spring_damper,ok,0,\"\",0.01,0.15,0.05,0.002,-0.002,0.1,,,0.5,0.01,0.01,0.05,runs/001\n"
-    "1,10,\"[9, 9]\",other,spring_damper,ok,0,\"\",0.01,0.16,0.05,0.002,-0.002,0.1,,,,0.01,0.02,0.06,runs/001\n"
-    "2,10000,\"[5, 5]\",ours,spring_damper,unstable,1,\"solver 'ours' unstable: particle 3, step 8\","
+    "0,10,\"[5, "
+    "5]\",ours,spring_damper,ok,0,\"\",0.01,0.2,0.05,0.001,-0.001,0.1,,,0.5,0.01,0.01,0.02,runs/"
+    "000\n"
+    "0,10,\"[5, "
+    "5]\",other,spring_damper,ok,0,\"\",0.01,0.21,0.05,0.001,-0.001,0.1,,,0.6,0.01,0.02,0.03,runs/"
+    "000\n"
+    "1,10,\"[9, "
+    "9]\",ours,spring_damper,ok,0,\"\",0.01,0.15,0.05,0.002,-0.002,0.1,,,0.5,0.01,0.01,0.05,runs/"
+    "001\n"
+    "1,10,\"[9, "
+    "9]\",other,spring_damper,ok,0,\"\",0.01,0.16,0.05,0.002,-0.002,0.1,,,,0.01,0.02,0.06,runs/"
+    "001\n"
+    "2,10000,\"[5, 5]\",ours,spring_damper,unstable,1,\"solver 'ours' unstable: particle 3, step "
+    "8\","
     ",,,,,,,,,,,,runs/002\n"
-    "2,10000,\"[5, 5]\",other,spring_damper,ok,1,\"\",0.01,0.001,0.0005,0.001,-0.001,0.1,,,0.4,0.01,0.02,0.03,runs/002\n"
-    "3,10000,\"[9, 9]\",ours,spring_damper,ok,0,\"\",0.01,0.002,0.0005,0.001,-0.001,0.1,,,0.3,0.01,0.01,0.05,runs/003\n"
-    "3,10000,\"[9, 9]\",other,spring_damper,ok,0,\"\",0.01,0.003,0.0005,0.001,-0.001,0.1,,,0.3,0.01,0.02,0.06,runs/003\n";
+    "2,10000,\"[5, "
+    "5]\",other,spring_damper,ok,1,\"\",0.01,0.001,0.0005,0.001,-0.001,0.1,,,0.4,0.01,0.02,0.03,"
+    "runs/002\n"
+    "3,10000,\"[9, "
+    "9]\",ours,spring_damper,ok,0,\"\",0.01,0.002,0.0005,0.001,-0.001,0.1,,,0.3,0.01,0.01,0.05,"
+    "runs/003\n"
+    "3,10000,\"[9, "
+    "9]\",other,spring_damper,ok,0,\"\",0.01,0.003,0.0005,0.001,-0.001,0.1,,,0.3,0.01,0.02,0.06,"
+    "runs/003\n";
 const std::string kSweepJson =
     "{\"command\": \"drapelab sweep s.yaml --vary cloth.springs.stretch.ks=10,10000 --vary "
     "cloth.resolution=[5,5],[9,9] --out s\", \"scene\": \"small\", \"varied\": ["
@@ -405,7 +440,8 @@ TEST_F(ReportCli, SweepReportPlotsEveryMetricAgainstEveryVariedKey) {
   Page page(html);
   ASSERT_TRUE(page.well_formed()) << page.error();
   expect_references_inside(page.root(), sweep / "report.html", sweep);
-  EXPECT_NE(html.find("particle 3, step 8"), std::string::npos) << "the quoted message, comma included";
+  EXPECT_NE(html.find("particle 3, step 8"), std::string::npos)
+      << "the quoted message, comma included";
 
   // The table: one row per CSV row.
   const auto tables = find(page.root(), "table");
@@ -428,7 +464,8 @@ TEST_F(ReportCli, SweepReportPlotsEveryMetricAgainstEveryVariedKey) {
       EXPECT_TRUE(named) << plot.title << " legend lacks " << solver;
     }
     std::vector<std::string> x_labels;
-    for (xmlNode* label : find(find(plot.svg, "g", "x-axis")[0], "text", "tick-label")) x_labels.push_back(text_of(label));
+    for (xmlNode* label : find(find(plot.svg, "g", "x-axis")[0], "text", "tick-label"))
+      x_labels.push_back(text_of(label));
     if (plot.title.find("against ks") != std::string::npos) {
       // 10 to 10000 spans a factor 1000: decades on a log axis.
       EXPECT_EQ(x_labels, (std::vector<std::string>{"10", "100", "1000", "10000"})) << plot.title;
@@ -453,7 +490,8 @@ TEST_F(ReportCli, AFolderThatIsNeitherExitsTwoNamingWhatIsMissing) {
   write_text(dir() / "metrics.csv", "solver,frame,time\n");
   result = run_drapelab({"report", dir().string()});
   EXPECT_EQ(result.exit_code, 2) << result.output;
-  EXPECT_NE(result.output.find("missing summary.json and scene.yaml"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("missing summary.json and scene.yaml"), std::string::npos)
+      << result.output;
   EXPECT_FALSE(fs::exists(dir() / "report.html"));
 }
 
@@ -472,13 +510,14 @@ Screenshot screenshot(const fs::path& page, const fs::path& work) {
   Screenshot shot;
   shot.png = work / (page.stem().string() + "_screenshot.png");
   const fs::path log = work / (page.stem().string() + "_chromium.log");
-  const std::string command = "timeout 60 " + drapelab::fixtures::shell_quote(kChromium) +
-                              " --headless --no-sandbox --disable-gpu --user-data-dir=" +
-                              drapelab::fixtures::shell_quote((work / "chromium_profile").string()) +
-                              " --screenshot=" + drapelab::fixtures::shell_quote(shot.png.string()) +
-                              " --window-size=1200,2400 --enable-logging=stderr --v=0 " +
-                              drapelab::fixtures::shell_quote("file://" + fs::absolute(page).string()) + " >/dev/null 2>" +
-                              drapelab::fixtures::shell_quote(log.string());
+  const std::string command =
+      "timeout 60 " + drapelab::fixtures::shell_quote(kChromium) +
+      " --headless --no-sandbox --disable-gpu --user-data-dir=" +
+      drapelab::fixtures::shell_quote((work / "chromium_profile").string()) +
+      " --screenshot=" + drapelab::fixtures::shell_quote(shot.png.string()) +
+      " --window-size=1200,2400 --enable-logging=stderr --v=0 " +
+      drapelab::fixtures::shell_quote("file://" + fs::absolute(page).string()) + " >/dev/null 2>" +
+      drapelab::fixtures::shell_quote(log.string());
   const int status = std::system(command.c_str());
   shot.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   shot.log = fs::exists(log) ? read_text(log) : "";
@@ -489,13 +528,16 @@ Screenshot screenshot(const fs::path& page, const fs::path& work) {
 std::vector<std::string> console_errors(const std::string& log) {
   std::vector<std::string> errors;
   for (const auto& line : drapelab::fixtures::split_lines(log))
-    if (line.find("CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos) errors.push_back(line);
+    if (line.find("CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos)
+      errors.push_back(line);
   return errors;
 }
 
 TEST_F(ReportCli, ChromiumShowsTheReportWithoutConsoleErrors) {
-  ASSERT_TRUE(fs::exists(kChromium)) << kChromium << " is missing: run tools/install-deps.sh (it installs chromium, "
-                                                     "which this test needs to open the report)";
+  ASSERT_TRUE(fs::exists(kChromium))
+      << kChromium
+      << " is missing: run tools/install-deps.sh (it installs chromium, "
+         "which this test needs to open the report)";
   const fs::path run = make_run();
   fs::create_directories(run / "render");
   write_gradient_png(run / "render" / "frame_0012.png", 320, 160);
@@ -507,10 +549,13 @@ TEST_F(ReportCli, ChromiumShowsTheReportWithoutConsoleErrors) {
   // A blank page is one colour; the report has text, lines in several colours and the gradient.
   EXPECT_GT(distinct_colours(shot.png), 200) << shot.png;
   const auto errors = console_errors(shot.log);
-  EXPECT_TRUE(errors.empty()) << errors.size() << " console line(s), the first: " << (errors.empty() ? "" : errors[0]);
+  EXPECT_TRUE(errors.empty()) << errors.size() << " console line(s), the first: "
+                              << (errors.empty() ? "" : errors[0]);
 
   // The checks can fail: a page with a script error is caught, a blank page is blank.
-  write_text(dir() / "broken.html", "<!DOCTYPE html><html><body><p>x</p><script>no_such_function();</script></body></html>");
+  write_text(
+      dir() / "broken.html",
+      "<!DOCTYPE html><html><body><p>x</p><script>no_such_function();</script></body></html>");
   const Screenshot broken = screenshot(dir() / "broken.html", dir());
   EXPECT_FALSE(console_errors(broken.log).empty()) << broken.log;
   write_text(dir() / "blank.html", "<!DOCTYPE html><html><body></body></html>");
@@ -581,7 +626,8 @@ TEST(ReportParts, SvgBreaksLinesAtMissingValuesAndMarksStoppedSolvers) {
   EXPECT_EQ(find(page.root(), "rect", "stop-marker").size(), 2u) << "on the line and in the legend";
   EXPECT_TRUE(contains(info.legend, "b")) << "a series with no value still has its legend entry";
   EXPECT_EQ(svg.find("nan"), std::string::npos);
-  EXPECT_NE(svg.find("xmlns=\"http://www.w3.org/2000/svg\""), std::string::npos) << "a standalone file";
+  EXPECT_NE(svg.find("xmlns=\"http://www.w3.org/2000/svg\""), std::string::npos)
+      << "a standalone file";
 }
 
 }  // namespace

@@ -14,57 +14,61 @@
 
 namespace drapelab::collider_tests {
 
-inline constexpr const char* kName = "collider_test.yaml";  // the display name every message must carry
+inline constexpr const char* kName =
+    "collider_test.yaml";  // the display name every message must carry
 
 // Everything but the colliders. Nine lines, so "colliders:" is line 10 and its first item line 11.
 inline const std::string kHeader =
-    "name: colliders\n"                                             //  1
-    "duration: 0.5\n"                                               //  2
-    "cloth:\n"                                                      //  3
-    "  resolution: [5, 4]\n"                                        //  4
-    "  mass: 0.2\n"                                                 //  5
-    "contact:\n"                                                    //  6
-    "  friction: 0.2\n"                                             //  7
-    "  static_friction: 0.4\n"                                      //  8
+    "name: colliders\n"                                                 //  1
+    "duration: 0.5\n"                                                   //  2
+    "cloth:\n"                                                          //  3
+    "  resolution: [5, 4]\n"                                            //  4
+    "  mass: 0.2\n"                                                     //  5
+    "contact:\n"                                                        //  6
+    "  friction: 0.2\n"                                                 //  7
+    "  static_friction: 0.4\n"                                          //  8
     "solvers: [{type: spring_damper, dt: 0.001041666666666666667}]\n";  //  9  (1/960 s)
 
 // One collider of every type. Line numbers matter: the tests replace lines by number.
 inline const std::string kColliders =
-    "colliders:\n"                                  // 10
-    "  - name: ball\n"                              // 11
-    "    type: sphere\n"                            // 12
-    "    center: [0, 0.5, 0]\n"                     // 13
-    "    radius: 0.3\n"                             // 14
-    "  - name: table\n"                             // 15
-    "    type: cylinder\n"                          // 16
-    "    center: [0, 0.4, 0]\n"                     // 17
-    "    radius: 0.4\n"                             // 18
-    "    height: 0.8\n"                             // 19
-    "    axis: [0, 0, 2]\n"                         // 20
-    "  - name: pill\n"                              // 21
-    "    type: capsule\n"                           // 22
-    "    center: [1, 0.2, -1]\n"                    // 23
-    "    radius: 0.1\n"                             // 24
-    "    height: 0.5\n"                             // 25
-    "  - name: crate\n"                             // 26
-    "    type: box\n"                               // 27
-    "    center: [1, 0.5, 0]\n"                     // 28
-    "    half_extents: [0.5, 0.25, 0.125]\n"        // 29
-    "    rotation: [0, 30, 0]\n"                    // 30
-    "    friction: 0.6\n"                           // 31
-    "  - name: floor\n"                             // 32
-    "    type: plane\n"                             // 33
-    "    point: [0, -0.1, 0]\n"                     // 34
-    "    normal: [3, 4, 0]\n"                       // 35
-    "    friction: 0.1\n"                           // 36
-    "    static_friction: 0.15\n";                  // 37
+    "colliders:\n"                            // 10
+    "  - name: ball\n"                        // 11
+    "    type: sphere\n"                      // 12
+    "    center: [0, 0.5, 0]\n"               // 13
+    "    radius: 0.3\n"                       // 14
+    "  - name: table\n"                       // 15
+    "    type: cylinder\n"                    // 16
+    "    center: [0, 0.4, 0]\n"               // 17
+    "    radius: 0.4\n"                       // 18
+    "    height: 0.8\n"                       // 19
+    "    axis: [0, 0, 2]\n"                   // 20
+    "  - name: pill\n"                        // 21
+    "    type: capsule\n"                     // 22
+    "    center: [1, 0.2, -1]\n"              // 23
+    "    radius: 0.1\n"                       // 24
+    "    height: 0.5\n"                       // 25
+    "  - name: crate\n"                       // 26
+    "    type: box\n"                         // 27
+    "    center: [1, 0.5, 0]\n"               // 28
+    "    half_extents: [0.5, 0.25, 0.125]\n"  // 29
+    "    rotation: [0, 30, 0]\n"              // 30
+    "    friction: 0.6\n"                     // 31
+    "  - name: floor\n"                       // 32
+    "    type: plane\n"                       // 33
+    "    point: [0, -0.1, 0]\n"               // 34
+    "    normal: [3, 4, 0]\n"                 // 35
+    "    friction: 0.1\n"                     // 36
+    "    static_friction: 0.15\n";            // 37
 
 inline const std::string kScene = kHeader + kColliders;
 
 // The header followed by "colliders:" (line 10) and `items` (from line 11 on).
-inline std::string with_colliders(const std::string& items) { return kHeader + "colliders:\n" + items; }
+inline std::string with_colliders(const std::string& items) {
+  return kHeader + "colliders:\n" + items;
+}
 
-inline scene::LoadResult load(const std::string& text, const std::vector<std::string>& overrides = {}) {
+inline scene::LoadResult load(const std::string& text,
+                              const std::vector<std::string>& overrides = {}) {
   return scene::load_scene_text(text, kName, overrides);
 }
 

@@ -13,11 +13,11 @@ namespace drapelab {
 namespace {
 
 namespace fs = std::filesystem;
-using scene::load_scene_file;
-using scene::load_scene_text;
 using fixtures::all_errors;
 using fixtures::at_line;
 using fixtures::HasError;
+using scene::load_scene_file;
+using scene::load_scene_text;
 
 constexpr const char* kName = "shapes.yaml";
 
@@ -26,19 +26,19 @@ std::string at(int line) { return at_line(kName, line); }
 
 // A Cusick-like scene: a disc on a table. Line numbers matter for the error tests.
 const std::string kDisc =
-    "name: disc\n"                                                        //  1
-    "duration: 0.1\n"                                                     //  2
-    "cloth:\n"                                                            //  3
-    "  shape: disc\n"                                                     //  4
-    "  radius: 0.15\n"                                                    //  5
-    "  rings: 10\n"                                                       //  6
-    "  center: [0, 0.5, 0]\n"                                             //  7
-    "  material: cotton\n"                                                //  8
-    "colliders:\n"                                                        //  9
+    "name: disc\n"                                                                           //  1
+    "duration: 0.1\n"                                                                        //  2
+    "cloth:\n"                                                                               //  3
+    "  shape: disc\n"                                                                        //  4
+    "  radius: 0.15\n"                                                                       //  5
+    "  rings: 10\n"                                                                          //  6
+    "  center: [0, 0.5, 0]\n"                                                                //  7
+    "  material: cotton\n"                                                                   //  8
+    "colliders:\n"                                                                           //  9
     "  - {name: table, type: cylinder, center: [0, 0.25, 0], radius: 0.09, height: 0.49}\n"  // 10
-    "metrics:\n"                                                          // 11
-    "  drape_support: table\n"                                            // 12
-    "solvers: [{type: spring_damper}]\n";                                 // 13
+    "metrics:\n"                                                                             // 11
+    "  drape_support: table\n"                                                               // 12
+    "solvers: [{type: spring_damper}]\n";                                                    // 13
 
 TEST(ClothShapes, DiscOnASupportHasARingAtItsRadius) {
   const auto result = load(kDisc);
@@ -75,7 +75,8 @@ TEST(ClothShapes, MaterialGivesWeightAndSpringsAndExplicitKeysWin) {
   ASSERT_LOADS(denim);
   EXPECT_GT(denim.scene->cloth.grid.bend.ks, 5.0 * c.bend.ks);
   // Explicit keys override the preset, key by key.
-  const auto mixed = load(fixtures::insert_after(kDisc, 8, "  mass: 0.02\n  springs: {stretch: {ks: 700}}"));
+  const auto mixed =
+      load(fixtures::insert_after(kDisc, 8, "  mass: 0.02\n  springs: {stretch: {ks: 700}}"));
   ASSERT_LOADS(mixed);
   EXPECT_FALSE(mixed.scene->cloth.grid.areal_density);
   EXPECT_DOUBLE_EQ(*mixed.scene->cloth.grid.mass, 0.02);
@@ -83,30 +84,37 @@ TEST(ClothShapes, MaterialGivesWeightAndSpringsAndExplicitKeysWin) {
   EXPECT_DOUBLE_EQ(mixed.scene->cloth.grid.stretch.kd, 5e-5 * 1000.0) << "kd stays the preset's";
   EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 8, "  material: coton")), at(8),
                        {"cloth.material must be one of", "did you mean 'cotton'"}));
-  EXPECT_TRUE(HasError(load(fixtures::without_lines(kDisc, 8, 8)), at(4), {"cloth.mass is required", "material"}));
+  EXPECT_TRUE(HasError(load(fixtures::without_lines(kDisc, 8, 8)), at(4),
+                       {"cloth.mass is required", "material"}));
 }
 
 TEST(ClothShapes, DrapeSupportMustBeARoundColliderOrARadius) {
   const auto radius = load(fixtures::with_line(kDisc, 12, "  drape_support: 0.05"));
   ASSERT_LOADS(radius);
   EXPECT_TRUE(radius.scene->drape_support->collider.empty());
-  EXPECT_EQ(radius.scene->drape_support->disc.center, Eigen::Vector3d(0, 0.5, 0)) << "under the cloth's centre";
+  EXPECT_EQ(radius.scene->drape_support->disc.center, Eigen::Vector3d(0, 0.5, 0))
+      << "under the cloth's centre";
   EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 12, "  drape_support: tabel")), at(12),
                        {"metrics.drape_support", "did you mean table"}));
   EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 12, "  drape_support: -1")), at(12),
                        {"metrics.drape_support must be > 0"}));
-  const std::string box = "  - {name: table, type: box, center: [0, 0.25, 0], half_extents: [0.1, 0.2, 0.1]}";
-  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 10, box)), at(12), {"'table' is a box", "no circular"}));
+  const std::string box =
+      "  - {name: table, type: box, center: [0, 0.25, 0], half_extents: [0.1, 0.2, 0.1]}";
+  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 10, box)), at(12),
+                       {"'table' is a box", "no circular"}));
   const std::string tilted =
-      "  - {name: table, type: cylinder, center: [0, 0.25, 0], radius: 0.09, height: 0.49, rotation: [90, 0, 0]}";
-  EXPECT_TRUE(HasError(load(fixtures::with_line(kDisc, 10, tilted)), at(12), {"axis is along gravity"}));
+      "  - {name: table, type: cylinder, center: [0, 0.25, 0], radius: 0.09, height: 0.49, "
+      "rotation: [90, 0, 0]}";
+  EXPECT_TRUE(
+      HasError(load(fixtures::with_line(kDisc, 10, tilted)), at(12), {"axis is along gravity"}));
 }
 
 TEST(ClothShapes, ShapeKeysBelongToTheirShape) {
   EXPECT_TRUE(HasError(load(fixtures::insert_after(kDisc, 6, "  resolution: [5, 5]")), at(7),
                        {"cloth.resolution is not a known key"}));
-  EXPECT_TRUE(HasError(load(fixtures::insert_after(kDisc, 8, "  pins: [[0, 1]]")), at(9),
-                       {"cloth.pins.0 selects no particle", "grid coordinates [i, j] need shape: grid"}));
+  EXPECT_TRUE(
+      HasError(load(fixtures::insert_after(kDisc, 8, "  pins: [[0, 1]]")), at(9),
+               {"cloth.pins.0 selects no particle", "grid coordinates [i, j] need shape: grid"}));
   EXPECT_TRUE(HasError(load(fixtures::insert_after(kDisc, 8, "  pins: [corners]")), at(9),
                        {"cloth.pins.0 must be one of", "center", "rim"}));
   const auto pinned = load(fixtures::insert_after(kDisc, 8, "  pins: [rim, center]"));
@@ -132,16 +140,16 @@ class MeshScene : public ::testing::Test {
 };
 
 const std::string kMeshScene =
-    "name: cape\n"                               // 1
-    "duration: 0.1\n"                            // 2
-    "cloth:\n"                                   // 3
-    "  shape: mesh\n"                            // 4
-    "  path: meshes/square.obj\n"                // 5
-    "  scale: 0.5\n"                             // 6
-    "  center: [0, 1, 0]\n"                      // 7
-    "  mass: 0.1\n"                              // 8
+    "name: cape\n"                                             // 1
+    "duration: 0.1\n"                                          // 2
+    "cloth:\n"                                                 // 3
+    "  shape: mesh\n"                                          // 4
+    "  path: meshes/square.obj\n"                              // 5
+    "  scale: 0.5\n"                                           // 6
+    "  center: [0, 1, 0]\n"                                    // 7
+    "  mass: 0.1\n"                                            // 8
     "  pins: [{within: {center: [0, 1, 0], radius: 0.01}}]\n"  // 9
-    "solvers: [{type: spring_damper}]\n";        // 10
+    "solvers: [{type: spring_damper}]\n";                      // 10
 
 const std::string kSquareObj =
     "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 0 0\n"
@@ -159,8 +167,11 @@ TEST_F(MeshScene, LoadsRelativeToTheSceneFileScaledAndMoved) {
   // resolved.yaml names the file so that it loads from anywhere.
   const auto again = load_scene_text(scene::resolved_scene_yaml(*result.scene), "resolved.yaml");
   ASSERT_LOADS(again);
-  const auto without_header = [](const std::string& text) { return text.substr(text.find("\nname:")); };
-  EXPECT_EQ(without_header(scene::resolved_scene_yaml(*again.scene)), without_header(scene::resolved_scene_yaml(*result.scene)));
+  const auto without_header = [](const std::string& text) {
+    return text.substr(text.find("\nname:"));
+  };
+  EXPECT_EQ(without_header(scene::resolved_scene_yaml(*again.scene)),
+            without_header(scene::resolved_scene_yaml(*result.scene)));
   EXPECT_EQ(scene::build_scene_cloth(*again.scene).rest_positions, model.rest_positions);
 }
 
@@ -168,11 +179,14 @@ TEST_F(MeshScene, BadOrMissingObjIsAnErrorNamingBothFiles) {
   write("meshes/square.obj", "v 0 0 0\nv 1 0 zero\n");
   const fs::path scene_file = write("cape.yaml", kMeshScene);
   const auto bad = load_scene_file(scene_file);
-  EXPECT_TRUE(HasError(bad, at_line(scene_file.string(), 5), {"cloth.path", "square.obj:2", "'zero' is not a number"}));
+  EXPECT_TRUE(HasError(bad, at_line(scene_file.string(), 5),
+                       {"cloth.path", "square.obj:2", "'zero' is not a number"}));
   write("meshes/square.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
-  EXPECT_TRUE(HasError(load_scene_file(scene_file), at_line(scene_file.string(), 5), {"not a usable cloth", "no area"}));
+  EXPECT_TRUE(HasError(load_scene_file(scene_file), at_line(scene_file.string(), 5),
+                       {"not a usable cloth", "no area"}));
   fs::remove(folder_ / "meshes/square.obj");
-  EXPECT_TRUE(HasError(load_scene_file(scene_file), at_line(scene_file.string(), 5), {"cloth.path", "cannot open"}));
+  EXPECT_TRUE(HasError(load_scene_file(scene_file), at_line(scene_file.string(), 5),
+                       {"cloth.path", "cannot open"}));
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 // Unit tests of the scene's `colliders:` list and `contact:` friction (scenes/loader/src/
 // collider_reader.cpp, scene_loader.cpp read_contact) on scenes that load: every collider type with
-// its fields and defaults, the friction defaults, kinematic motion, --set overrides on collider keys,
-// and scenes with several errors at once. Each bad input on its own: test_collider_errors.cpp; the
-// resolved.yaml round trip: test_collider_resolved.cpp.
+// its fields and defaults, the friction defaults, kinematic motion, --set overrides on collider
+// keys, and scenes with several errors at once. Each bad input on its own:
+// test_collider_errors.cpp; the resolved.yaml round trip: test_collider_resolved.cpp.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -70,13 +70,15 @@ TEST(ColliderLoader, EveryTypeLoadsInOrderWithItsFields) {
 TEST(ColliderLoader, RotationDefaultsToZero) {
   const auto colliders = colliders_of(kScene, 5);
   ASSERT_EQ(colliders.size(), 5u);
-  for (std::size_t k : {0u, 1u, 2u, 4u}) EXPECT_EQ(colliders[k].rotation, Vector3d::Zero()) << colliders[k].name;
+  for (std::size_t k : {0u, 1u, 2u, 4u})
+    EXPECT_EQ(colliders[k].rotation, Vector3d::Zero()) << colliders[k].name;
 }
 
 TEST(ColliderLoader, RotationIsReadForEveryType) {
   const auto colliders = colliders_of(
-      with_colliders("  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, rotation: [10, -20, 370]}\n"
-                     "  - {name: b, type: plane, rotation: [0, 0, 45]}\n"),
+      with_colliders(
+          "  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, rotation: [10, -20, 370]}\n"
+          "  - {name: b, type: plane, rotation: [0, 0, 45]}\n"),
       2);
   ASSERT_EQ(colliders.size(), 2u);
   EXPECT_EQ(colliders[0].rotation, Vector3d(10, -20, 370));
@@ -84,24 +86,28 @@ TEST(ColliderLoader, RotationIsReadForEveryType) {
 }
 
 TEST(ColliderLoader, AxisIsNormalised) {
-  const auto colliders = colliders_of(
-      with_colliders("  - {name: a, type: cylinder, center: [0, 0, 0], radius: 1, height: 2, axis: [3, 0, -4]}\n"
-                     "  - {name: b, type: capsule, center: [0, 0, 0], radius: 1, height: 2, axis: [0, -0.5, 0]}\n"),
-      2);
+  const auto colliders =
+      colliders_of(with_colliders("  - {name: a, type: cylinder, center: [0, 0, 0], radius: 1, "
+                                  "height: 2, axis: [3, 0, -4]}\n"
+                                  "  - {name: b, type: capsule, center: [0, 0, 0], radius: 1, "
+                                  "height: 2, axis: [0, -0.5, 0]}\n"),
+                   2);
   ASSERT_EQ(colliders.size(), 2u);
   ExpectNear(colliders[0].axis, Vector3d(0.6, 0, -0.8));
   EXPECT_EQ(colliders[1].axis, Vector3d(0, -1, 0));
 }
 
 TEST(ColliderLoader, CylinderAxisDefaultsToY) {
-  const auto colliders =
-      colliders_of(with_colliders("  - {name: a, type: cylinder, center: [0, 0, 0], radius: 1, height: 2}\n"), 1);
+  const auto colliders = colliders_of(
+      with_colliders("  - {name: a, type: cylinder, center: [0, 0, 0], radius: 1, height: 2}\n"),
+      1);
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].axis, Vector3d(0, 1, 0));
 }
 
 TEST(ColliderLoader, PlaneDefaultsToNormalYThroughTheGivenPoint) {
-  const auto colliders = colliders_of(with_colliders("  - {name: ground, type: plane, point: [1, 2, 3]}\n"), 1);
+  const auto colliders =
+      colliders_of(with_colliders("  - {name: ground, type: plane, point: [1, 2, 3]}\n"), 1);
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].shape, ColliderShape::plane);
   EXPECT_EQ(colliders[0].center, Vector3d(1, 2, 3));
@@ -109,21 +115,23 @@ TEST(ColliderLoader, PlaneDefaultsToNormalYThroughTheGivenPoint) {
 }
 
 TEST(ColliderLoader, DownwardPlaneNormalIsKept) {
-  const auto colliders =
-      colliders_of(with_colliders("  - {name: ceiling, type: plane, point: [0, 3, 0], normal: [0, -7, 0]}\n"), 1);
+  const auto colliders = colliders_of(
+      with_colliders("  - {name: ceiling, type: plane, point: [0, 3, 0], normal: [0, -7, 0]}\n"),
+      1);
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].normal, Vector3d(0, -1, 0));
 }
 
 TEST(ColliderLoader, FlowAndBlockStylesGiveTheSameCollider) {
   const auto block = colliders_of(
-      with_colliders("  - name: t\n    type: cylinder\n    center: [1, 2, 3]\n    radius: 0.5\n    height: 2\n"
-                     "    axis: [1, 0, 0]\n    rotation: [0, 0, 90]\n    friction: 0.5\n"),
+      with_colliders(
+          "  - name: t\n    type: cylinder\n    center: [1, 2, 3]\n    radius: 0.5\n    height: 2\n"
+          "    axis: [1, 0, 0]\n    rotation: [0, 0, 90]\n    friction: 0.5\n"),
       1);
-  const auto flow = colliders_of(
-      with_colliders("  - {name: t, type: cylinder, center: [1, 2, 3], radius: 0.5, height: 2, axis: [1, 0, 0], "
-                     "rotation: [0, 0, 90], friction: 0.5}\n"),
-      1);
+  const auto flow = colliders_of(with_colliders("  - {name: t, type: cylinder, center: [1, 2, 3], "
+                                                "radius: 0.5, height: 2, axis: [1, 0, 0], "
+                                                "rotation: [0, 0, 90], friction: 0.5}\n"),
+                                 1);
   ASSERT_EQ(block.size(), 1u);
   ASSERT_EQ(flow.size(), 1u);
   ExpectSameCollider(block[0], flow[0]);
@@ -166,24 +174,27 @@ TEST(ColliderFriction, OnlyOwnFrictionAlsoSetsStaticFriction) {
 
 TEST(ColliderFriction, OnlyStaticFrictionTakesContactFriction) {
   const auto colliders = colliders_of(
-      with_colliders("  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, static_friction: 0.9}\n"), 1);
+      with_colliders(
+          "  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, static_friction: 0.9}\n"),
+      1);
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].friction, 0.2);
   EXPECT_EQ(colliders[0].static_friction, 0.9);
 }
 
 TEST(ColliderFriction, StaticFrictionEqualToFrictionIsAllowed) {
-  const auto colliders = colliders_of(
-      with_colliders("  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, friction: 0.7, static_friction: 0.7}\n"),
-      1);
+  const auto colliders =
+      colliders_of(with_colliders("  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, "
+                                  "friction: 0.7, static_friction: 0.7}\n"),
+                   1);
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].friction, 0.7);
   EXPECT_EQ(colliders[0].static_friction, 0.7);
 }
 
 TEST(ColliderFriction, ZeroFrictionIsAllowed) {
-  const auto colliders =
-      colliders_of(with_colliders("  - {name: a, type: plane, friction: 0, static_friction: 0}\n"), 1);
+  const auto colliders = colliders_of(
+      with_colliders("  - {name: a, type: plane, friction: 0, static_friction: 0}\n"), 1);
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].friction, 0.0);
   EXPECT_EQ(colliders[0].static_friction, 0.0);
@@ -229,12 +240,14 @@ TEST(ColliderErrors, TheFirstOfTwoEqualNamesIsFine) {
 
 // A type far from every known one gets the list of types and no suggestion.
 TEST(ColliderErrors, FarUnknownTypeGetsNoSuggestion) {
-  EXPECT_TRUE(NoErrorContains(load(with_line(kScene, 27, "    type: tetrahedron")), "did you mean"));
+  EXPECT_TRUE(
+      NoErrorContains(load(with_line(kScene, 27, "    type: tetrahedron")), "did you mean"));
 }
 
 TEST(ColliderErrors, ErrorsInSeveralCollidersAreAllReported) {
   const auto result =
-      load(with_line(with_line(with_line(kScene, 14, "    radius: -1"), 27, "    type: cube"), 35, "    normal: [0, 0, 0]"));
+      load(with_line(with_line(with_line(kScene, 14, "    radius: -1"), 27, "    type: cube"), 35,
+                     "    normal: [0, 0, 0]"));
   ASSERT_FALSE(result.ok());
   EXPECT_TRUE(HasError(result, at(14), {"colliders.0.radius must be > 0"}));
   EXPECT_TRUE(HasError(result, at(27), {"colliders.3.type must be one of"}));
@@ -243,14 +256,18 @@ TEST(ColliderErrors, ErrorsInSeveralCollidersAreAllReported) {
 }
 
 TEST(ColliderErrors, EveryErrorCarriesTheDisplayNameAndALine) {
-  const auto result = load(with_colliders("  - {name: A, type: sphere, radius: -1, friction: -1}\n"
-                                          "  - {name: b, type: box, center: [0, 0], half_extents: [0, 1, 1], radius: 2}\n"
-                                          "  - {name: c, type: spere}\n"));
+  const auto result = load(with_colliders(
+      "  - {name: A, type: sphere, radius: -1, friction: -1}\n"
+      "  - {name: b, type: box, center: [0, 0], half_extents: [0, 1, 1], radius: 2}\n"
+      "  - {name: c, type: spere}\n"));
   ASSERT_FALSE(result.ok());
-  // 0: name, center missing, radius, friction; 1: radius unknown, center length, half_extents.0; 2: type.
+  // 0: name, center missing, radius, friction; 1: radius unknown, center length, half_extents.0; 2:
+  // type.
   EXPECT_EQ(result.errors.size(), 8u) << all_errors(result);
   for (const auto& error : result.errors) {
-    EXPECT_TRUE(error.rfind(at(11), 0) == 0 || error.rfind(at(12), 0) == 0 || error.rfind(at(13), 0) == 0) << error;
+    EXPECT_TRUE(error.rfind(at(11), 0) == 0 || error.rfind(at(12), 0) == 0 ||
+                error.rfind(at(13), 0) == 0)
+        << error;
   }
 }
 
@@ -259,7 +276,10 @@ TEST(ColliderErrors, EveryErrorCarriesTheDisplayNameAndALine) {
 
 TEST(ColliderMotion, VelocityAndAngularVelocityLoad) {
   const auto colliders = colliders_of(
-      insert_after(kScene, 30, "    motion:\n      velocity: [0, 0, 0.5]\n      angular_velocity: [0, 90, -45]"), 5);
+      insert_after(
+          kScene, 30,
+          "    motion:\n      velocity: [0, 0, 0.5]\n      angular_velocity: [0, 90, -45]"),
+      5);
   ASSERT_EQ(colliders.size(), 5u);
   const auto& m = colliders[3].motion;
   EXPECT_EQ(m.velocity, Vector3d(0, 0, 0.5));
@@ -270,7 +290,8 @@ TEST(ColliderMotion, VelocityAndAngularVelocityLoad) {
 
 TEST(ColliderMotion, EitherVelocityAloneLeavesTheOtherZero) {
   const auto colliders = colliders_of(
-      with_colliders("  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, motion: {velocity: [1, 2, 3]}}\n"
+      with_colliders("  - {name: a, type: sphere, center: [0, 0, 0], radius: 1, motion: {velocity: "
+                     "[1, 2, 3]}}\n"
                      "  - {name: b, type: plane, motion: {angular_velocity: [0, 0, 10]}}\n"
                      "  - {name: c, type: plane, motion: {}}\n"),
       3);
@@ -283,14 +304,15 @@ TEST(ColliderMotion, EitherVelocityAloneLeavesTheOtherZero) {
 }
 
 TEST(ColliderMotion, KeyframesLoadWithRotationDefaultZero) {
-  const auto colliders = colliders_of(insert_after(kScene, 14,
-                                                   "    motion:\n"
-                                                   "      keyframes:\n"
-                                                   "        - {t: 0, center: [0, 0.5, 0]}\n"
-                                                   "        - {t: 0.5, center: [0, 1, 0], rotation: [0, 90, 0]}\n"
-                                                   "        - t: 1.25\n"
-                                                   "          center: [1, 1, -1]\n"),
-                                      5);
+  const auto colliders =
+      colliders_of(insert_after(kScene, 14,
+                                "    motion:\n"
+                                "      keyframes:\n"
+                                "        - {t: 0, center: [0, 0.5, 0]}\n"
+                                "        - {t: 0.5, center: [0, 1, 0], rotation: [0, 90, 0]}\n"
+                                "        - t: 1.25\n"
+                                "          center: [1, 1, -1]\n"),
+                   5);
   ASSERT_EQ(colliders.size(), 5u);
   const auto& m = colliders[0].motion;
   ASSERT_EQ(m.keyframes.size(), 3u);
@@ -310,13 +332,15 @@ TEST(ColliderMotion, KeyframesLoadWithRotationDefaultZero) {
   EXPECT_EQ(colliders[0].center, Vector3d(0, 0.5, 0));
 }
 
-// Keyframes give the centre at every time: a collider's center may be left out (it becomes the first
-// keyframe's; one that disagrees is refused, test_collider_errors.cpp). Without keyframes it is
-// still required.
+// Keyframes give the centre at every time: a collider's center may be left out (it becomes the
+// first keyframe's; one that disagrees is refused, test_collider_errors.cpp). Without keyframes it
+// is still required.
 TEST(ColliderMotion, KeyframedCenterMayBeLeftOut) {
   const auto colliders = colliders_of(
-      with_colliders("  - {name: a, type: sphere, radius: 0.1, motion: {keyframes: [{t: 0, center: [1, 2, 3]}]}}\n"
-                     "  - {name: b, type: plane, motion: {keyframes: [{t: 0, center: [0, -1, 0]}]}}\n"),
+      with_colliders(
+          "  - {name: a, type: sphere, radius: 0.1, motion: {keyframes: [{t: 0, center: [1, 2, "
+          "3]}]}}\n"
+          "  - {name: b, type: plane, motion: {keyframes: [{t: 0, center: [0, -1, 0]}]}}\n"),
       2);
   ASSERT_EQ(colliders.size(), 2u);
   EXPECT_EQ(colliders[0].center, Vector3d(1, 2, 3));
@@ -332,7 +356,8 @@ TEST(ColliderMotion, KeyframedRotationIsComposedWithTheCollidersRotation) {
                      "    radius: 0.05\n"
                      "    height: 0.4\n"
                      "    rotation: [0, 0, 90]\n"  // the y-axis capsule lies along -x at rest
-                     "    motion: {keyframes: [{t: 0, center: [0, 1, 0]}, {t: 1, center: [0, 1, 0], rotation: [0, 90, 0]}]}\n"),
+                     "    motion: {keyframes: [{t: 0, center: [0, 1, 0]}, {t: 1, center: [0, 1, "
+                     "0], rotation: [0, 90, 0]}]}\n"),
       1);
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].rotation, Vector3d(0, 0, 90));
@@ -343,9 +368,10 @@ TEST(ColliderMotion, KeyframedRotationIsComposedWithTheCollidersRotation) {
 }
 
 TEST(ColliderMotion, OneKeyframeIsEnough) {
-  const auto colliders = colliders_of(
-      with_colliders("  - {name: a, type: plane, motion: {keyframes: [{t: 2, center: [0, 1, 0], rotation: [5, 0, 0]}]}}\n"),
-      1);
+  const auto colliders =
+      colliders_of(with_colliders("  - {name: a, type: plane, motion: {keyframes: [{t: 2, center: "
+                                  "[0, 1, 0], rotation: [5, 0, 0]}]}}\n"),
+                   1);
   ASSERT_EQ(colliders.size(), 1u);
   ASSERT_EQ(colliders[0].motion.keyframes.size(), 1u);
   EXPECT_EQ(colliders[0].motion.keyframes[0].t, 2.0);
@@ -354,7 +380,11 @@ TEST(ColliderMotion, OneKeyframeIsEnough) {
 
 // Keyframes with a velocity are two kinds of motion given at once, even when the velocity is zero.
 TEST(ColliderMotion, KeyframesWithAZeroVelocityAreRefused) {
-  EXPECT_FALSE(load(insert_after(kScene, 14, "    motion: {velocity: [0, 0, 0], keyframes: [{t: 0, center: [0, 0, 0]}]}")).ok());
+  EXPECT_FALSE(
+      load(
+          insert_after(kScene, 14,
+                       "    motion: {velocity: [0, 0, 0], keyframes: [{t: 0, center: [0, 0, 0]}]}"))
+          .ok());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -376,11 +406,11 @@ TEST(ColliderOverrides, OverrideCreatesTheMotionMap) {
 }
 
 TEST(ColliderOverrides, SeveralCollidersAndContactOverrides) {
-  const auto colliders =
-      colliders_of(kScene, 5,
-                   {"colliders.3.half_extents=[1, 2, 3]", "colliders.4.normal=[0,0,-1]", "colliders.2.axis=[1,0,0]",
-                    "contact.friction=0.05", "colliders.4.static_friction=0.2",
-                    "colliders.0.motion={keyframes: [{t: 0, center: [0, 0.5, 0]}, {t: 1, center: [0, 1, 0]}]}"});
+  const auto colliders = colliders_of(
+      kScene, 5,
+      {"colliders.3.half_extents=[1, 2, 3]", "colliders.4.normal=[0,0,-1]",
+       "colliders.2.axis=[1,0,0]", "contact.friction=0.05", "colliders.4.static_friction=0.2",
+       "colliders.0.motion={keyframes: [{t: 0, center: [0, 0.5, 0]}, {t: 1, center: [0, 1, 0]}]}"});
   ASSERT_EQ(colliders.size(), 5u);
   EXPECT_EQ(colliders[3].half_extents, Vector3d(1, 2, 3));
   EXPECT_EQ(colliders[4].normal, Vector3d(0, 0, -1));
@@ -393,7 +423,8 @@ TEST(ColliderOverrides, SeveralCollidersAndContactOverrides) {
 
 TEST(ColliderOverrides, TypeOverrideChangesTheShape) {
   // A sphere's keys (center, radius) are valid for a capsule too, which then also needs a height.
-  const auto colliders = colliders_of(kScene, 5, {"colliders.0.type=capsule", "colliders.0.height=0.2"});
+  const auto colliders =
+      colliders_of(kScene, 5, {"colliders.0.type=capsule", "colliders.0.height=0.2"});
   ASSERT_EQ(colliders.size(), 5u);
   EXPECT_EQ(colliders[0].shape, ColliderShape::capsule);
   EXPECT_EQ(colliders[0].height, 0.2);
@@ -401,8 +432,9 @@ TEST(ColliderOverrides, TypeOverrideChangesTheShape) {
 }
 
 TEST(ColliderOverrides, WholeListOverrideReplacesTheColliders) {
-  const auto colliders =
-      colliders_of(kHeader, 1, {"colliders=[{name: only, type: box, center: [0, 0, 0], half_extents: [1, 1, 1]}]"});
+  const auto colliders = colliders_of(
+      kHeader, 1,
+      {"colliders=[{name: only, type: box, center: [0, 0, 0], half_extents: [1, 1, 1]}]"});
   ASSERT_EQ(colliders.size(), 1u);
   EXPECT_EQ(colliders[0].name, "only");
   EXPECT_EQ(colliders[0].shape, ColliderShape::box);
@@ -410,16 +442,19 @@ TEST(ColliderOverrides, WholeListOverrideReplacesTheColliders) {
 }
 
 TEST(ColliderOverrides, OverrideCanFixABadCollider) {
-  const auto colliders = colliders_of(with_line(kScene, 14, "    radius: 0"), 5, {"colliders.0.radius=0.25"});
+  const auto colliders =
+      colliders_of(with_line(kScene, 14, "    radius: 0"), 5, {"colliders.0.radius=0.25"});
   ASSERT_EQ(colliders.size(), 5u);
   EXPECT_EQ(colliders[0].radius, 0.25);
 }
 
-// A bad override value is reported at the override, not at the file's line of the value it replaces.
+// A bad override value is reported at the override, not at the file's line of the value it
+// replaces.
 TEST(ColliderOverrides, BadOverrideValueIsNotReportedAtTheReplacedLine) {
   const auto result = load(kScene, {"colliders.0.radius=-0.5"});
   ASSERT_FALSE(result.ok());
-  for (const auto& error : result.errors) EXPECT_EQ(error.rfind(at(14), 0), std::string::npos) << error;
+  for (const auto& error : result.errors)
+    EXPECT_EQ(error.rfind(at(14), 0), std::string::npos) << error;
 }
 
 }  // namespace

@@ -23,18 +23,24 @@ const std::string kRoundTripColliders =
     "colliders:\n"
     "  - {name: ball, type: sphere, center: [0.1, 0.5, -0.3], radius: 0.3,\n"
     "     motion: {velocity: [0, 0, 0.5], angular_velocity: [0, 90, 0]}}\n"
-    "  - {name: table, type: cylinder, center: [0, 0.4, 0], radius: 0.4, height: 0.8, axis: [0, 0, 2],\n"
+    "  - {name: table, type: cylinder, center: [0, 0.4, 0], radius: 0.4, height: 0.8, axis: [0, 0, "
+    "2],\n"
     "     rotation: [15, 0, 0]}\n"
-    "  - {name: pill, type: capsule, center: [1e-3, 0.2, 1], radius: 0.1, height: 0.5, friction: 0.45,\n"
-    "     motion: {keyframes: [{t: 0, center: [1e-3, 0.2, 1]}, {t: 0.25, center: [0.5, 0.2, 1], rotation: [0, 0, 90]},\n"
+    "  - {name: pill, type: capsule, center: [1e-3, 0.2, 1], radius: 0.1, height: 0.5, friction: "
+    "0.45,\n"
+    "     motion: {keyframes: [{t: 0, center: [1e-3, 0.2, 1]}, {t: 0.25, center: [0.5, 0.2, 1], "
+    "rotation: [0, 0, 90]},\n"
     "                         {t: 1.5, center: [0.5, 0.7, 1], rotation: [0.1, 0.2, 0.3]}]}}\n"
-    "  - {name: crate, type: box, center: [1, 0.5, 0], half_extents: [0.5, 0.25, 0.125], rotation: [0, 30, 0],\n"
+    "  - {name: crate, type: box, center: [1, 0.5, 0], half_extents: [0.5, 0.25, 0.125], rotation: "
+    "[0, 30, 0],\n"
     "     friction: 0.6, static_friction: 0.8, motion: {angular_velocity: [0, 0, -12.5]}}\n"
-    "  - {name: floor, type: plane, point: [0, -0.1, 0], normal: [3, 4, 0], friction: 0.1, static_friction: 0.15}\n"
+    "  - {name: floor, type: plane, point: [0, -0.1, 0], normal: [3, 4, 0], friction: 0.1, "
+    "static_friction: 0.15}\n"
     "  - {name: wall, type: plane, point: [2, 0, 0], normal: [-1, 0, 0], rotation: [0, 0, 5]}\n";
 
 // load -> write -> load the written text -> write again: the same text, and the same colliders.
-void ExpectCollidersRoundTrip(const std::string& text, const std::vector<std::string>& overrides = {}) {
+void ExpectCollidersRoundTrip(const std::string& text,
+                              const std::vector<std::string>& overrides = {}) {
   const auto first = load(text, overrides);
   ASSERT_LOADS(first);
   const std::string written = resolved_scene_yaml(*first.scene);
@@ -48,7 +54,8 @@ void ExpectCollidersRoundTrip(const std::string& text, const std::vector<std::st
   EXPECT_EQ(a.contact.friction, b.contact.friction);
   EXPECT_EQ(a.contact.static_friction, b.contact.static_friction);
   ASSERT_EQ(a.colliders.size(), b.colliders.size()) << written;
-  for (std::size_t k = 0; k < a.colliders.size(); ++k) ExpectSameCollider(a.colliders[k], b.colliders[k]);
+  for (std::size_t k = 0; k < a.colliders.size(); ++k)
+    ExpectSameCollider(a.colliders[k], b.colliders[k]);
 }
 
 TEST(ColliderResolved, EveryTypeAndMotionRoundTrips) {
@@ -86,17 +93,18 @@ TEST(ColliderResolved, RoundTripKeepsEveryValue) {
 }
 
 // Directions are normalised on load; the normalised value written to resolved.yaml loads back to
-// exactly the same vector. Normalising an already-unit vector again would divide by a norm of 1 +- 1
-// ulp and move its last bits (axis [1, 1, 0], written as [0.7071067811865475, 0.7071067811865475, 0],
-// would load back as 0.7071067811865476 each), so running resolved.yaml would not reproduce the run
-// and writing it again would give different text.
+// exactly the same vector. Normalising an already-unit vector again would divide by a norm of 1 +-
+// 1 ulp and move its last bits (axis [1, 1, 0], written as [0.7071067811865475, 0.7071067811865475,
+// 0], would load back as 0.7071067811865476 each), so running resolved.yaml would not reproduce the
+// run and writing it again would give different text.
 TEST(ColliderResolved, ObliqueDirectionsRoundTripExactly) {
   ExpectCollidersRoundTrip(with_colliders(
       "  - {name: a, type: cylinder, center: [0, 0, 0], radius: 1, height: 1, axis: [1, 1, 0]}\n"
       "  - {name: b, type: capsule, center: [0, 0, 0], radius: 1, height: 1, axis: [1, 2, 3]}\n"
       "  - {name: c, type: plane, normal: [1, 1, 1]}\n"
       "  - {name: d, type: plane, normal: [0.3, -0.7, 0.1]}\n"
-      "  - {name: e, type: cylinder, center: [0, 0, 0], radius: 1, height: 1, axis: [-2, 0.1, 7]}\n"));
+      "  - {name: e, type: cylinder, center: [0, 0, 0], radius: 1, height: 1, axis: [-2, 0.1, "
+      "7]}\n"));
 }
 
 TEST(ColliderResolved, RoundTripWithColliderOverrides) {
@@ -136,7 +144,8 @@ TEST(ColliderResolved, ResolvedTextHoldsEveryColliderKey) {
       "  static_friction: 0.4",
   };
   for (const auto& expected : expectations)
-    EXPECT_NE(text.find(expected), std::string::npos) << "missing [" << expected << "] in:\n" << text;
+    EXPECT_NE(text.find(expected), std::string::npos) << "missing [" << expected << "] in:\n"
+                                                      << text;
   // Keys of other shapes are not written: the plane has no center/radius, the sphere no axis, etc.
   const auto floor = text.find("  - name: floor");
   const auto wall = text.find("  - name: wall");
@@ -145,7 +154,8 @@ TEST(ColliderResolved, ResolvedTextHoldsEveryColliderKey) {
   const std::string floor_text = text.substr(floor, wall - floor);
   EXPECT_EQ(floor_text.find("center:"), std::string::npos) << floor_text;
   EXPECT_EQ(floor_text.find("radius:"), std::string::npos) << floor_text;
-  EXPECT_EQ(floor_text.find("motion:"), std::string::npos) << "a static collider has no motion:\n" << floor_text;
+  EXPECT_EQ(floor_text.find("motion:"), std::string::npos) << "a static collider has no motion:\n"
+                                                           << floor_text;
 }
 
 TEST(ColliderResolved, NoCollidersIsAnEmptyList) {

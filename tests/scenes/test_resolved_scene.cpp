@@ -1,5 +1,5 @@
-// The resolved.yaml round trip: load -> write -> load the written text -> write again gives the same
-// text and the same scene, with every default filled in and every override applied.
+// The resolved.yaml round trip: load -> write -> load the written text -> write again gives the
+// same text and the same scene, with every default filled in and every override applied.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -78,7 +78,8 @@ TEST(ResolvedScene, RoundedDtRoundTrips) {
 }
 
 TEST(ResolvedScene, AwkwardDescriptionRoundTrips) {
-  const auto text = insert_after(kBase, 2, R"(description: "a \"quoted\" text: with # and \\ and 'single'")");
+  const auto text =
+      insert_after(kBase, 2, R"(description: "a \"quoted\" text: with # and \\ and 'single'")");
   const auto result = load(text);
   ASSERT_LOADS(result);
   EXPECT_EQ(result.scene->description, R"(a "quoted" text: with # and \ and 'single')");
@@ -89,16 +90,39 @@ TEST(ResolvedScene, DefaultsAreFilledIn) {
   const auto result = load(kMinimal);
   ASSERT_LOADS(result);
   const std::string text = resolved_scene_yaml(*result.scene);
-  const std::vector<std::string> expectations = {"name: minimal", "duration: 1", "frame_rate: 60", "gravity: [0, -9.81, 0]", "seed: 0", "shape: grid",
-        "size: [1, 1]", "resolution: [3, 3]", "plane: xz", "center: [0, 1, 0]", "mass: 0.1",
-        "thickness: 0.005", "perturbation: 0", "air_damping: 0", "stretch: {ks: 2000, kd: 1}",
-        "shear: {ks: 200, kd: 0.5}", "bend: {ks: 20, kd: 0.1}", "pins: []", "colliders: []",
-        "stiffness: 5000", "damping: 5", "friction: 0.3", "name: spring_damper", "type: spring_damper",
-        "integrator: symplectic_euler", "dt: " + drapelab::format_number(result.scene->solvers[0].dt),
-        "round_dt: false",
-        "runaway_stretch: 10", "meshes: none"};
+  const std::vector<std::string> expectations = {
+      "name: minimal",
+      "duration: 1",
+      "frame_rate: 60",
+      "gravity: [0, -9.81, 0]",
+      "seed: 0",
+      "shape: grid",
+      "size: [1, 1]",
+      "resolution: [3, 3]",
+      "plane: xz",
+      "center: [0, 1, 0]",
+      "mass: 0.1",
+      "thickness: 0.005",
+      "perturbation: 0",
+      "air_damping: 0",
+      "stretch: {ks: 2000, kd: 1}",
+      "shear: {ks: 200, kd: 0.5}",
+      "bend: {ks: 20, kd: 0.1}",
+      "pins: []",
+      "colliders: []",
+      "stiffness: 5000",
+      "damping: 5",
+      "friction: 0.3",
+      "name: spring_damper",
+      "type: spring_damper",
+      "integrator: symplectic_euler",
+      "dt: " + drapelab::format_number(result.scene->solvers[0].dt),
+      "round_dt: false",
+      "runaway_stretch: 10",
+      "meshes: none"};
   for (const auto& expected : expectations)
-    EXPECT_NE(text.find(expected), std::string::npos) << "missing [" << expected << "] in:\n" << text;
+    EXPECT_NE(text.find(expected), std::string::npos) << "missing [" << expected << "] in:\n"
+                                                      << text;
   EXPECT_EQ(text.find("areal_density"), std::string::npos);  // only the one given
 }
 

@@ -21,7 +21,8 @@ std::vector<fs::path> scene_files() {
   std::vector<fs::path> files;
   const fs::path folder = fs::path(DRAPELAB_SOURCE_DIR) / "scenes";
   for (const auto& entry : fs::directory_iterator(folder))
-    if (entry.is_regular_file() && (entry.path().extension() == ".yaml" || entry.path().extension() == ".yml"))
+    if (entry.is_regular_file() &&
+        (entry.path().extension() == ".yaml" || entry.path().extension() == ".yml"))
       files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
@@ -42,9 +43,12 @@ std::string joined(const std::vector<std::string>& lines) {
 
 TEST(SceneFiles, TheRepositoryShipsScenes) {
   const auto files = scene_files();
-  EXPECT_GE(files.size(), 3u) << "expected at least curtain, free_fall and hanging_chain in scenes/";
+  EXPECT_GE(files.size(), 3u)
+      << "expected at least curtain, free_fall and hanging_chain in scenes/";
   for (const char* name : {"curtain.yaml", "free_fall.yaml", "hanging_chain.yaml"})
-    EXPECT_NE(std::find(files.begin(), files.end(), fs::path(DRAPELAB_SOURCE_DIR) / "scenes" / name), files.end())
+    EXPECT_NE(
+        std::find(files.begin(), files.end(), fs::path(DRAPELAB_SOURCE_DIR) / "scenes" / name),
+        files.end())
         << name;
 }
 
@@ -60,8 +64,9 @@ TEST(SceneFiles, EverySceneStartsWithAComment) {
   for (const auto& file : scene_files()) {
     const std::string text = read_text(file);
     const std::string first_line = text.substr(0, text.find('\n'));
-    EXPECT_EQ(first_line.rfind("#", 0), 0u) << file << ": the first line should be a comment saying what the "
-                                            << "scene shows, got [" << first_line << "]";
+    EXPECT_EQ(first_line.rfind("#", 0), 0u)
+        << file << ": the first line should be a comment saying what the "
+        << "scene shows, got [" << first_line << "]";
   }
 }
 

@@ -1,6 +1,6 @@
-// Unit tests of the scene loader (drapelab::scene::load_scene_text / load_scene_file) on scenes that
-// load: every value read and every default filled in, the solvers' options, steps and frames, and a
-// scene with several errors at once. Each bad input on its own: test_scene_errors.cpp; --set
+// Unit tests of the scene loader (drapelab::scene::load_scene_text / load_scene_file) on scenes
+// that load: every value read and every default filled in, the solvers' options, steps and frames,
+// and a scene with several errors at once. Each bad input on its own: test_scene_errors.cpp; --set
 // overrides: test_scene_overrides.cpp; the resolved.yaml round trip: test_resolved_scene.cpp.
 #include <gtest/gtest.h>
 
@@ -101,12 +101,14 @@ TEST(SceneLoader, MinimalSceneGetsTheContractDefaults) {
 TEST(SceneLoader, AutomaticDtIsBelowTheStableStepAndDividesTheFrame) {
   for (const std::string& integrator : drapelab::integrator_names()) {
     SCOPED_TRACE(integrator);
-    const auto result = load(with_line(without_lines(kBase, 34, 34), 33, "    integrator: " + integrator));
+    const auto result =
+        load(with_line(without_lines(kBase, 34, 34), 33, "    integrator: " + integrator));
     ASSERT_LOADS(result);
     const Scene& s = *result.scene;
     const auto& solver = s.solvers[0];
     const drapelab::ClothModel model = drapelab::build_grid_cloth(s.cloth.grid);
-    double bound = drapelab::stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), solver.integrator);
+    double bound = drapelab::stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(),
+                                                  solver.integrator);
     double factor = 0.9;
     if (bound == 0.0) {
       bound = drapelab::symplectic_euler_stable_step(model, s.cloth.air_damping, s.contact_rates());
@@ -119,7 +121,8 @@ TEST(SceneLoader, AutomaticDtIsBelowTheStableStepAndDividesTheFrame) {
     ASSERT_GT(solver.steps_per_frame, 0);
     EXPECT_LE(solver.dt, factor * bound * (1 + 1e-12));
     if (solver.steps_per_frame > 1) {
-      EXPECT_GT(solver.dt, factor * bound * (solver.steps_per_frame - 1) / solver.steps_per_frame * (1 - 1e-12))
+      EXPECT_GT(solver.dt, factor * bound * (solver.steps_per_frame - 1) / solver.steps_per_frame *
+                               (1 - 1e-12))
           << "one step per frame fewer would also be below the bound";
     }
     EXPECT_NEAR(solver.dt * solver.steps_per_frame, s.frame_period(), 1e-15);
@@ -145,9 +148,7 @@ TEST(SceneLoader, ZeroShearAndBendAreAllowed) {
   EXPECT_LOADS(load(text));
 }
 
-TEST(SceneLoader, EmptyCollidersListIsAccepted) {
-  EXPECT_LOADS(load(kBase + "colliders: []\n"));
-}
+TEST(SceneLoader, EmptyCollidersListIsAccepted) { EXPECT_LOADS(load(kBase + "colliders: []\n")); }
 
 TEST(SceneLoader, MissingSolversGiveTheContractsDefaultPair) {
   const auto result = load(without_lines(kBase, 30, 34));
@@ -160,13 +161,16 @@ TEST(SceneLoader, MissingSolversGiveTheContractsDefaultPair) {
 }
 
 // YAML's own spelling of infinity is refused too (as not a plain number).
-TEST(SceneLoader, YamlSpellingOfInfinityIsRefused) { EXPECT_FALSE(load(with_line(kBase, 3, "duration: .inf")).ok()); }
+TEST(SceneLoader, YamlSpellingOfInfinityIsRefused) {
+  EXPECT_FALSE(load(with_line(kBase, 3, "duration: .inf")).ok());
+}
 
 // ---------------------------------------------------------------------------------------------
 // Pins
 
 TEST(SceneLoader, EveryNamedPinSetLoads) {
-  for (const char* name : {"corners", "top_corners", "edge_min_x", "edge_max_x", "edge_min_z", "edge_max_z", "center"})
+  for (const char* name :
+       {"corners", "top_corners", "edge_min_x", "edge_max_x", "edge_min_z", "edge_max_z", "center"})
     EXPECT_LOADS(load(with_line(kBase, 22, std::string("    - ") + name))) << name;
 }
 
@@ -186,8 +190,8 @@ TEST(SceneLoader, PinsAtTheLastGridCoordinateAndIndexLoad) {
 // Colliders and solver options
 
 TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
-  const auto result =
-      load(kBase + "colliders:\n  - {name: ball, type: sphere, center: [0, 0.5, 0], radius: 0.3}\n");
+  const auto result = load(
+      kBase + "colliders:\n  - {name: ball, type: sphere, center: [0, 0.5, 0], radius: 0.3}\n");
   ASSERT_TRUE(result.ok()) << (result.errors.empty() ? "" : result.errors[0]);
   ASSERT_EQ(result.scene->colliders.size(), 1u);
   EXPECT_EQ(result.scene->colliders[0].name, "ball");
@@ -196,16 +200,18 @@ TEST(SceneLoader, CollidersLoadWithTheirDefaults) {
 }
 
 TEST(SceneLoader, BulletDeformableTakesAMargin) {
-  const auto result = load(with_line(with_line(kBase, 32, "    type: bullet_deformable"), 33, "    margin: 0.006"));
+  const auto result =
+      load(with_line(with_line(kBase, 32, "    type: bullet_deformable"), 33, "    margin: 0.006"));
   ASSERT_LOADS(result);
   EXPECT_EQ(result.scene->solvers[0].type, drapelab::SolverType::bullet_deformable);
   EXPECT_DOUBLE_EQ(result.scene->solvers[0].margin, 0.006);
 }
 
 TEST(SceneLoader, BulletSoftBodyTakesItsOptions) {
-  const std::string bullet = with_line(with_line(kBase, 32, "    type: bullet_softbody"), 33,
-                                       "    iterations: 4\n    margin: 0.01\n    voxel_size: 0.002\n"
-                                       "    kLST: {shear: 0.5}");
+  const std::string bullet =
+      with_line(with_line(kBase, 32, "    type: bullet_softbody"), 33,
+                "    iterations: 4\n    margin: 0.01\n    voxel_size: 0.002\n"
+                "    kLST: {shear: 0.5}");
   const auto result = load(bullet);
   ASSERT_LOADS(result);
   const auto& solver = result.scene->solvers[0];
@@ -215,7 +221,8 @@ TEST(SceneLoader, BulletSoftBodyTakesItsOptions) {
   EXPECT_FALSE(solver.link_stiffness[0].has_value());
   EXPECT_DOUBLE_EQ(*solver.link_stiffness[1], 0.5);
   // Defaults: margin = the cloth's thickness; an integrator is ours, not Bullet's.
-  const auto plain = load(with_line(with_line(kBase, 32, "    type: bullet_softbody"), 33, "    round_dt: false"));
+  const auto plain =
+      load(with_line(with_line(kBase, 32, "    type: bullet_softbody"), 33, "    round_dt: false"));
   ASSERT_LOADS(plain);
   EXPECT_DOUBLE_EQ(plain.scene->solvers[0].margin, 0.004);
 }
@@ -236,8 +243,8 @@ TEST(SceneLoader, ImplicitOptionsAreRead) {
   EXPECT_EQ(result.scene->solvers[0].implicit.max_iterations, 50);
   const auto defaults = load(base);
   ASSERT_LOADS(defaults);
-  EXPECT_DOUBLE_EQ(defaults.scene->solvers[0].implicit.tolerance, drapelab::ImplicitSolveSettings{}.tolerance);
-
+  EXPECT_DOUBLE_EQ(defaults.scene->solvers[0].implicit.tolerance,
+                   drapelab::ImplicitSolveSettings{}.tolerance);
 }
 
 TEST(SceneLoader, AdaptiveSubstepsAreReadAndGetAHalfFrameStep) {
@@ -250,7 +257,6 @@ TEST(SceneLoader, AdaptiveSubstepsAreReadAndGetAHalfFrameStep) {
   const auto plain = load(base);
   ASSERT_LOADS(plain);
   EXPECT_FALSE(plain.scene->solvers[0].adaptive_substeps);
-
 }
 
 TEST(SceneLoader, ExplicitEulerIsAvailable) {
@@ -263,7 +269,8 @@ TEST(SceneLoader, ExplicitEulerIsAvailable) {
 // Solvers, steps and frames
 
 TEST(SceneLoader, TwoSolversWithDistinctNamesLoadInOrder) {
-  const auto result = load(kBase + "  - name: theirs\n    integrator: explicit_euler\n    dt: 0.0005208333333333333\n");
+  const auto result = load(
+      kBase + "  - name: theirs\n    integrator: explicit_euler\n    dt: 0.0005208333333333333\n");
   ASSERT_LOADS(result);
   ASSERT_EQ(result.scene->solvers.size(), 2u);
   EXPECT_EQ(result.scene->solvers[0].name, "ours");
@@ -272,7 +279,8 @@ TEST(SceneLoader, TwoSolversWithDistinctNamesLoadInOrder) {
 }
 
 TEST(SceneLoader, RoundDtRoundsDownToAWholeNumberOfStepsWithANote) {
-  const auto result = load(insert_after(with_line(kBase, 34, "    dt: 0.001"), 34, "    round_dt: true"));
+  const auto result =
+      load(insert_after(with_line(kBase, 34, "    dt: 0.001"), 34, "    round_dt: true"));
   ASSERT_LOADS(result);
   const auto& solver = result.scene->solvers[0];
   EXPECT_EQ(solver.steps_per_frame, 17);  // 16.67 steps per frame rounded up: dt never grows
@@ -294,7 +302,8 @@ TEST(SceneLoader, RoundDtLeavesADividingDtAlone) {
 
 // A step longer than a frame cannot be rounded down to a whole number per frame.
 TEST(SceneLoader, RoundDtDoesNotRescueADtLargerThanTheFramePeriod) {
-  EXPECT_FALSE(load(insert_after(with_line(kBase, 34, "    dt: 0.05"), 34, "    round_dt: true")).ok());
+  EXPECT_FALSE(
+      load(insert_after(with_line(kBase, 34, "    dt: 0.05"), 34, "    round_dt: true")).ok());
 }
 
 TEST(SceneLoader, DtEqualToTheFramePeriodIsOneStepPerFrame) {
@@ -311,7 +320,8 @@ TEST(SceneLoader, StepsPerFrameLoadUpToTenMillion) {
   EXPECT_EQ(result.scene->solvers[0].steps_per_frame, 5'000'000);
   EXPECT_FALSE(load(with_line(kBase, 34, "    dt: 8.333333333333334e-10")).ok());  // 2e7 steps
   // round_dt does not rescue it: rounding would overflow the count it rounds to.
-  EXPECT_FALSE(load(insert_after(with_line(kBase, 34, "    dt: 1e-13"), 34, "    round_dt: true")).ok());
+  EXPECT_FALSE(
+      load(insert_after(with_line(kBase, 34, "    dt: 1e-13"), 34, "    round_dt: true")).ok());
 }
 
 TEST(SceneLoader, FrameCountLoadsUpToTenMillion) {

@@ -1,5 +1,5 @@
-// --set overrides of the scene loader: what they change and create, and the errors of bad ones, each
-// located at its override (one table row per case).
+// --set overrides of the scene loader: what they change and create, and the errors of bad ones,
+// each located at its override (one table row per case).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -47,7 +47,8 @@ TEST(SceneOverrides, OverrideCreatesAMissingMap) {
   const auto result = load(without_lines(kBase, 26, 29), {"contact.stiffness=1234"});
   ASSERT_LOADS(result);
   EXPECT_DOUBLE_EQ(result.scene->contact.stiffness, 1234.0);
-  EXPECT_DOUBLE_EQ(result.scene->contact.damping, 5.0);  // the rest of the new map takes its defaults
+  EXPECT_DOUBLE_EQ(result.scene->contact.damping,
+                   5.0);  // the rest of the new map takes its defaults
 }
 
 TEST(SceneOverrides, OverrideReplacesAWholeMap) {
@@ -75,30 +76,66 @@ TEST(SceneOverrides, OverrideCanFixAnInvalidFile) {
 
 std::vector<BadOverride> bad_overrides() {
   return {
-      {"InvalidOverrideValueNamesTheOverride", {}, "cloth.springs.stretch.ks=-3", "cloth.springs.stretch.ks",
+      {"InvalidOverrideValueNamesTheOverride",
+       {},
+       "cloth.springs.stretch.ks=-3",
+       "cloth.springs.stretch.ks",
        {"must be > 0, got -3"}},
-      {"InvalidValueInsideAnOverriddenMapNamesTheOverride", {}, "cloth.springs={stretch: {ks: -1, kd: 0}}",
-       "cloth.springs.stretch.ks", {"must be > 0, got -1"}},
-      {"OverrideValueOfTheWrongType_Number", {}, "duration=abc", "duration", {"must be a number", "'abc'"}},
-      {"OverrideValueOfTheWrongType_List", {}, "cloth.resolution=[5]", "cloth.resolution",
+      {"InvalidValueInsideAnOverriddenMapNamesTheOverride",
+       {},
+       "cloth.springs={stretch: {ks: -1, kd: 0}}",
+       "cloth.springs.stretch.ks",
+       {"must be > 0, got -1"}},
+      {"OverrideValueOfTheWrongType_Number",
+       {},
+       "duration=abc",
+       "duration",
+       {"must be a number", "'abc'"}},
+      {"OverrideValueOfTheWrongType_List",
+       {},
+       "cloth.resolution=[5]",
+       "cloth.resolution",
        {"must be a list of 2 whole numbers, got a list of 1"}},
-      {"OverriddenDtIsCheckedAgainstTheFramePeriod", {}, "solvers.0.dt=0.001", "solvers.0.dt",
+      {"OverriddenDtIsCheckedAgainstTheFramePeriod",
+       {},
+       "solvers.0.dt=0.001",
+       "solvers.0.dt",
        {"must divide the frame period", "round_dt"}},
-      {"ListIndexOutOfRange", {}, "solvers.3.dt=0.001", "solvers",
+      {"ListIndexOutOfRange",
+       {},
+       "solvers.3.dt=0.001",
+       "solvers",
        {"is a list of 1 items", "'3' is not an index in 0..0"}},
-      {"ListIndexThatIsNotANumber", {}, "solvers.first.dt=0.001", "solvers", {"is a list", "'first' is not an index"}},
+      {"ListIndexThatIsNotANumber",
+       {},
+       "solvers.first.dt=0.001",
+       "solvers",
+       {"is a list", "'first' is not an index"}},
       {"MalformedOverrideWithoutEquals", {}, "cloth.mass", "", {"expected key.path=value"}},
       {"MalformedOverrideWithoutAPath", {}, "=3", "", {"expected key.path=value"}},
       {"OverrideWithAnEmptyPathPart", {}, "cloth..mass=1", "", {"empty part"}},
       {"OverrideValueThatIsNotYaml", {}, "gravity=[0, 1", "", {"not valid YAML"}},
-      {"OverrideBelowASingleValue", {}, "duration.x=1", "duration", {"is a single value", "no key 'x'"}},
-      {"OverrideCreatingAnUnknownKeySuggestsTheNearest", {}, "durration=1", "durration",
+      {"OverrideBelowASingleValue",
+       {},
+       "duration.x=1",
+       "duration",
+       {"is a single value", "no key 'x'"}},
+      {"OverrideCreatingAnUnknownKeySuggestsTheNearest",
+       {},
+       "durration=1",
+       "durration",
        {"is not a known key", "did you mean duration?"}},
-      {"OverrideCreatingAnUnknownClothKeySuggestsTheNearest", {}, "cloth.sise=[1,1]", "cloth.sise",
+      {"OverrideCreatingAnUnknownClothKeySuggestsTheNearest",
+       {},
+       "cloth.sise=[1,1]",
+       "cloth.sise",
        {"is not a known key", "did you mean cloth.size?"}},
-      // A misspelled parent key (--set cloth.springs.strech.ks=1) creates the map "strech"; the "not a
-      // known key" error on cloth.springs.strech names the override.
-      {"OverrideWithAMisspelledParentKeyNamesTheOverride", {}, "cloth.springs.strech.ks=1", "cloth.springs.strech",
+      // A misspelled parent key (--set cloth.springs.strech.ks=1) creates the map "strech"; the
+      // "not a known key" error on cloth.springs.strech names the override.
+      {"OverrideWithAMisspelledParentKeyNamesTheOverride",
+       {},
+       "cloth.springs.strech.ks=1",
+       "cloth.springs.strech",
        {"is not a known key", "did you mean cloth.springs.stretch?"}},
   };
 }
@@ -107,16 +144,19 @@ class SceneOverrideErrors : public ::testing::TestWithParam<BadOverride> {};
 
 TEST_P(SceneOverrideErrors, NameTheOverrideTheKeyAndTheExpectedValue) {
   const BadOverride& row = GetParam();
-  EXPECT_TRUE(HasKeyedError(load(row.edit.apply(kBase), {row.set}), at_set(row.set), row.key, row.wording));
+  EXPECT_TRUE(
+      HasKeyedError(load(row.edit.apply(kBase), {row.set}), at_set(row.set), row.key, row.wording));
 }
 
-INSTANTIATE_TEST_SUITE_P(SceneOverrides, SceneOverrideErrors, ::testing::ValuesIn(bad_overrides()), RowName());
+INSTANTIATE_TEST_SUITE_P(SceneOverrides, SceneOverrideErrors, ::testing::ValuesIn(bad_overrides()),
+                         RowName());
 
 // An invalid override is reported at the override, not at the file's line of the value it replaces.
 TEST(SceneOverrides, InvalidOverrideValueIsNotReportedAtTheReplacedLine) {
   const auto result = load(kBase, {"cloth.springs.stretch.ks=-3"});
   ASSERT_FALSE(result.ok());
-  for (const auto& error : result.errors) EXPECT_EQ(error.rfind(at(18), 0), std::string::npos) << error;
+  for (const auto& error : result.errors)
+    EXPECT_EQ(error.rfind(at(18), 0), std::string::npos) << error;
 }
 
 TEST(SceneOverrides, FileErrorsKeepTheirLinesBesideOverrideErrors) {

@@ -2,7 +2,6 @@
 // report (one file each, verb_*.cpp; docs/cli.md). Exit codes: 0 ok, 1 a solver became unstable or
 // failed, 2 bad input (nothing was run), 130 interrupted (files hold the frames recorded so far).
 #include <CLI/CLI.hpp>
-
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -17,8 +16,9 @@ extern "C" void on_interrupt(int) { g_interrupted.store(true); }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"drapelab: a cloth laboratory. Runs cloth solvers side by side on the same scene and "
-               "records drape metrics frame by frame."};
+  CLI::App app{
+      "drapelab: a cloth laboratory. Runs cloth solvers side by side on the same scene and "
+      "records drape metrics frame by frame."};
   app.set_version_flag("--version", std::string("drapelab ") + DRAPELAB_VERSION);
   app.require_subcommand(1);
   app.footer(
@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
       "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
       "  drapelab stability scenes/curtain.yaml\n"
       "  drapelab study scenes/curtain.yaml --duration 0.5 --factors 1,4\n"
-      "  drapelab sweep scenes/curtain.yaml --vary cloth.springs.bend.ks=1,10,100 --out out/bend-sweep\n"
+      "  drapelab sweep scenes/curtain.yaml --vary cloth.springs.bend.ks=1,10,100 --out "
+      "out/bend-sweep\n"
       "  drapelab render out/sphere_drape --size 1280x480\n"
       "  drapelab report out/sphere_drape\n"
       "Run 'drapelab VERB --help' for a verb's options.");
@@ -42,16 +43,18 @@ int main(int argc, char** argv) {
   drapelab::cli::add_validate_options(*validate, validate_arguments);
 
   drapelab::cli::CheckArguments check_arguments;
-  CLI::App* check = app.add_subcommand("check", "Compare a run of a scene with its golden file (regression test)");
+  CLI::App* check = app.add_subcommand(
+      "check", "Compare a run of a scene with its golden file (regression test)");
   drapelab::cli::add_check_options(*check, check_arguments);
 
   drapelab::cli::StabilityArguments stability_arguments;
-  CLI::App* stability =
-      app.add_subcommand("stability", "Find the largest stable step of one solver of a scene (bisection)");
+  CLI::App* stability = app.add_subcommand(
+      "stability", "Find the largest stable step of one solver of a scene (bisection)");
   drapelab::cli::add_stability_options(*stability, stability_arguments);
 
   drapelab::cli::BenchArguments bench_arguments;
-  CLI::App* bench = app.add_subcommand("bench", "Time every solver on fixed scenes and sizes (bench.csv, bench.md)");
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Time every solver on fixed scenes and sizes (bench.csv, bench.md)");
   drapelab::cli::add_bench_options(*bench, bench_arguments);
 
   drapelab::cli::StudyArguments study_arguments;
@@ -61,15 +64,18 @@ int main(int argc, char** argv) {
 
   drapelab::cli::SweepArguments sweep_arguments;
   CLI::App* sweep = app.add_subcommand(
-      "sweep", "Run a scene for every combination of varied keys, in parallel child processes (sweep.csv)");
+      "sweep",
+      "Run a scene for every combination of varied keys, in parallel child processes (sweep.csv)");
   drapelab::cli::add_sweep_options(*sweep, sweep_arguments);
 
   drapelab::cli::RenderArguments render_arguments;
-  CLI::App* render = app.add_subcommand("render", "Render a run's frames as PNG images (a panel per solver) and a video");
+  CLI::App* render = app.add_subcommand(
+      "render", "Render a run's frames as PNG images (a panel per solver) and a video");
   drapelab::cli::add_render_options(*render, render_arguments);
 
   drapelab::cli::ReportArguments report_arguments;
-  CLI::App* report = app.add_subcommand("report", "Write one self-contained HTML page for a run or sweep folder");
+  CLI::App* report =
+      app.add_subcommand("report", "Write one self-contained HTML page for a run or sweep folder");
   drapelab::cli::add_report_options(*report, report_arguments);
 
   std::string command_line;

@@ -1,10 +1,10 @@
-// drapelab bench: the cost of every solver on a fixed set of scenes and resolutions, measured in one
-// process run so the ratios compare like with like. Our solver runs at its best setting (symplectic
-// Euler in adaptive substeps at 0.9 of its shape's stable step, the spring fast path, OpenMP threads
-// in every phase); Bullet's classic cloth at
-// its cheapest stable setting (a 240 Hz step with 4 iterations, halved until it holds); Bullet's
-// deformable world at its own stable step (skipped above 65 x 65 particles: it costs minutes there).
-// Writes bench.csv and bench.md; the numbers are measurements, never checked against targets.
+// drapelab bench: the cost of every solver on a fixed set of scenes and resolutions, measured in
+// one process run so the ratios compare like with like. Our solver runs at its best setting
+// (symplectic Euler in adaptive substeps at 0.9 of its shape's stable step, the spring fast path,
+// OpenMP threads in every phase); Bullet's classic cloth at its cheapest stable setting (a 240 Hz
+// step with 4 iterations, halved until it holds); Bullet's deformable world at its own stable step
+// (skipped above 65 x 65 particles: it costs minutes there). Writes bench.csv and bench.md; the
+// numbers are measurements, never checked against targets.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,13 +14,13 @@
 #include <sstream>
 #include <thread>
 
-#include "drapelab/runner/bench_table.hpp"
+#include "drapelab/loop_threads.hpp"
 #include "drapelab/run_folder/files.hpp"
+#include "drapelab/runner/bench_table.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
-#include "drapelab/scene/number_format.hpp"
-#include "drapelab/loop_threads.hpp"
 #include "drapelab/runner/trial_scene.hpp"
+#include "drapelab/scene/number_format.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -32,7 +32,8 @@ namespace fs = std::filesystem;
 
 // The solvers every bench scene runs, replacing the scene's own list.
 const std::string kSolvers =
-    "solvers=[{name: ours, type: spring_damper, integrator: symplectic_euler, adaptive_substeps: true, host: none},"
+    "solvers=[{name: ours, type: spring_damper, integrator: symplectic_euler, adaptive_substeps: "
+    "true, host: none},"
     " {name: bullet_classic, type: bullet_softbody, iterations: 4, dt: 0.004166666666666667},"
     " {name: bullet_deformable, type: bullet_deformable}]";
 constexpr int kLargestDeformable = 65;  // particles per side
@@ -44,15 +45,16 @@ struct Measured {
   double max_stretch = 0.0;      // over every recorded frame
 };
 
-Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec, const runner::SceneSetup& setup,
-                 const std::atomic<bool>& interrupt) {
+Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
+                 const runner::SceneSetup& setup, const std::atomic<bool>& interrupt) {
   Measured m;
   runner::SimulationOptions options;
   options.interrupt = &interrupt;
   options.stretch_limit = 1.0;  // the stability verb's rule: twice the rest length has blown up
   options.on_frame = [&](int, const ClothState&, const ClothMetrics& metrics) {
     m.max_stretch = std::max(m.max_stretch, metrics.max_stretch);
-    if (metrics.max_penetration) m.max_penetration = std::max(m.max_penetration, *metrics.max_penetration);
+    if (metrics.max_penetration)
+      m.max_penetration = std::max(m.max_penetration, *metrics.max_penetration);
   };
   m.result = runner::simulate_solver(scene, spec, setup, options);
   return m;
@@ -73,8 +75,9 @@ struct SolverRuns {
   void add(Measured m) {
     interrupted = m.result.interrupted();
     if (interrupted) return;
-    if (count > 0 && (m.result.status != fastest.result.status || m.max_stretch != fastest.max_stretch ||
-                      m.max_penetration != fastest.max_penetration))
+    if (count > 0 &&
+        (m.result.status != fastest.result.status || m.max_stretch != fastest.max_stretch ||
+         m.max_penetration != fastest.max_penetration))
       differed = true;
     slowest_wall = std::max(slowest_wall, m.result.wall_seconds);
     if (count == 0 || m.result.wall_seconds < fastest.result.wall_seconds) fastest = std::move(m);
@@ -92,19 +95,22 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
   row.type = solver_type_name(r.trial.type);
   if (r.skipped) {
     row.status = "skipped";
-    row.setting = "over " + std::to_string(kLargestDeformable) + " x " + std::to_string(kLargestDeformable) +
-                  ": minutes per run";
+    row.setting = "over " + std::to_string(kLargestDeformable) + " x " +
+                  std::to_string(kLargestDeformable) + ": minutes per run";
     return row;
   }
   const runner::SimulationResult& result = r.fastest.result;
-  row.setting = r.trial.type == SolverType::spring_damper      ? std::string(integrator_name(r.trial.integrator))
-                : r.trial.type == SolverType::bullet_softbody ? std::to_string(r.trial.iterations) + " iterations"
-                                                     : "its stable step";
+  row.setting = r.trial.type == SolverType::spring_damper
+                    ? std::string(integrator_name(r.trial.integrator))
+                : r.trial.type == SolverType::bullet_softbody
+                    ? std::to_string(r.trial.iterations) + " iterations"
+                    : "its stable step";
   row.dt = r.trial.dt;
   row.status = solver_status_name(result.status);
   row.wall_per_simulated = result.wall_seconds_per_simulated_second();
   row.ms_per_step = result.ms_per_step();
-  if (r.trial.adaptive_substeps) {  // report the integrator's own steps: the mean substep and its cost
+  if (r.trial
+          .adaptive_substeps) {  // report the integrator's own steps: the mean substep and its cost
     row.setting += " (adaptive substeps)";
     const double substeps = result.counter("substeps").value_or(0.0);
     if (substeps > 0.0) {
@@ -114,7 +120,8 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
   }
   row.max_stretch = r.fastest.max_stretch;
   row.max_penetration = r.fastest.max_penetration;
-  row.second_half_wall_per_simulated = result.second_half_wall_seconds_per_simulated_second(scene.frame_period());
+  row.second_half_wall_per_simulated =
+      result.second_half_wall_seconds_per_simulated_second(scene.frame_period());
   row.runs = r.count;
   row.wall_spread = result.wall_seconds > 0.0 ? r.slowest_wall / result.wall_seconds : 1.0;
   return row;
@@ -132,8 +139,9 @@ void add_cell_rows(BenchTable& table, const scene::Scene& scene, int n, const Cl
     }
     if (!r.skipped) {
       row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
-      row.second_half_cost_ratio =
-          ours_second_half_cost > 0.0 ? row.second_half_wall_per_simulated / ours_second_half_cost : 0.0;
+      row.second_half_cost_ratio = ours_second_half_cost > 0.0
+                                       ? row.second_half_wall_per_simulated / ours_second_half_cost
+                                       : 0.0;
       std::cout << format_row(row) << std::endl;
     }
     table.rows.push_back(row);
@@ -153,24 +161,34 @@ std::string cpu_name() {
 void add_bench_options(CLI::App& verb, BenchArguments& arguments) {
   verb.add_flag("--quick", arguments.quick, "33 x 33 particles only, 0.1 s per run (a smoke test)");
   verb.add_option("--out", arguments.out, "Folder for bench.csv and bench.md (default out/bench)");
-  verb.add_option("--sizes", arguments.sizes, "Particles per side (default 33,65,129,257)")->delimiter(',');
-  verb.add_option("--scenes", arguments.scenes,
-                  "Scene files (default scenes/sphere_drape.yaml, scenes/table_drape.yaml, scenes/curtain.yaml)")
+  verb.add_option("--sizes", arguments.sizes, "Particles per side (default 33,65,129,257)")
       ->delimiter(',');
-  verb.add_option("--duration", arguments.duration, "Simulated seconds per run (default 0.5; 0.1 with --quick)");
-  verb.add_option("--threads", arguments.threads, "Threads for our solver's loops (default: every core)");
-  verb.add_option("--repeat", arguments.repeat,
-                  "Runs of every solver in every cell, interleaved; the fastest is reported (default 1)");
+  verb.add_option("--scenes", arguments.scenes,
+                  "Scene files (default scenes/sphere_drape.yaml, scenes/table_drape.yaml, "
+                  "scenes/curtain.yaml)")
+      ->delimiter(',');
+  verb.add_option("--duration", arguments.duration,
+                  "Simulated seconds per run (default 0.5; 0.1 with --quick)");
+  verb.add_option("--threads", arguments.threads,
+                  "Threads for our solver's loops (default: every core)");
+  verb.add_option(
+      "--repeat", arguments.repeat,
+      "Runs of every solver in every cell, interleaved; the fastest is reported (default 1)");
 }
 
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt) {
   std::vector<int> sizes = arguments.sizes;
-  if (sizes.empty()) sizes = arguments.quick ? std::vector<int>{33} : std::vector<int>{33, 65, 129, 257};
+  if (sizes.empty())
+    sizes = arguments.quick ? std::vector<int>{33} : std::vector<int>{33, 65, 129, 257};
   std::vector<std::string> scenes = arguments.scenes;
-  if (scenes.empty()) scenes = {"scenes/sphere_drape.yaml", "scenes/table_drape.yaml", "scenes/curtain.yaml"};
-  const double duration = arguments.duration > 0.0 ? arguments.duration : (arguments.quick ? 0.1 : 0.5);
+  if (scenes.empty())
+    scenes = {"scenes/sphere_drape.yaml", "scenes/table_drape.yaml", "scenes/curtain.yaml"};
+  const double duration =
+      arguments.duration > 0.0 ? arguments.duration : (arguments.quick ? 0.1 : 0.5);
   const fs::path out = arguments.out.empty() ? fs::path("out/bench") : fs::path(arguments.out);
-  const int threads = arguments.threads > 0 ? arguments.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = arguments.threads > 0
+                          ? arguments.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int repeat = arguments.repeat;
   if (repeat < 1 || repeat > 100) {
     std::cerr << "error: --repeat: " << repeat << " runs is outside 1..100\n";
@@ -184,11 +202,13 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
   kernels::set_thread_count(threads);
 
   BenchTable table;
-  table.machine = cpu_name() + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, " +
-                  std::to_string(kernels::thread_count()) + " threads for our solver's loops";
+  table.machine = cpu_name() + ", " + std::to_string(std::thread::hardware_concurrency()) +
+                  " cores, " + std::to_string(kernels::thread_count()) +
+                  " threads for our solver's loops";
   for (const std::string& file : scenes)
     for (int n : sizes) {
-      const std::string resolution = "cloth.resolution=[" + std::to_string(n) + ", " + std::to_string(n) + "]";
+      const std::string resolution =
+          "cloth.resolution=[" + std::to_string(n) + ", " + std::to_string(n) + "]";
       std::shared_ptr<const ClothModel> model;
       const auto scene = load_trial_scene(file, {resolution, kSolvers}, duration, &model);
       if (!scene) return kExitBadInput;  // the loader printed why
@@ -204,11 +224,13 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
         if (!r.skipped) {
           r.add(measure(*scene, r.trial, setup, interrupt));
           // Bullet's classic cloth: halve the step until it holds (its cheapest stable setting).
-          for (int halving = 0; spec.type == SolverType::bullet_softbody && halving < kClassicHalvings && !r.interrupted &&
-                                r.fastest.result.status != SolverStatus::ok;
+          for (int halving = 0;
+               spec.type == SolverType::bullet_softbody && halving < kClassicHalvings &&
+               !r.interrupted && r.fastest.result.status != SolverStatus::ok;
                ++halving) {
             SolverRuns halved;
-            halved.trial = with_steps_per_frame(r.trial, scene->frame_period(), 2 * r.trial.steps_per_frame);
+            halved.trial =
+                with_steps_per_frame(r.trial, scene->frame_period(), 2 * r.trial.steps_per_frame);
             halved.add(measure(*scene, halved.trial, setup, interrupt));
             r = std::move(halved);
           }
@@ -223,18 +245,22 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
           r.add(measure(*scene, r.trial, setup, interrupt));
           if ((stopped = r.interrupted)) break;
           if (r.differed && !differed_before)
-            std::cerr << "warning: " << scene->name << " " << n << "x" << n << " " << r.trial.name
-                      << ": a repeated run gave a different status, max stretch or max penetration\n";
+            std::cerr
+                << "warning: " << scene->name << " " << n << "x" << n << " " << r.trial.name
+                << ": a repeated run gave a different status, max stretch or max penetration\n";
         }
       add_cell_rows(table, *scene, n, *setup.model, runs);
-      write_bench_files(out, table);  // after every cell, so an interrupted bench keeps what it measured
+      write_bench_files(out,
+                        table);  // after every cell, so an interrupted bench keeps what it measured
       if (stopped) {
-        std::cerr << "interrupted; " << (out / "bench.csv").string() << " holds the rows measured so far\n";
+        std::cerr << "interrupted; " << (out / "bench.csv").string()
+                  << " holds the rows measured so far\n";
         return runner::kExitInterrupted;
       }
     }
   write_bench_files(out, table);
-  std::cout << "\n" << markdown(table) << "\nwrote " << (out / "bench.csv").string() << " and "
+  std::cout << "\n"
+            << markdown(table) << "\nwrote " << (out / "bench.csv").string() << " and "
             << (out / "bench.md").string() << "\n";
   return 0;
 }

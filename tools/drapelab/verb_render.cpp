@@ -25,27 +25,34 @@ namespace drapelab::cli {
 namespace fs = std::filesystem;
 
 void add_render_options(CLI::App& verb, RenderArguments& arguments) {
-  verb.add_option("run_dir", arguments.run_dir, "Run folder written by drapelab run with --meshes pc2 (or obj)")
+  verb.add_option("run_dir", arguments.run_dir,
+                  "Run folder written by drapelab run with --meshes pc2 (or obj)")
       ->required();
-  verb.add_option("--out,-o", arguments.out, "Folder for frame_NNNN.png and video.mp4 (default RUN_DIR/render)");
-  verb.add_option("--size", arguments.size, "Image size WxH in pixels, all panels together (default 480 x 480 per solver)");
-  verb.add_option("--camera", arguments.camera,
-                  "Camera: \"eye=x,y,z;target=x,y,z;fov=deg\" (m, vertical degrees; any subset, the rest from "
-                  "the default 3/4 view from above)");
-  verb.add_option("--texture", arguments.texture, "PNG mapped onto the cloth through its UVs (default: a checker)");
-  verb.add_option("--every", arguments.every, "Render every Nth recorded frame (frames 0, N, 2N, ...)")
+  verb.add_option("--out,-o", arguments.out,
+                  "Folder for frame_NNNN.png and video.mp4 (default RUN_DIR/render)");
+  verb.add_option("--size", arguments.size,
+                  "Image size WxH in pixels, all panels together (default 480 x 480 per solver)");
+  verb.add_option(
+      "--camera", arguments.camera,
+      "Camera: \"eye=x,y,z;target=x,y,z;fov=deg\" (m, vertical degrees; any subset, the rest from "
+      "the default 3/4 view from above)");
+  verb.add_option("--texture", arguments.texture,
+                  "PNG mapped onto the cloth through its UVs (default: a checker)");
+  verb.add_option("--every", arguments.every,
+                  "Render every Nth recorded frame (frames 0, N, 2N, ...)")
       ->check(CLI::PositiveNumber);
-  verb.footer("Example:\n  drapelab run scenes/sphere_drape.yaml --out out/sphere_drape --meshes pc2\n"
-              "  drapelab render out/sphere_drape --size 1280x480\n"
-              "Exit codes: 0 done, 1 ffmpeg failed (the PNG files are written), 2 bad input (nothing "
-              "rendered), 130 interrupted.");
+  verb.footer(
+      "Example:\n  drapelab run scenes/sphere_drape.yaml --out out/sphere_drape --meshes pc2\n"
+      "  drapelab render out/sphere_drape --size 1280x480\n"
+      "Exit codes: 0 done, 1 ffmpeg failed (the PNG files are written), 2 bad input (nothing "
+      "rendered), 130 interrupted.");
 }
 
 namespace {
 
-constexpr int kSupersample = 2;       // rendered at 2x and averaged down: antialiased edges
+constexpr int kSupersample = 2;         // rendered at 2x and averaged down: antialiased edges
 constexpr int kDefaultPanelSize = 480;  // pixels, square panels by default
-constexpr int kMinimumSize = 16;      // pixels, smallest width or height accepted
+constexpr int kMinimumSize = 16;        // pixels, smallest width or height accepted
 
 std::optional<std::pair<int, int>> parse_size(const std::string& text) {
   std::smatch match;
@@ -54,15 +61,16 @@ std::optional<std::pair<int, int>> parse_size(const std::string& text) {
   return std::make_pair(std::stoi(match[1]), std::stoi(match[2]));
 }
 
-// frame_0007.png: zero-padded to `digits`, so names sort in frame order (ffmpeg's glob sorts by name).
+// frame_0007.png: zero-padded to `digits`, so names sort in frame order (ffmpeg's glob sorts by
+// name).
 std::string frame_file_name(int frame, int digits) {
   std::string number = std::to_string(frame);
   if (static_cast<int>(number.size()) < digits) number.insert(0, digits - number.size(), '0');
   return "frame_" + number + ".png";
 }
 
-// Removes a previous render's frames and video from the output folder (only names this verb writes),
-// so the folder holds one render and ffmpeg's glob sees only its frames.
+// Removes a previous render's frames and video from the output folder (only names this verb
+// writes), so the folder holds one render and ffmpeg's glob sees only its frames.
 void remove_previous_render(const fs::path& folder) {
   static const std::regex frame_name(R"(frame_\d+\.png)");
   std::error_code ec;
@@ -89,8 +97,9 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
     const int limit = render::OffscreenContext::max_size();
     if (!size || size->first < kMinimumSize || size->second < kMinimumSize || size->first > limit ||
         size->second > limit) {
-      std::cerr << "error: --size must be WxH with each between " << kMinimumSize << " and " << limit
-                << " pixels, e.g. 1280x480; got '" << arguments.size << "'\nnothing was rendered\n";
+      std::cerr << "error: --size must be WxH with each between " << kMinimumSize << " and "
+                << limit << " pixels, e.g. 1280x480; got '" << arguments.size
+                << "'\nnothing was rendered\n";
       return kExitBadInput;
     }
   }
@@ -99,7 +108,8 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
   render::Image texture;
   try {
     run = render::load_run_frames(arguments.run_dir);
-    texture = arguments.texture.empty() ? render::checker_texture() : render::load_texture(arguments.texture);
+    texture = arguments.texture.empty() ? render::checker_texture()
+                                        : render::load_texture(arguments.texture);
   } catch (const std::exception& e) {  // RunInputError and unreadable files: bad input either way
     std::cerr << "error: " << e.what() << "\nnothing was rendered\n";
     return kExitBadInput;
@@ -108,15 +118,17 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
   const int width = size ? size->first : kDefaultPanelSize * panel_count;
   const int height = size ? size->second : kDefaultPanelSize;
   if (width < panel_count * kMinimumSize) {
-    std::cerr << "error: --size " << arguments.size << " leaves less than " << kMinimumSize << " pixels per panel for "
-              << panel_count << " solvers\nnothing was rendered\n";
+    std::cerr << "error: --size " << arguments.size << " leaves less than " << kMinimumSize
+              << " pixels per panel for " << panel_count << " solvers\nnothing was rendered\n";
     return kExitBadInput;
   }
-  const fs::path out = arguments.out.empty() ? fs::path(arguments.run_dir) / "render" : fs::path(arguments.out);
+  const fs::path out =
+      arguments.out.empty() ? fs::path(arguments.run_dir) / "render" : fs::path(arguments.out);
   std::error_code ec;
   fs::create_directories(out, ec);
   if (!fs::is_directory(out)) {
-    std::cerr << "error: cannot create the output folder " << out.string() << "\nnothing was rendered\n";
+    std::cerr << "error: cannot create the output folder " << out.string()
+              << "\nnothing was rendered\n";
     return kExitBadInput;
   }
   remove_previous_render(out);
@@ -124,19 +136,24 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
   try {
     // Supersampling needs a buffer twice the size; large images that would not fit render at 1x.
     const int supersample =
-        std::max(width, height) * kSupersample <= render::OffscreenContext::max_size() ? kSupersample : 1;
+        std::max(width, height) * kSupersample <= render::OffscreenContext::max_size()
+            ? kSupersample
+            : 1;
     render::OffscreenContext context(width * supersample, height * supersample);
     const render::Bounds framing = render::framing_bounds(run);
     const render::PanelRenderer renderer(run.scene, run.model, texture, framing);
     const double panel_aspect = double(width) / panel_count / height;
-    const render::Camera camera = render::frame_camera(framing, panel_aspect, *camera_spec, renderer.extra_radius());
+    const render::Camera camera =
+        render::frame_camera(framing, panel_aspect, *camera_spec, renderer.extra_radius());
     render::Font font(render::default_font_file());
 
-    const int digits = std::max<int>(4, static_cast<int>(std::to_string(run.frame_count - 1).size()));
+    const int digits =
+        std::max<int>(4, static_cast<int>(std::to_string(run.frame_count - 1).size()));
     int written = 0;
     for (int frame = 0; frame < run.frame_count; frame += arguments.every) {
       if (interrupt.load(std::memory_order_relaxed)) {
-        std::cerr << "interrupted after " << written << " frames; " << out.string() << " holds them\n";
+        std::cerr << "interrupted after " << written << " frames; " << out.string()
+                  << " holds them\n";
         return runner::kExitInterrupted;
       }
       const double time = frame / run.scene.frame_rate;  // s
@@ -148,26 +165,32 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
         const int shown = std::min(frame, solver.source->frame_count() - 1);
         positions[s] = solver.source->positions(shown);
         const auto metrics = solver.metrics.find(shown);
-        panels[s].title = solver.name + (solver.status == "ok" || solver.status.empty() ? "" : " (" + solver.status + ")");
-        panels[s].legend = render::legend_lines(time, frame, metrics == solver.metrics.end() ? nullptr : &metrics->second);
+        panels[s].title =
+            solver.name +
+            (solver.status == "ok" || solver.status.empty() ? "" : " (" + solver.status + ")");
+        panels[s].legend = render::legend_lines(
+            time, frame, metrics == solver.metrics.end() ? nullptr : &metrics->second);
         if (shown < frame) {
           char note[64];
-          std::snprintf(note, sizeof note, "stopped after t = %.3f s", shown / run.scene.frame_rate);
+          std::snprintf(note, sizeof note, "stopped after t = %.3f s",
+                        shown / run.scene.frame_rate);
           panels[s].legend.push_back(note);
         }
         panels[s].cloth = &positions[s];
       }
-      const render::Image image = render::render_frame(context, renderer, camera, panels, time, supersample, font);
+      const render::Image image =
+          render::render_frame(context, renderer, camera, panels, time, supersample, font);
       render::write_png(out / frame_file_name(frame, digits), image);
       ++written;
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    std::cout << "rendered " << written << " frames of " << run.scene.name << " (" << width << " x " << height << ", "
-              << panel_count << (panel_count == 1 ? " panel" : " panels") << ") into " << out.string() << " in "
-              << std::round(seconds * 10) / 10 << " s (" << context.description() << ")\n";
+    std::cout << "rendered " << written << " frames of " << run.scene.name << " (" << width << " x "
+              << height << ", " << panel_count << (panel_count == 1 ? " panel" : " panels")
+              << ") into " << out.string() << " in " << std::round(seconds * 10) / 10 << " s ("
+              << context.description() << ")\n";
     std::cout << "camera: eye=" << camera.eye.x() << "," << camera.eye.y() << "," << camera.eye.z()
-              << ";target=" << camera.target.x() << "," << camera.target.y() << "," << camera.target.z()
-              << ";fov=" << camera.fov_degrees << "\n";
+              << ";target=" << camera.target.x() << "," << camera.target.y() << ","
+              << camera.target.z() << ";fov=" << camera.fov_degrees << "\n";
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;
@@ -185,9 +208,11 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
   }
   const int status = render::run_program(*ffmpeg, ffmpeg_arguments, &error);
   if (status != 0) {
-    std::cerr << "error: ffmpeg failed (" << (status < 0 ? error : "exit status " + std::to_string(status))
-              << "); the frames are in " << out.string() << "; the command was: "
-              << render::shell_command(ffmpeg->string(), ffmpeg_arguments) << "\n";
+    std::cerr << "error: ffmpeg failed ("
+              << (status < 0 ? error : "exit status " + std::to_string(status))
+              << "); the frames are in " << out.string()
+              << "; the command was: " << render::shell_command(ffmpeg->string(), ffmpeg_arguments)
+              << "\n";
     return 1;
   }
   std::cout << "video: " << video.string() << " (H.264, " << fps << " frames per second)\n";

@@ -14,16 +14,21 @@ namespace drapelab::cli {
 namespace fs = std::filesystem;
 
 void add_report_options(CLI::App& verb, ReportArguments& arguments) {
-  verb.add_option("folder", arguments.folder, "A run folder (drapelab run) or a sweep folder (drapelab sweep)")
+  verb.add_option("folder", arguments.folder,
+                  "A run folder (drapelab run) or a sweep folder (drapelab sweep)")
       ->required();
-  verb.add_option("--out,-o", arguments.out, "The HTML file to write (default: FOLDER/report.html)");
+  verb.add_option("--out,-o", arguments.out,
+                  "The HTML file to write (default: FOLDER/report.html)");
   verb.footer(
       "Examples:\n"
       "  drapelab report out/sphere_drape\n"
       "  drapelab report out/stiffness-sweep --out stiffness.html\n"
-      "A run folder needs summary.json, metrics.csv and scene.yaml (compare.csv, contacts.csv and render/ "
-      "are used when present); a sweep folder needs sweep.csv (and uses sweep.json). Prints the report's "
-      "path. Exit codes: 0 written, 2 not a run or sweep folder (the message names what is missing), a "
+      "A run folder needs summary.json, metrics.csv and scene.yaml (compare.csv, contacts.csv and "
+      "render/ "
+      "are used when present); a sweep folder needs sweep.csv (and uses sweep.json). Prints the "
+      "report's "
+      "path. Exit codes: 0 written, 2 not a run or sweep folder (the message names what is "
+      "missing), a "
       "file that cannot be read, or a report that cannot be written.");
 }
 

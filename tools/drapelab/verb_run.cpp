@@ -18,13 +18,16 @@ void add_run_options(CLI::App& verb, RunArguments& arguments) {
   verb.add_option("--set", arguments.overrides,
                   "Override a key: key.path=value, validated like the file (list items by index: "
                   "solvers.0.dt=1e-4); may be repeated");
-  verb.add_option("--meshes", arguments.meshes, "Also write meshes: obj (per frame), pc2 (point cache) or both")
+  verb.add_option("--meshes", arguments.meshes,
+                  "Also write meshes: obj (per frame), pc2 (point cache) or both")
       ->check(CLI::IsMember({"none", "obj", "pc2", "both"}));
   verb.add_flag("--force", arguments.force, "Replace a different run already in the output folder");
   verb.add_flag("--quiet,-q", arguments.quiet, "Print only problems");
-  verb.footer("Example:\n  drapelab run scenes/curtain.yaml --out out/curtain --set cloth.resolution=[65,65]\n"
-              "Exit codes: 0 every solver ok, 1 a solver became unstable, 2 bad input (nothing run), "
-              "130 interrupted.");
+  verb.footer(
+      "Example:\n  drapelab run scenes/curtain.yaml --out out/curtain --set "
+      "cloth.resolution=[65,65]\n"
+      "Exit codes: 0 every solver ok, 1 a solver became unstable, 2 bad input (nothing run), "
+      "130 interrupted.");
 }
 
 namespace {
@@ -33,21 +36,25 @@ void print_outcome(const runner::RunResult& result, const std::filesystem::path&
   for (const auto& solver : result.solvers) {
     std::ostringstream line;
     line.precision(4);
-    line << "  " << solver.name << " (" << solver_type_name(solver.type) << "): " << solver_status_name(solver.status)
-         << ", " << solver.steps << " steps, " << solver.ms_per_step() << " ms per step, "
-         << solver.wall_seconds_per_simulated_second() << " s per simulated second";
+    line << "  " << solver.name << " (" << solver_type_name(solver.type)
+         << "): " << solver_status_name(solver.status) << ", " << solver.steps << " steps, "
+         << solver.ms_per_step() << " ms per step, " << solver.wall_seconds_per_simulated_second()
+         << " s per simulated second";
     std::cout << line.str() << "\n";
   }
   std::cout << "outputs in " << out.string() << "/:\n";
   std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(out)) names.push_back(entry.path().filename().string());
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+    names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
-  for (const auto& name : names) std::cout << "  " << name << (std::filesystem::is_directory(out / name) ? "/" : "") << "\n";
+  for (const auto& name : names)
+    std::cout << "  " << name << (std::filesystem::is_directory(out / name) ? "/" : "") << "\n";
 }
 
 }  // namespace
 
-int run_verb(const RunArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt) {
+int run_verb(const RunArguments& arguments, const std::string& command_line,
+             const std::atomic<bool>& interrupt) {
   std::vector<std::string> overrides = arguments.overrides;
   if (!arguments.meshes.empty()) overrides.push_back("output.meshes=" + arguments.meshes);
   const auto loaded = scene::load_scene_file(arguments.scene, overrides);
@@ -65,8 +72,8 @@ int run_verb(const RunArguments& arguments, const std::string& command_line, con
   options.interrupt = &interrupt;
   options.model = loaded.model;
   if (!arguments.quiet)
-    std::cout << "running " << loaded.scene->name << " (" << loaded.scene->frame_count() << " frames) into "
-              << arguments.out << "\n";
+    std::cout << "running " << loaded.scene->name << " (" << loaded.scene->frame_count()
+              << " frames) into " << arguments.out << "\n";
   const runner::RunResult result = runner::run_scene(*loaded.scene, options, std::cerr);
   if (result.exit_code != kExitBadInput && !arguments.quiet) print_outcome(result, arguments.out);
   return result.exit_code;

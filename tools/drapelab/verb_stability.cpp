@@ -12,10 +12,10 @@
 
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
-#include "drapelab/scene/number_format.hpp"
-#include "drapelab/stability.hpp"
 #include "drapelab/runner/step_search.hpp"
 #include "drapelab/runner/trial_scene.hpp"
+#include "drapelab/scene/number_format.hpp"
+#include "drapelab/stability.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -134,7 +134,8 @@ void add_stability_options(CLI::App& verb, StabilityArguments& arguments) {
 
 int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>& interrupt) {
   std::shared_ptr<const ClothModel> model;  // the loader's, so the cloth is built once
-  const auto scene = load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
+  const auto scene =
+      load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
   if (!scene) return kExitBadInput;
   std::string problem;
   const auto index = choose_solver(*scene, arguments.solver, false, &problem);

@@ -12,9 +12,9 @@
 #include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
-#include "drapelab/scene/number_format.hpp"
 #include "drapelab/runner/study_report.hpp"
 #include "drapelab/runner/trial_scene.hpp"
+#include "drapelab/scene/number_format.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -105,7 +105,8 @@ void add_study_options(CLI::App& verb, StudyArguments& arguments) {
 int study_verb(const StudyArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt) {
   std::shared_ptr<const ClothModel> model;  // the loader's, so the cloth is built once
-  const auto scene = load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
+  const auto scene =
+      load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
   if (!scene) return kExitBadInput;
   std::string problem;
   const auto index = choose_solver(*scene, arguments.solver, true, &problem);

@@ -13,12 +13,14 @@ namespace drapelab::cli {
 
 void add_validate_options(CLI::App& verb, ValidateArguments& arguments) {
   verb.add_option("scene", arguments.scene, "Scene file (YAML)")->required();
-  verb.add_option("--set", arguments.overrides,
-                  "Override a key before validation: key.path=value (list items by index: solvers.0.dt=1e-4)");
+  verb.add_option(
+      "--set", arguments.overrides,
+      "Override a key before validation: key.path=value (list items by index: solvers.0.dt=1e-4)");
   verb.add_flag("--print-resolved", arguments.print_resolved,
                 "Print the resolved scene (every default filled in) as YAML");
-  verb.footer("Example:\n  drapelab validate scenes/curtain.yaml --set cloth.springs.stretch.ks=500\n"
-              "Exit code 0 when the scene is valid, 2 with one line per problem otherwise.");
+  verb.footer(
+      "Example:\n  drapelab validate scenes/curtain.yaml --set cloth.springs.stretch.ks=500\n"
+      "Exit code 0 when the scene is valid, 2 with one line per problem otherwise.");
 }
 
 int validate_verb(const ValidateArguments& arguments) {
@@ -35,22 +37,26 @@ int validate_verb(const ValidateArguments& arguments) {
   }
   const ClothModel& model = *result.model;
   // s: symplectic Euler takes its contact force at the step's end, so its springs alone bound it.
-  const double stable_step =
-      stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), Integrator::symplectic_euler);
+  const double stable_step = stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(),
+                                                  Integrator::symplectic_euler);
   std::cout.precision(6);
   std::cout << arguments.scene << ": ok\n"
-            << "  scene " << s.name << ": " << format_number(s.duration) << " s, " << s.frame_count()
-            << " frames at " << format_number(s.frame_rate) << " frames/s\n"
+            << "  scene " << s.name << ": " << format_number(s.duration) << " s, "
+            << s.frame_count() << " frames at " << format_number(s.frame_rate) << " frames/s\n"
             << "  cloth: " << model.particle_count() << " particles ("
             << (model.inverse_mass.array() == 0.0).count() << " pinned), " << model.springs.size()
-            << " springs, " << model.triangles.cols() << " triangles, "
-            << model.total_mass() << " kg\n"
+            << " springs, " << model.triangles.cols() << " triangles, " << model.total_mass()
+            << " kg\n"
             << "  colliders: " << s.colliders.size() << "\n"
-            << "  stable symplectic step (Gershgorin bound of springs and dampers; the contact, taken at the step's end, does not bound it): " << stable_step << " s\n";
+            << "  stable symplectic step (Gershgorin bound of springs and dampers; the contact, "
+               "taken at the step's end, does not bound it): "
+            << stable_step << " s\n";
   for (const auto& solver : s.solvers) {
     std::cout << "  solver " << solver.name << ": " << solver_type_name(solver.type);
-    if (solver.type == SolverType::spring_damper) std::cout << ", " << integrator_name(solver.integrator);
-    if (solver.type == SolverType::bullet_softbody) std::cout << ", " << solver.iterations << " iteration(s)";
+    if (solver.type == SolverType::spring_damper)
+      std::cout << ", " << integrator_name(solver.integrator);
+    if (solver.type == SolverType::bullet_softbody)
+      std::cout << ", " << solver.iterations << " iteration(s)";
     if (solver.type != SolverType::spring_damper)
       std::cout << ", margin " << solver.margin << " m, voxel " << solver.voxel_size << " m";
     std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";
@@ -60,17 +66,20 @@ int validate_verb(const ValidateArguments& arguments) {
       const double shape_step =
           shape_stable_step(model, scene::initial_scene_state(s, model).x, s.cloth.air_damping);
       const double safety = SpringDamperSettings{}.substep_safety;
-      std::cout << "    adaptive substeps: " << safety << " x the shape's stable step, " << shape_step
-                << " s at the start (" << std::ceil(solver.dt / (safety * shape_step))
+      std::cout << "    adaptive substeps: " << safety << " x the shape's stable step, "
+                << shape_step << " s at the start (" << std::ceil(solver.dt / (safety * shape_step))
                 << " substeps per dt), re-evaluated at every dt\n";
       continue;  // its substeps follow the shape's bound, so the fixed-step warning does not apply
     }
-    // Each integrator's own bound (with the contact for every explicit scheme but symplectic Euler).
-    const double solver_bound = stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), solver.integrator);
+    // Each integrator's own bound (with the contact for every explicit scheme but symplectic
+    // Euler).
+    const double solver_bound =
+        stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), solver.integrator);
     if (solver_bound == 0.0)
-      std::cerr << "warning: solver " << solver.name << ": " << integrator_name(solver.integrator)
-                << " has no stable step here (an undamped spring, or a contact without contact.damping); "
-                   "the run may become unstable\n";
+      std::cerr
+          << "warning: solver " << solver.name << ": " << integrator_name(solver.integrator)
+          << " has no stable step here (an undamped spring, or a contact without contact.damping); "
+             "the run may become unstable\n";
     else if (solver.dt > solver_bound)
       std::cerr << "warning: solver " << solver.name << ": dt " << solver.dt << " s is above the "
                 << integrator_name(solver.integrator) << " stable step estimate " << solver_bound

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-
 #include <atomic>
 #include <string>
 #include <vector>
@@ -15,12 +14,13 @@ struct RunArguments {
   std::string scene;
   std::string out;
   std::vector<std::string> overrides;  // --set key.path=value
-  std::string meshes;                  // --meshes obj|pc2|both (shorthand for --set output.meshes=...)
+  std::string meshes;  // --meshes obj|pc2|both (shorthand for --set output.meshes=...)
   bool force = false;
   bool quiet = false;
 };
 void add_run_options(CLI::App& verb, RunArguments& arguments);
-int run_verb(const RunArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
+int run_verb(const RunArguments& arguments, const std::string& command_line,
+             const std::atomic<bool>& interrupt);
 
 struct ValidateArguments {
   std::string scene;
@@ -56,16 +56,17 @@ int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>&
 // drapelab study: cost and accuracy of every integrator at several steps, against an RK4 reference.
 struct StudyArguments {
   std::string scene;
-  std::string solver;                  // a spring_damper solver; default the first one
-  std::vector<std::string> overrides;  // --set key.path=value
+  std::string solver;                    // a spring_damper solver; default the first one
+  std::vector<std::string> overrides;    // --set key.path=value
   std::vector<std::string> integrators;  // default: all seven
-  double dt = 0.0;                     // s, the base step; 0 = the solver's dt in the scene
+  double dt = 0.0;                       // s, the base step; 0 = the solver's dt in the scene
   std::vector<double> factors{1.0, 2.0, 4.0, 8.0};  // steps tried: dt x factor
-  std::string out;                     // folder for study.csv and study.md; default out/SCENE-study
-  double duration = 0.0;               // s, 0 = the scene's
+  std::string out;        // folder for study.csv and study.md; default out/SCENE-study
+  double duration = 0.0;  // s, 0 = the scene's
 };
 void add_study_options(CLI::App& verb, StudyArguments& arguments);
-int study_verb(const StudyArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
+int study_verb(const StudyArguments& arguments, const std::string& command_line,
+               const std::atomic<bool>& interrupt);
 
 // drapelab sweep: one `drapelab run` child process per combination of the varied keys' values.
 struct SweepArguments {
@@ -77,16 +78,17 @@ struct SweepArguments {
   bool force = false;                  // replace a sweep already in the folder
 };
 void add_sweep_options(CLI::App& verb, SweepArguments& arguments);
-int sweep_verb(const SweepArguments& arguments, const std::string& command_line, const std::atomic<bool>& interrupt);
+int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
+               const std::atomic<bool>& interrupt);
 
 // drapelab render: PNG images of every recorded frame of a run (a panel per solver), and a video.
 struct RenderArguments {
-  std::string run_dir;   // a run folder with point caches or per-frame OBJ files
-  std::string out;       // default RUN_DIR/render
-  std::string size;      // WxH pixels, all panels; default 480 x 480 per solver
-  std::string camera;    // "eye=x,y,z;target=x,y,z;fov=deg", any subset
-  std::string texture;   // PNG for the cloth; default a checker
-  int every = 1;         // render frames 0, N, 2N, ...
+  std::string run_dir;  // a run folder with point caches or per-frame OBJ files
+  std::string out;      // default RUN_DIR/render
+  std::string size;     // WxH pixels, all panels; default 480 x 480 per solver
+  std::string camera;   // "eye=x,y,z;target=x,y,z;fov=deg", any subset
+  std::string texture;  // PNG for the cloth; default a checker
+  int every = 1;        // render frames 0, N, 2N, ...
 };
 void add_render_options(CLI::App& verb, RenderArguments& arguments);
 int render_verb(const RenderArguments& arguments, const std::atomic<bool>& interrupt);
@@ -101,13 +103,13 @@ int report_verb(const ReportArguments& arguments);
 
 // drapelab bench: every solver's cost on a fixed set of scenes and sizes, in one process run.
 struct BenchArguments {
-  bool quick = false;                  // 33 x 33 only, 0.1 s per run
-  std::string out;                     // folder for bench.csv and bench.md; default out/bench
-  std::vector<int> sizes;              // particles per side; default 33, 65, 129, 257
-  std::vector<std::string> scenes;     // scene files; default sphere_drape, table_drape, curtain
-  double duration = 0.0;               // s per run; 0 = 0.5 (0.1 with --quick)
-  int threads = 0;                     // threads for our solver's loops; 0 = every core
-  int repeat = 1;                      // runs of every solver in every cell; the fastest is reported
+  bool quick = false;               // 33 x 33 only, 0.1 s per run
+  std::string out;                  // folder for bench.csv and bench.md; default out/bench
+  std::vector<int> sizes;           // particles per side; default 33, 65, 129, 257
+  std::vector<std::string> scenes;  // scene files; default sphere_drape, table_drape, curtain
+  double duration = 0.0;            // s per run; 0 = 0.5 (0.1 with --quick)
+  int threads = 0;                  // threads for our solver's loops; 0 = every core
+  int repeat = 1;                   // runs of every solver in every cell; the fastest is reported
 };
 void add_bench_options(CLI::App& verb, BenchArguments& arguments);
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt);

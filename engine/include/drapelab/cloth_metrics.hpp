@@ -17,11 +17,11 @@ struct ClothMetrics {
   double max_stretch = 0.0;     // max over stretch springs of |d|/L - 1
   double mean_stretch = 0.0;    // mean over stretch springs of |d|/L - 1
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // m, mass-weighted
-  double lowest_y = 0.0;        // m
+  double lowest_y = 0.0;                               // m
   double projected_area = 0.0;  // m^2, union of triangles projected along gravity
   // Need colliders or a drape support; empty until a scene provides them.
-  std::optional<double> min_clearance;     // m
-  std::optional<double> max_penetration;   // m
+  std::optional<double> min_clearance;    // m
+  std::optional<double> max_penetration;  // m
   std::optional<int> contact_count;
   std::optional<double> drape_coefficient;
   std::optional<int> drape_nodes;

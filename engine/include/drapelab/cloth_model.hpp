@@ -1,5 +1,6 @@
-// ClothModel: the cloth as built. Immutable after build; every derived value is computed once by the
-// builder (rest lengths, masses, vertex areas, spring lists), never lazily. Indices, not pointers.
+// ClothModel: the cloth as built. Immutable after build; every derived value is computed once by
+// the builder (rest lengths, masses, vertex areas, spring lists), never lazily. Indices, not
+// pointers.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,11 +21,11 @@ const char* spring_kind_name(SpringKind kind);
 
 // Springs as a structure of arrays, so the force loop streams through contiguous memory.
 struct SpringSet {
-  std::vector<std::int32_t> v0;        // first particle index
-  std::vector<std::int32_t> v1;        // second particle index
-  std::vector<double> rest_length;     // m, |X(v0) - X(v1)| in the rest pose
-  std::vector<double> ks;              // N/m
-  std::vector<double> kd;              // N*s/m
+  std::vector<std::int32_t> v0;     // first particle index
+  std::vector<std::int32_t> v1;     // second particle index
+  std::vector<double> rest_length;  // m, |X(v0) - X(v1)| in the rest pose
+  std::vector<double> ks;           // N/m
+  std::vector<double> kd;           // N*s/m
   std::vector<SpringKind> kind;
 
   std::size_t size() const { return v0.size(); }
@@ -38,15 +39,15 @@ struct GridLayout {
 };
 
 struct ClothModel {
-  Eigen::Matrix3Xd rest_positions;   // m, 3 x N
-  Eigen::VectorXd mass;              // kg per particle (pinned particles keep their share)
-  Eigen::VectorXd inverse_mass;      // 1/kg; 0 for a pinned particle, which never moves
-  Eigen::VectorXd vertex_area;       // m^2: 1/3 of the incident rest triangle areas (0 for a chain)
-  Eigen::Matrix3Xi triangles;        // particle indices, counter-clockwise seen from the normal side
-  Eigen::Matrix2Xd uvs;              // texture coordinates in [0, 1], one per particle
+  Eigen::Matrix3Xd rest_positions;  // m, 3 x N
+  Eigen::VectorXd mass;             // kg per particle (pinned particles keep their share)
+  Eigen::VectorXd inverse_mass;     // 1/kg; 0 for a pinned particle, which never moves
+  Eigen::VectorXd vertex_area;      // m^2: 1/3 of the incident rest triangle areas (0 for a chain)
+  Eigen::Matrix3Xi triangles;       // particle indices, counter-clockwise seen from the normal side
+  Eigen::Matrix2Xd uvs;             // texture coordinates in [0, 1], one per particle
   SpringSet springs;
-  GridLayout grid;                   // nx = ny = 0 for a non-grid cloth
-  double thickness = 0.005;          // m, contact distance kept from colliders
+  GridLayout grid;           // nx = ny = 0 for a non-grid cloth
+  double thickness = 0.005;  // m, contact distance kept from colliders
 
   int particle_count() const { return static_cast<int>(rest_positions.cols()); }
   bool is_pinned(int i) const { return inverse_mass[i] == 0.0; }

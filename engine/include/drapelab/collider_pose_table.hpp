@@ -1,8 +1,8 @@
 // Collider poses given from outside for one substep. A host world that moves the colliders itself
 // (bullet_bridge's Bullet host) writes, before each step of its guest, where its bodies are at the
 // start and end of the substep and the velocities it gave them; a ContactModel built with the table
-// reads these in place of the analytic collider_pose(t), so the guest touches the colliders the host
-// world holds, not a copy of their motion.
+// reads these in place of the analytic collider_pose(t), so the guest touches the colliders the
+// host world holds, not a copy of their motion.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,8 +24,8 @@ struct ColliderKinematics {
   }
 };
 
-// One collider's rigid motion over a substep [t0, t1]: the host's poses at both ends and the constant
-// velocities that carry the first into the second.
+// One collider's rigid motion over a substep [t0, t1]: the host's poses at both ends and the
+// constant velocities that carry the first into the second.
 struct ColliderSubstepMotion {
   Eigen::Isometry3d start = Eigen::Isometry3d::Identity();     // collider frame -> world at t0
   Eigen::Isometry3d end = Eigen::Isometry3d::Identity();       // collider frame -> world at t1

@@ -17,7 +17,7 @@ template <typename S>
 class CollisionGeometry;
 template <typename S>
 struct ContactPoint;
-}
+}  // namespace fcl
 
 namespace drapelab {
 
@@ -25,7 +25,8 @@ namespace drapelab {
 // `shape_in_collider` turns z onto the collider's axis; FCL's box takes full side lengths.
 struct FclCollider {
   std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
-  Eigen::Isometry3d shape_in_collider = Eigen::Isometry3d::Identity();  // FCL shape frame -> collider frame
+  Eigen::Isometry3d shape_in_collider =
+      Eigen::Isometry3d::Identity();  // FCL shape frame -> collider frame
 };
 
 // The one conversion from our Collider to FCL geometry.
@@ -34,7 +35,7 @@ FclCollider make_fcl_collider(const Collider& collider);
 // Overlap of a particle sphere (centre x, radius r, m) with a collider posed by `shape_pose`
 // (FCL shape frame -> world, i.e. collider_pose * shape_in_collider).
 struct ParticleContact {
-  double depth = 0.0;                                  // m, > 0: how far the sphere reaches inside
+  double depth = 0.0;                                 // m, > 0: how far the sphere reaches inside
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit, out of the collider (push direction)
 };
 
@@ -49,7 +50,8 @@ class ParticleContactQuery {
   ParticleContactQuery& operator=(const ParticleContactQuery&) = delete;
 
   // The contact when the sphere overlaps the collider; nothing when they are apart.
-  std::optional<ParticleContact> contact(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
+  std::optional<ParticleContact> contact(const FclCollider& collider,
+                                         const Eigen::Isometry3d& shape_pose,
                                          const Eigen::Vector3d& x) const;
   // Signed distance from the particle's surface to the collider (m): d(x) - r, negative inside the
   // thickness shell. Exact: FCL's contact depth when overlapping; otherwise FCL's distance, or for
@@ -63,13 +65,13 @@ class ParticleContactQuery {
   std::shared_ptr<fcl::CollisionGeometry<double>> sphere_;
 };
 
-// Radius (m) of the smallest sphere about the FCL shape frame's origin that holds the shape, exact for
-// every shape make_fcl_collider makes (a sphere's own radius, not the sphere around its bounding box,
-// which is sqrt(3) times larger); infinite for a plane.
+// Radius (m) of the smallest sphere about the FCL shape frame's origin that holds the shape, exact
+// for every shape make_fcl_collider makes (a sphere's own radius, not the sphere around its
+// bounding box, which is sqrt(3) times larger); infinite for a plane.
 double bounding_radius(const FclCollider& collider);
 
 // World-space bounding box of a posed collider, grown by `margin` (m). Unbounded for a plane.
-Eigen::AlignedBox3d collider_bounds(const FclCollider& collider, const Eigen::Isometry3d& shape_pose,
-                                    double margin);
+Eigen::AlignedBox3d collider_bounds(const FclCollider& collider,
+                                    const Eigen::Isometry3d& shape_pose, double margin);
 
 }  // namespace drapelab

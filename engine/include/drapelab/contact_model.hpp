@@ -28,9 +28,9 @@ struct ColliderContactTotals {
   double max_depth = 0.0;       // m, deepest overlap
 };
 
-// A particle that a collider's penalty spring pushed in the last evaluation, for the implicit solve:
-// inside the contact the normal force fn n = (k depth - c vn) n changes with x and v as
-// d/dx = -k n n^T (the surface taken as flat at the contact) and d/dv = -c n n^T.
+// A particle that a collider's penalty spring pushed in the last evaluation, for the implicit
+// solve: inside the contact the normal force fn n = (k depth - c vn) n changes with x and v as d/dx
+// = -k n n^T (the surface taken as flat at the contact) and d/dv = -c n n^T.
 struct ActiveContact {
   int particle = 0;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // outward, unit
@@ -49,9 +49,10 @@ enum class ContactNormalScheme {
 
 class ContactModel {
  public:
-  // `radius`: the particles' contact radius, the cloth's thickness (m). Without `poses` the colliders
-  // are posed by collider_pose(t); with them (one entry per collider), by whatever the table holds
-  // when a force is evaluated: a host world fills it before each substep (collider_pose_table.hpp).
+  // `radius`: the particles' contact radius, the cloth's thickness (m). Without `poses` the
+  // colliders are posed by collider_pose(t); with them (one entry per collider), by whatever the
+  // table holds when a force is evaluated: a host world fills it before each substep
+  // (collider_pose_table.hpp).
   ContactModel(std::vector<Collider> colliders, ContactParameters parameters, double radius,
                std::shared_ptr<const ColliderPoseTable> poses = nullptr);
 
@@ -69,26 +70,25 @@ class ContactModel {
   // FCL shape frame -> world at time t (s), posed like pose().
   Eigen::Isometry3d shape_pose(std::size_t c, double t) const;
 
-  // Adds penalty and friction forces (N) to `force` for the state (x, v) at time t, for a step of h.
-  // Friction uses the force already accumulated, so call it after every other force phase.
+  // Adds penalty and friction forces (N) to `force` for the state (x, v) at time t, for a step of
+  // h. Friction uses the force already accumulated, so call it after every other force phase.
   // `normal`: the penalty force at the state given, or (for symplectic Euler only) the force the
   // step's end state implies (penalty_contact.hpp), which uses the accumulated force too.
-  // `totals` (one per collider) is overwritten. Pinned particles are skipped. When `active` is given,
-  // it is cleared and receives every pushing contact (in a fixed order: by block of particles, then
-  // collider, then particle; with the end-of-step normal, by block, then particle, then collider).
-  // Particles are processed in fixed blocks spread over the threads (particle_loops.hpp); `workspace`
-  // keeps the blocks' results between calls (a temporary one when null), and with it the call
-  // allocates nothing once grown.
-  // `follow_up`, when given, runs on every block once its forces are final (every block, including
-  // those without contacts; x and v may be the arrays it updates); the call then returns the lowest
-  // particle it flagged, else -1.
-  std::int64_t add_contact_forces(const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
-                                  const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
-                                  std::vector<ColliderContactTotals>& totals,
-                                  std::vector<ActiveContact>* active = nullptr,
-                                  ContactWorkspace* workspace = nullptr,
-                                  ContactNormalScheme normal = ContactNormalScheme::explicit_penalty,
-                                  const ContactBlockFollowUp* follow_up = nullptr) const;
+  // `totals` (one per collider) is overwritten. Pinned particles are skipped. When `active` is
+  // given, it is cleared and receives every pushing contact (in a fixed order: by block of
+  // particles, then collider, then particle; with the end-of-step normal, by block, then particle,
+  // then collider). Particles are processed in fixed blocks spread over the threads
+  // (particle_loops.hpp); `workspace` keeps the blocks' results between calls (a temporary one when
+  // null), and with it the call allocates nothing once grown. `follow_up`, when given, runs on
+  // every block once its forces are final (every block, including those without contacts; x and v
+  // may be the arrays it updates); the call then returns the lowest particle it flagged, else -1.
+  std::int64_t add_contact_forces(
+      const ClothModel& model, double t, double h, const Eigen::Matrix3Xd& x,
+      const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
+      std::vector<ColliderContactTotals>& totals, std::vector<ActiveContact>* active = nullptr,
+      ContactWorkspace* workspace = nullptr,
+      ContactNormalScheme normal = ContactNormalScheme::explicit_penalty,
+      const ContactBlockFollowUp* follow_up = nullptr) const;
 
  private:
   std::vector<Collider> colliders_;

@@ -1,8 +1,8 @@
-// A circular cloth of concentric rings, for drape tests: a centre particle, then `rings` rings out to
-// the radius, each with about 2 pi r / (ring spacing) particles so that triangles stay close to
-// equilateral and particles carry similar areas. When a support radius is given, one ring lies exactly
-// on it (the rings inside and outside are spaced evenly on their own), so the drape coefficient has no
-// offset from a support edge falling between rings.
+// A circular cloth of concentric rings, for drape tests: a centre particle, then `rings` rings out
+// to the radius, each with about 2 pi r / (ring spacing) particles so that triangles stay close to
+// equilateral and particles carry similar areas. When a support radius is given, one ring lies
+// exactly on it (the rings inside and outside are spaced evenly on their own), so the drape
+// coefficient has no offset from a support edge falling between rings.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,11 +14,12 @@
 namespace drapelab {
 
 struct DiscSpec {
-  double radius = 0.15;                            // m
-  int rings = 20;                                  // rings from the centre to the rim, >= 1
-  Eigen::Vector3d center{0.0, 1.0, 0.0};          // m
-  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // deg, Euler (x, y, z); unrotated it is horizontal
-  std::optional<double> ring_at;                   // m, a radius in (0, radius) that must be a ring
+  double radius = 0.15;                   // m
+  int rings = 20;                         // rings from the centre to the rim, >= 1
+  Eigen::Vector3d center{0.0, 1.0, 0.0};  // m
+  Eigen::Vector3d rotation =
+      Eigen::Vector3d::Zero();    // deg, Euler (x, y, z); unrotated it is horizontal
+  std::optional<double> ring_at;  // m, a radius in (0, radius) that must be a ring
 };
 
 // Ring radii r_1 .. r_rings (m), increasing, the last equal to the radius.

@@ -1,20 +1,22 @@
 // Time integrators for the particle system M x'' = f(x, v). Pinned particles (inverse mass 0) keep
 // their position and a zero velocity under every scheme.
 //
-// The single-evaluation updates (both Euler schemes) are per-particle passes (particle_loops.hpp); the
-// multi-stage schemes
-// (midpoint, RK4), the two-level schemes (Verlet, leapfrog) and implicit Euler need the solver's force
-// evaluation and live in spring_damper_solver / explicit_schemes.cpp / implicit_euler.hpp. Each
-// scheme's update, its order, its force evaluations per step and its stability on x'' = -w^2 x:
+// The single-evaluation updates (both Euler schemes) are per-particle passes (particle_loops.hpp);
+// the multi-stage schemes (midpoint, RK4), the two-level schemes (Verlet, leapfrog) and implicit
+// Euler need the solver's force evaluation and live in spring_damper_solver / explicit_schemes.cpp
+// / implicit_euler.hpp. Each scheme's update, its order, its force evaluations per step and its
+// stability on x'' = -w^2 x:
 //
-//   explicit_euler   x1 = x0 + h v0, v1 = v0 + h a0                    order 1, 1 eval, never stable undamped
-//   symplectic_euler v1 = v0 + h a0, x1 = x0 + h v1                    order 1, 1 eval, w h < 2
-//   midpoint (RK2)   half step to (xm, vm), then x1 = x0 + h vm,
-//                    v1 = v0 + h a(xm, vm)                              order 2, 2 evals, never stable undamped
-//   rk4              classic Runge-Kutta                               order 4, 4 evals, w h < 2 sqrt(2)
-//   verlet           x1 = 2 x0 - x_prev + h^2 a0 (position Verlet)     order 2, 1 eval, w h < 2
-//   leapfrog         kick h/2, drift h, kick h/2 (velocity Verlet)     order 2, 1 eval, w h < 2
-//   implicit_euler   (M - h D - h^2 K) dv = h (f0 + h K v0)            order 1, 1 eval + CG, unconditionally
+//   explicit_euler   x1 = x0 + h v0, v1 = v0 + h a0                    order 1, 1 eval, never
+//   stable undamped symplectic_euler v1 = v0 + h a0, x1 = x0 + h v1                    order 1, 1
+//   eval, w h < 2 midpoint (RK2)   half step to (xm, vm), then x1 = x0 + h vm,
+//                    v1 = v0 + h a(xm, vm)                              order 2, 2 evals, never
+//                    stable undamped
+//   rk4              classic Runge-Kutta                               order 4, 4 evals, w h < 2
+//   sqrt(2) verlet           x1 = 2 x0 - x_prev + h^2 a0 (position Verlet)     order 2, 1 eval, w h
+//   < 2 leapfrog         kick h/2, drift h, kick h/2 (velocity Verlet)     order 2, 1 eval, w h < 2
+//   implicit_euler   (M - h D - h^2 K) dv = h (f0 + h K v0)            order 1, 1 eval + CG,
+//   unconditionally
 #pragma once
 
 #include <optional>

@@ -25,7 +25,7 @@
 namespace drapelab {
 
 struct TriangleMesh {
-  Eigen::Matrix3Xd vertices;  // m
+  Eigen::Matrix3Xd vertices;   // m
   Eigen::Matrix3Xi triangles;  // vertex indices, consistently wound
   Eigen::Matrix2Xd uvs;        // one per vertex in [0, 1], or empty (then planar)
 };
@@ -35,16 +35,17 @@ struct MeshClothSpec : ClothPhysicsSpec {
   std::vector<int> pinned;  // particle indices held fixed
 };
 
-// Checks the mesh: indices in range, no degenerate (zero-area) triangle, no edge shared by more than
-// two triangles, every vertex used. Returns the first problem, or nothing.
+// Checks the mesh: indices in range, no degenerate (zero-area) triangle, no edge shared by more
+// than two triangles, every vertex used. Returns the first problem, or nothing.
 std::optional<std::string> mesh_problem(const TriangleMesh& mesh);
 
-// Builds the model. Throws std::invalid_argument on a mesh_problem, on a missing or doubled mass, or
-// on a pin out of range.
+// Builds the model. Throws std::invalid_argument on a mesh_problem, on a missing or doubled mass,
+// or on a pin out of range.
 ClothModel build_mesh_cloth(const MeshClothSpec& spec);
 
 // Unit normal per vertex: the area-weighted mean of its triangles' normals.
-Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xi& triangles);
+Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions,
+                                const Eigen::Matrix3Xi& triangles);
 
 // The initial state of any cloth: rest positions, each free particle offset along its vertex normal
 // by a uniform random amount in [-amplitude, amplitude] (m) drawn from `seed`; zero velocity.

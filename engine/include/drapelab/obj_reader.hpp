@@ -16,8 +16,8 @@ namespace drapelab {
 
 struct ObjReadResult {
   std::optional<TriangleMesh> mesh;
-  int error_line = 0;     // 1-based line of the problem (0: the file as a whole)
-  std::string error;      // what is wrong and what was expected
+  int error_line = 0;  // 1-based line of the problem (0: the file as a whole)
+  std::string error;   // what is wrong and what was expected
 };
 
 ObjReadResult read_obj(std::istream& in);

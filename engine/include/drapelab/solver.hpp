@@ -1,5 +1,6 @@
-// The interface the runner drives: every solver (ours and Bullet's two cloths) steps by h and exposes
-// its cloth as a ClothState whose node i is model particle i. The runner knows nothing of their insides.
+// The interface the runner drives: every solver (ours and Bullet's two cloths) steps by h and
+// exposes its cloth as a ClothState whose node i is model particle i. The runner knows nothing of
+// their insides.
 #pragma once
 
 #include <array>
@@ -21,8 +22,8 @@ enum class SolverType {
   bullet_softbody,    // Bullet's classic cloth, btSoftBody
   bullet_deformable,  // Bullet's deformable world
 };
-inline constexpr std::array<SolverType, 3> kSolverTypes = {SolverType::spring_damper, SolverType::bullet_softbody,
-                                                          SolverType::bullet_deformable};
+inline constexpr std::array<SolverType, 3> kSolverTypes = {
+    SolverType::spring_damper, SolverType::bullet_softbody, SolverType::bullet_deformable};
 const char* solver_type_name(SolverType type);
 std::optional<SolverType> parse_solver_type(std::string_view name);
 

@@ -1,13 +1,15 @@
-// Our spring-damper cloth: forces from gravity, damped springs, air damping and penalty contact with
-// friction, advanced by any integrator of integrators.hpp. A step is a visible list of phases, each
-// timed into StepStats:
-//   body forces (gravity and air drag) -> springs -> contacts -> integrate (pins held) -> health check.
-// Multi-stage schemes run the force phases once per stage; "integrate" is the rest of the step (stage
-// arithmetic, and for implicit Euler the assembly and conjugate-gradient solve). The Euler pair with
-// colliders updates each block of particles inside the contact phase, as soon as its forces are final
-// (the same bits as a pass of its own), so there the update's time counts in "contacts".
-// The explicit step allocates nothing after the first: every buffer is sized when the solver is built,
-// except the contact phase's per-block lists and each thread's FCL buffer, sized by the first step.
+// Our spring-damper cloth: forces from gravity, damped springs, air damping and penalty contact
+// with friction, advanced by any integrator of integrators.hpp. A step is a visible list of phases,
+// each timed into StepStats:
+//   body forces (gravity and air drag) -> springs -> contacts -> integrate (pins held) -> health
+//   check.
+// Multi-stage schemes run the force phases once per stage; "integrate" is the rest of the step
+// (stage arithmetic, and for implicit Euler the assembly and conjugate-gradient solve). The Euler
+// pair with colliders updates each block of particles inside the contact phase, as soon as its
+// forces are final (the same bits as a pass of its own), so there the update's time counts in
+// "contacts". The explicit step allocates nothing after the first: every buffer is sized when the
+// solver is built, except the contact phase's per-block lists and each thread's FCL buffer, sized
+// by the first step.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,7 +29,8 @@
 
 namespace drapelab {
 
-// The step's private machinery (engine/forces, engine/integrators, engine/contact), held by pointer.
+// The step's private machinery (engine/forces, engine/integrators, engine/contact), held by
+// pointer.
 class SpringFamilies;
 class FamilyImplicitSystem;
 struct ShapeBoundWorkspace;
@@ -40,14 +43,15 @@ struct SpringDamperSettings {
   double air_damping = 0.0;                  // 1/s: force -air_damping * m * v
   double max_speed = 1000.0;                 // m/s: a faster particle means the run has blown up
   std::shared_ptr<const ContactModel> contacts;  // colliders and penalty parameters; none when null
-  ImplicitSolveSettings implicit;                // implicit_euler only: CG tolerance and iteration cap
-  bool fast_springs = true;  // the spring-family fast path when the springs allow (spring_families.hpp)
-  // Adaptive substeps: each step(h) is split into as many equal substeps as the current shape's stable
-  // step needs (stability.hpp shape_rate_bounds), at `substep_safety` times that step. Symplectic
-  // Euler only, the one scheme whose damped stability condition h^2 w^2 + 2 h c < 4 is exact (the
-  // bound is tight enough for the others' differences to show: Verlet, whose damping lags a step,
-  // diverged at 1.4 times its Gershgorin step on a sheet without shear springs); the constructor
-  // refuses the others.
+  ImplicitSolveSettings implicit;  // implicit_euler only: CG tolerance and iteration cap
+  bool fast_springs =
+      true;  // the spring-family fast path when the springs allow (spring_families.hpp)
+  // Adaptive substeps: each step(h) is split into as many equal substeps as the current shape's
+  // stable step needs (stability.hpp shape_rate_bounds), at `substep_safety` times that step.
+  // Symplectic Euler only, the one scheme whose damped stability condition h^2 w^2 + 2 h c < 4 is
+  // exact (the bound is tight enough for the others' differences to show: Verlet, whose damping
+  // lags a step, diverged at 1.4 times its Gershgorin step on a sheet without shear springs); the
+  // constructor refuses the others.
   bool adaptive_substeps = false;
   double substep_safety = 0.9;
 };
@@ -86,14 +90,15 @@ class SpringDamperSolver final : public Solver {
   const StepStats& stats() const { return stats_; }
 
   // Total force on every particle (N, 3 x N) at (x, v) and time t (s): gravity and air drag, then
-  // springs, then contacts, with friction sized for a step of h (s). Public so tests can check it; writes only the
-  // solver's own buffers.
-  const Eigen::Matrix3Xd& evaluate_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
-                                          double h);
+  // springs, then contacts, with friction sized for a step of h (s). Public so tests can check it;
+  // writes only the solver's own buffers.
+  const Eigen::Matrix3Xd& evaluate_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                                          double t, double h);
   // What each collider did in the last force evaluation (empty without colliders).
   const std::vector<ColliderContactTotals>& contact_totals() const { return contact_totals_; }
-  // The implicit solve: the assembled sparse system (a cloth without spring families, or fast_springs
-  // off) or the matrix-free one on spring families; both null unless the integrator is implicit_euler.
+  // The implicit solve: the assembled sparse system (a cloth without spring families, or
+  // fast_springs off) or the matrix-free one on spring families; both null unless the integrator is
+  // implicit_euler.
   const ImplicitEulerSystem* implicit_system() const { return implicit_.get(); }
   const FamilyImplicitSystem* family_implicit_system() const { return family_implicit_.get(); }
   // The statistics of whichever implicit solve runs (null unless the integrator is implicit_euler).
@@ -114,11 +119,11 @@ class SpringDamperSolver final : public Solver {
   void verlet_step(double h);
   void leapfrog_step(double h);
   void implicit_euler_step(double h);
-  // The force phases on their own: gravity, air drag and springs overwrite force_; contacts add to it
-  // (with `follow_up` run on each block of particles once its force is final; returns its flag).
+  // The force phases on their own: gravity, air drag and springs overwrite force_; contacts add to
+  // it (with `follow_up` run on each block of particles once its force is final; returns its flag).
   void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
-  std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t, double h,
-                                  const ContactBlockFollowUp* follow_up);
+  std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
+                                  double h, const ContactBlockFollowUp* follow_up);
   // How the integrator takes the penalty normal force: at the step's end for symplectic Euler.
   ContactNormalScheme contact_normal_scheme() const;
   // Both at the solver's state in one parallel region (the spring fast path with colliders): each
@@ -139,7 +144,8 @@ class SpringDamperSolver final : public Solver {
   Eigen::Matrix3Xd coordinate_mass_;          // kg: m_i in each of particle i's three rows
   Eigen::Matrix3Xd coordinate_inverse_mass_;  // 1/kg: 1/m_i, 0 for a pinned particle
   Eigen::Matrix3Xd weight_;                   // N: m_i g
-  // Stage buffers of the multi-stage and two-level schemes (3 x N; empty when the scheme needs none):
+  // Stage buffers of the multi-stage and two-level schemes (3 x N; empty when the scheme needs
+  // none):
   Eigen::Matrix3Xd stage_x_, stage_v_;  // m, m/s: the state a stage evaluates the force at
   Eigen::Matrix3Xd sum_x_, sum_v_;      // RK4's weighted sums of stage slopes (m/s, m/s^2)
   Eigen::Matrix3Xd acceleration_;       // m/s^2: the last stage's, or the two-level schemes' a(n)
@@ -149,13 +155,15 @@ class SpringDamperSolver final : public Solver {
   std::unique_ptr<FamilyImplicitSystem> family_implicit_;
   std::unique_ptr<SpringFamilies> spring_families_;  // null: the plain edge-list loop
   // The fast path's unit-stride copy of the state equals state_.x and state_.v: set by the Euler
-  // update with colliders (which splits each block as it updates it) and by a force evaluation at the
-  // solver's state; cleared by every other change of the state.
+  // update with colliders (which splits each block as it updates it) and by a force evaluation at
+  // the solver's state; cleared by every other change of the state.
   bool split_state_is_current_ = false;
-  std::vector<ActiveContact> active_contacts_;  // implicit Euler: contacts of the start-of-step force
+  std::vector<ActiveContact>
+      active_contacts_;  // implicit Euler: contacts of the start-of-step force
   std::vector<ColliderContactTotals> contact_totals_;
   std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
-  std::unique_ptr<ShapeBoundWorkspace> shape_bound_;  // adaptive substeps: each particle's springs, for the bound
+  std::unique_ptr<ShapeBoundWorkspace>
+      shape_bound_;  // adaptive substeps: each particle's springs, for the bound
   StepStats stats_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;

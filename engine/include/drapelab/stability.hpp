@@ -31,42 +31,50 @@ struct ContactRates {
 };
 
 // Gershgorin bounds over the free particles; pinned particles do not move and are skipped.
-NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, ContactRates contact = {});
+NetworkRates network_rate_bounds(const ClothModel& model, double air_damping,
+                                 ContactRates contact = {});
 
 // A step (s) for which symplectic Euler is stable on the whole network (sufficient, from the bounds
 // above; typically within a factor 2 of the true limit). Infinity when nothing constrains it.
-double symplectic_euler_stable_step(const ClothModel& model, double air_damping, ContactRates contact = {});
+double symplectic_euler_stable_step(const ClothModel& model, double air_damping,
+                                    ContactRates contact = {});
 
 // Explicit Euler and the midpoint rule have no stable step on an undamped spring: their stability
 // regions touch the imaginary axis only at 0. A damped mode with rate c and frequency w needs
-// |1 + lambda h| < 1, i.e. h < c / w^2 (and h < 2 / c when overdamped). When every spring's damping is
-// kd / ks times its stiffness, each mode's c / w^2 is a weighted mean of the springs' kd / ks, so
+// |1 + lambda h| < 1, i.e. h < c / w^2 (and h < 2 / c when overdamped). When every spring's damping
+// is kd / ks times its stiffness, each mode's c / w^2 is a weighted mean of the springs' kd / ks,
+// so
 //   h < min over springs (and the contact) of kd / ks
 // bounds explicit Euler near the rest shape (air damping only helps). RK2's region contains Euler's
 // disc, so the same bound is safe for it. Zero when some spring is undamped.
 double damping_ratio_step(const ClothModel& model, ContactRates contact = {});
 
 // Whether `integrator`'s solver takes the penalty contact force at the end of its step (linearly
-// implicit along the normal, penalty_contact.hpp): the contact then acts as extra mass along the normal
-// and does not bound the step. Symplectic Euler only; the other schemes evaluate it at their stages.
-inline bool contact_at_step_end(Integrator integrator) { return integrator == Integrator::symplectic_euler; }
+// implicit along the normal, penalty_contact.hpp): the contact then acts as extra mass along the
+// normal and does not bound the step. Symplectic Euler only; the other schemes evaluate it at their
+// stages.
+inline bool contact_at_step_end(Integrator integrator) {
+  return integrator == Integrator::symplectic_euler;
+}
 
-// Tighter bounds at one shape x (3 x N, m), for steps chosen as the cloth moves (adaptive substeps).
-// Symplectic Euler's stable step (s) at shape x (m, 3 x N), from each particle's stiffness and
-// damping tensors at that shape (integrators/shape_bound.hpp, which the adaptive substeps use with a
-// workspace kept between calls); without the contact, which that scheme takes at the step's end.
+// Tighter bounds at one shape x (3 x N, m), for steps chosen as the cloth moves (adaptive
+// substeps). Symplectic Euler's stable step (s) at shape x (m, 3 x N), from each particle's
+// stiffness and damping tensors at that shape (integrators/shape_bound.hpp, which the adaptive
+// substeps use with a workspace kept between calls); without the contact, which that scheme takes
+// at the step's end.
 double shape_stable_step(const ClothModel& model, const Eigen::Matrix3Xd& x, double air_damping);
 
 // The stable step (s) of each integrator from rates K and C: symplectic Euler's
-// (sqrt(C^2 + 4 K) - C) / K for it, Verlet and leapfrog; 1.39 x that for RK4; the smaller of that and
-// `damping_ratio` (damping_ratio_step) for explicit Euler and midpoint; infinity for implicit Euler.
+// (sqrt(C^2 + 4 K) - C) / K for it, Verlet and leapfrog; 1.39 x that for RK4; the smaller of that
+// and `damping_ratio` (damping_ratio_step) for explicit Euler and midpoint; infinity for implicit
+// Euler.
 double step_from_rates(const NetworkRates& rates, Integrator integrator, double damping_ratio);
 
 // A step (s) below which `integrator` is stable on this network, from the bounds above, with the
-// contact left out when contact_at_step_end(integrator): symplectic Euler's bound for it, Verlet and
-// leapfrog (all w h < 2 undamped); 1.39 x that for RK4 (its region reaches 2.83 on the imaginary axis
-// and 2.79 on the negative real axis); min(damping_ratio_step, symplectic bound) for explicit Euler and
-// midpoint; infinity for implicit Euler.
+// contact left out when contact_at_step_end(integrator): symplectic Euler's bound for it, Verlet
+// and leapfrog (all w h < 2 undamped); 1.39 x that for RK4 (its region reaches 2.83 on the
+// imaginary axis and 2.79 on the negative real axis); min(damping_ratio_step, symplectic bound) for
+// explicit Euler and midpoint; infinity for implicit Euler.
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
                             Integrator integrator);
 

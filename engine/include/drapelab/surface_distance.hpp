@@ -7,13 +7,14 @@
 namespace drapelab {
 
 // Closest distance (m) from point p to triangle (a, b, c).
-double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                               const Eigen::Vector3d& c);
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                               const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 // Symmetric Hausdorff distance (m) between the surfaces {xa, triangles} and {xb, triangles}: the
 // largest distance from a point of either surface to the other surface, sampled at every vertex,
 // the third points of every edge and every triangle centroid, point-to-triangle.
 // Without triangles (a chain) the surfaces are the vertex sets.
-double hausdorff_distance(const Eigen::Matrix3Xd& xa, const Eigen::Matrix3Xd& xb, const Eigen::Matrix3Xi& triangles);
+double hausdorff_distance(const Eigen::Matrix3Xd& xa, const Eigen::Matrix3Xd& xb,
+                          const Eigen::Matrix3Xi& triangles);
 
 }  // namespace drapelab

@@ -11,8 +11,9 @@
 namespace drapelab::scene {
 namespace {
 
-const std::vector<std::string> kCommonKeys = {"shape", "center", "rotation", "material", "mass", "areal_density",
-                                              "thickness", "perturbation", "springs", "air_damping", "pins"};
+const std::vector<std::string> kCommonKeys = {
+    "shape",     "center",       "rotation", "material",    "mass", "areal_density",
+    "thickness", "perturbation", "springs",  "air_damping", "pins"};
 
 std::vector<std::string> keys_for(const std::string& shape) {
   std::vector<std::string> keys = kCommonKeys;
@@ -31,15 +32,18 @@ void ClothReader::read(const YAML::Node& node) {
   // The shape decides which keys exist, so read it first.
   std::string shape = "grid";
   if (node.IsMap() && node["shape"].IsDefined())
-    if (const auto chosen = r_.choice(node["shape"], "cloth.shape", {"grid", "disc", "mesh"})) shape = *chosen;
+    if (const auto chosen = r_.choice(node["shape"], "cloth.shape", {"grid", "disc", "mesh"}))
+      shape = *chosen;
   MapReader cloth(r_, node, "cloth", keys_for(shape));
   if (!cloth.valid()) return;
   ClothSpec& spec = scene_.cloth;
   spec.shape = shape;
   GridClothSpec& common = spec.grid;
   // A mesh keeps its file's coordinates unless moved; grids and discs default to 1 m up.
-  const Eigen::Vector3d default_center = shape == "mesh" ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0, 1, 0);
-  if (const auto center = cloth.numbers("center", 3, Range::any(), default_center)) common.center = *center;
+  const Eigen::Vector3d default_center =
+      shape == "mesh" ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0, 1, 0);
+  if (const auto center = cloth.numbers("center", 3, Range::any(), default_center))
+    common.center = *center;
   if (const auto rotation = cloth.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero()))
     common.rotation = *rotation;
   if (shape == "grid") read_grid(cloth);
@@ -47,28 +51,34 @@ void ClothReader::read(const YAML::Node& node) {
   if (shape == "mesh") read_mesh(cloth);
   apply_material(cloth);
   read_mass(cloth);
-  common.thickness = cloth.number("thickness", Range::positive(), common.thickness).value_or(common.thickness);
+  common.thickness =
+      cloth.number("thickness", Range::positive(), common.thickness).value_or(common.thickness);
   spec.perturbation = cloth.number("perturbation", Range::non_negative(), 0.0).value_or(0.0);
-  spec.air_damping = cloth.number("air_damping", Range::non_negative(), spec.air_damping).value_or(spec.air_damping);
+  spec.air_damping = cloth.number("air_damping", Range::non_negative(), spec.air_damping)
+                         .value_or(spec.air_damping);
   if (cloth.has("springs")) read_springs(cloth.get("springs"));
   if (cloth.has("pins")) read_pins(cloth.get("pins"));
 }
 
 void ClothReader::read_grid(MapReader& cloth) {
   GridClothSpec& grid = scene_.cloth.grid;
-  if (const auto size = cloth.numbers("size", 2, Range::positive(), Eigen::Vector2d(1.0, 1.0))) grid.size = *size;
+  if (const auto size = cloth.numbers("size", 2, Range::positive(), Eigen::Vector2d(1.0, 1.0)))
+    grid.size = *size;
   if (const auto plane = cloth.choice("plane", {"xz", "xy"}, "xz"))
     grid.plane = *plane == "xz" ? GridPlane::xz : GridPlane::xy;
   if (!cloth.has("resolution")) {
-    cloth.missing("resolution", "particles along each side, for example [33, 33] ([1, N] is a chain)");
+    cloth.missing("resolution",
+                  "particles along each side, for example [33, 33] ([1, N] is a chain)");
     return;
   }
-  const auto resolution = r_.integers(cloth.get("resolution"), "cloth.resolution", 2, {1.0, true, 1e6, true});
+  const auto resolution =
+      r_.integers(cloth.get("resolution"), "cloth.resolution", 2, {1.0, true, 1e6, true});
   if (!resolution) return;
   grid.nx = static_cast<int>((*resolution)[0]);
   grid.ny = static_cast<int>((*resolution)[1]);
   if (grid.nx * static_cast<long long>(grid.ny) < 2)
-    r_.error(cloth.get("resolution"), "cloth.resolution", "must give at least 2 particles in all, got [1, 1]");
+    r_.error(cloth.get("resolution"), "cloth.resolution",
+             "must give at least 2 particles in all, got [1, 1]");
   else if (grid.nx * static_cast<long long>(grid.ny) > 4'000'000)
     r_.error(cloth.get("resolution"), "cloth.resolution", "gives more than 4 million particles");
   else
@@ -89,14 +99,18 @@ void ClothReader::read_mesh(MapReader& cloth) {
   ClothSpec& spec = scene_.cloth;
   spec.mesh_scale = cloth.number("scale", Range::positive(), 1.0).value_or(1.0);
   if (!cloth.has("path")) {
-    cloth.missing("path", "the OBJ file of the cloth, relative to the scene file (for example meshes/cape.obj)");
+    cloth.missing(
+        "path",
+        "the OBJ file of the cloth, relative to the scene file (for example meshes/cape.obj)");
     return;
   }
   const auto path = cloth.text("path", std::nullopt);
   if (!path) return;
-  spec.mesh_file = std::filesystem::path(*path).is_absolute() ? std::filesystem::path(*path) : folder_ / *path;
+  spec.mesh_file =
+      std::filesystem::path(*path).is_absolute() ? std::filesystem::path(*path) : folder_ / *path;
   const ObjReadResult read = read_obj_file(spec.mesh_file);
-  const std::string shown = spec.mesh_file.string() + (read.error_line > 0 ? ":" + std::to_string(read.error_line) : "");
+  const std::string shown =
+      spec.mesh_file.string() + (read.error_line > 0 ? ":" + std::to_string(read.error_line) : "");
   if (!read.mesh) {
     r_.error(cloth.get("path"), "cloth.path", "'" + shown + "': " + read.error);
     return;
@@ -121,7 +135,9 @@ double ClothReader::particle_spacing() const {
     double total = 0.0;
     const auto& m = *spec.mesh;
     for (Eigen::Index t = 0; t < m.triangles.cols(); ++t)
-      for (int e = 0; e < 3; ++e) total += (m.vertices.col(m.triangles(e, t)) - m.vertices.col(m.triangles((e + 1) % 3, t))).norm();
+      for (int e = 0; e < 3; ++e)
+        total += (m.vertices.col(m.triangles(e, t)) - m.vertices.col(m.triangles((e + 1) % 3, t)))
+                     .norm();
     return total / (3.0 * static_cast<double>(m.triangles.cols()));
   }
   const GridClothSpec& g = spec.grid;
@@ -151,7 +167,8 @@ void ClothReader::read_mass(MapReader& cloth) {
   GridClothSpec& grid = scene_.cloth.grid;
   const bool has_mass = cloth.has("mass"), has_density = cloth.has("areal_density");
   if (has_mass && has_density) {
-    r_.error(cloth.get("areal_density"), "cloth.areal_density", "cannot be given together with cloth.mass; give one of them");
+    r_.error(cloth.get("areal_density"), "cloth.areal_density",
+             "cannot be given together with cloth.mass; give one of them");
   } else if (has_mass) {
     grid.areal_density.reset();  // an explicit mass replaces a material's density
     if (const auto mass = cloth.number("mass", Range::positive(), std::nullopt)) grid.mass = *mass;
@@ -163,7 +180,9 @@ void ClothReader::read_mass(MapReader& cloth) {
                  "needs a two-dimensional cloth, but a chain has no area; give cloth.mass instead");
     }
   } else if (!grid.areal_density && !cloth.has("material")) {  // a bad material is reported already
-    cloth.missing("mass", "total kg (for example 0.25), or cloth.areal_density in kg/m^2, or a cloth.material");
+    cloth.missing(
+        "mass",
+        "total kg (for example 0.25), or cloth.areal_density in kg/m^2, or a cloth.material");
   }
 }
 
@@ -177,8 +196,8 @@ void ClothReader::read_springs(const YAML::Node& node) {
   read_spring_kind(springs, "bend", Range::non_negative(), grid.bend);
 }
 
-void ClothReader::read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range,
-                                   SpringParams& out) {
+void ClothReader::read_spring_kind(MapReader& springs, const std::string& kind,
+                                   const Range& ks_range, SpringParams& out) {
   if (!springs.has(kind)) return;
   MapReader params(r_, springs.get(kind), springs.path_of(kind), {"ks", "kd"});
   if (!params.valid()) return;
@@ -188,8 +207,10 @@ void ClothReader::read_spring_kind(MapReader& springs, const std::string& kind, 
 
 void ClothReader::read_pins(const YAML::Node& node) {
   if (!node.IsSequence()) {
-    r_.error(node, "cloth.pins", "must be a list of pin selectors (a set name, [i, j], {index: k}, "
-                                  "{within: {center: [x, y, z], radius: r}}), got " + describe_scalar(node));
+    r_.error(node, "cloth.pins",
+             "must be a list of pin selectors (a set name, [i, j], {index: k}, "
+             "{within: {center: [x, y, z], radius: r}}), got " +
+                 describe_scalar(node));
     return;
   }
   record_item_lines(r_, node, "cloth.pins");
@@ -198,14 +219,17 @@ void ClothReader::read_pins(const YAML::Node& node) {
     const std::string path = "cloth.pins." + std::to_string(k);
     std::optional<PinSelector> selector;
     if (item.IsScalar()) {
-      if (const auto name = r_.choice(item, path, pin_set_names(scene_.cloth))) selector = PinNamed{*name};
+      if (const auto name = r_.choice(item, path, pin_set_names(scene_.cloth)))
+        selector = PinNamed{*name};
     } else if (item.IsSequence()) {
       if (const auto ij = r_.integers(item, path, 2, Range::non_negative()))
         selector = PinGridCoord{static_cast<int>((*ij)[0]), static_cast<int>((*ij)[1])};
     } else if (item.IsMap()) {
       selector = read_pin_map(item, path);
     } else {
-      r_.error(item, path, "must be a pin selector (a set name, [i, j], {index: k} or {within: ...}), got nothing");
+      r_.error(
+          item, path,
+          "must be a pin selector (a set name, [i, j], {index: k} or {within: ...}), got nothing");
     }
     if (!selector) continue;
     scene_.cloth.grid.pins.push_back(*selector);
@@ -214,7 +238,8 @@ void ClothReader::read_pins(const YAML::Node& node) {
   }
 }
 
-std::optional<PinSelector> ClothReader::read_pin_map(const YAML::Node& item, const std::string& path) {
+std::optional<PinSelector> ClothReader::read_pin_map(const YAML::Node& item,
+                                                     const std::string& path) {
   MapReader pin(r_, item, path, {"index", "within"});
   if (!pin.valid()) return std::nullopt;
   if (pin.has("index") == pin.has("within")) {
@@ -240,7 +265,8 @@ void ClothReader::finish() {
   ClothSpec& spec = scene_.cloth;
   if (spec.shape == "disc" && scene_.drape_support) {
     const double support = scene_.drape_support->disc.radius;
-    if (support > 0.0 && support < spec.disc.radius && spec.disc.rings >= 2) spec.disc.ring_at = support;
+    if (support > 0.0 && support < spec.disc.radius && spec.disc.rings >= 2)
+      spec.disc.ring_at = support;
   }
   if (!geometry_ok_) return;
   // Pins are checked only on a cloth that can be built (its selectors may be fine on a fixed one).

@@ -28,7 +28,8 @@ class ClothReader {
   void apply_material(MapReader& cloth);
   void read_mass(MapReader& cloth);
   void read_springs(const YAML::Node& node);
-  void read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range, SpringParams& out);
+  void read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range,
+                        SpringParams& out);
   void read_pins(const YAML::Node& node);
   std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path);
   double particle_spacing() const;  // m, for material presets
@@ -37,8 +38,8 @@ class ClothReader {
   Scene& scene_;
   std::filesystem::path folder_;
   bool geometry_ok_ = false;
-  std::vector<YAML::Node> pin_nodes_;     // one per selector in scene_.cloth.grid.pins, for messages
-  std::vector<std::string> pin_paths_;    // ... and its key path (cloth.pins.K)
+  std::vector<YAML::Node> pin_nodes_;   // one per selector in scene_.cloth.grid.pins, for messages
+  std::vector<std::string> pin_paths_;  // ... and its key path (cloth.pins.K)
 };
 
 }  // namespace drapelab::scene

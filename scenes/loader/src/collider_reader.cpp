@@ -13,7 +13,8 @@ namespace {
 const std::vector<std::string> kTypes = {"sphere", "cylinder", "capsule", "box", "plane"};
 
 // Keys every collider may have, and those of each shape.
-const std::vector<std::string> kCommonKeys = {"name", "type", "rotation", "friction", "static_friction", "motion"};
+const std::vector<std::string> kCommonKeys = {
+    "name", "type", "rotation", "friction", "static_friction", "motion"};
 const std::map<std::string, std::vector<std::string>> kShapeKeys = {
     {"sphere", {"center", "radius"}},
     {"cylinder", {"center", "radius", "height", "axis"}},
@@ -42,7 +43,8 @@ Eigen::Vector3d stable_normalized(const Eigen::Vector3d& v) {
 }
 
 // A direction: three numbers, not all zero; returned normalised.
-std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map, const std::string& key,
+std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map,
+                                              const std::string& key,
                                               const Eigen::Vector3d& fallback) {
   const auto value = map.numbers(key, 3, Range::any(), fallback);
   if (!value) return std::nullopt;
@@ -53,10 +55,12 @@ std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map, co
   return stable_normalized(*value);
 }
 
-void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path, ColliderMotion& motion) {
+void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path,
+                 ColliderMotion& motion) {
   MapReader map(r, node, path, {"velocity", "angular_velocity", "keyframes"});
   if (!map.valid()) return;
-  if (const auto v = map.numbers("velocity", 3, Range::any(), Eigen::Vector3d::Zero())) motion.velocity = *v;
+  if (const auto v = map.numbers("velocity", 3, Range::any(), Eigen::Vector3d::Zero()))
+    motion.velocity = *v;
   if (const auto w = map.numbers("angular_velocity", 3, Range::any(), Eigen::Vector3d::Zero()))
     motion.angular_velocity = *w;
   if (!map.has("keyframes")) return;
@@ -68,7 +72,8 @@ void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path
   const YAML::Node list = map.get("keyframes");
   const std::string list_path = map.path_of("keyframes");
   if (!list.IsSequence() || list.size() == 0) {
-    r.error(list, list_path, "must be a non-empty list of {t, center, rotation}, got " + describe_scalar(list));
+    r.error(list, list_path,
+            "must be a non-empty list of {t, center, rotation}, got " + describe_scalar(list));
     return;
   }
   record_item_lines(r, list, list_path);
@@ -86,8 +91,8 @@ void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path
     if (!t || !center || !rotation) continue;
     if (*t <= previous_t) {
       r.error(key.get("t"), key.path_of("t"),
-              "must be later than the previous keyframe's t = " + format_number(previous_t) + ", got " +
-                  format_number(*t));
+              "must be later than the previous keyframe's t = " + format_number(previous_t) +
+                  ", got " + format_number(*t));
       continue;
     }
     previous_t = *t;
@@ -107,13 +112,14 @@ void keyframe_center(SceneReader& r, MapReader& map, const std::string& key, Col
     c.center = first;
   } else if (c.center != first) {
     r.error(map.get(key), map.path_of(key),
-            "must equal the first keyframe's center " + format_list(first) + " or be left out (with keyframes " +
+            "must equal the first keyframe's center " + format_list(first) +
+                " or be left out (with keyframes " +
                 "the keyframes give the centre at every time), got " + format_list(c.center));
   }
 }
 
-std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, const std::string& path,
-                                      const ContactSpec& contact) {
+std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
+                                      const std::string& path, const ContactSpec& contact) {
   // The type decides which keys are valid, so read it before checking the keys.
   std::string type = "sphere";
   record_key_lines(r, node, path);  // so that an empty type: is reported on its own line
@@ -122,7 +128,8 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, co
     if (!chosen) return std::nullopt;
     type = *chosen;
   } else if (node.IsMap()) {
-    r.error(YAML::Node(), path + ".type", "is required: one of sphere | cylinder | capsule | box | plane", node);
+    r.error(YAML::Node(), path + ".type",
+            "is required: one of sphere | cylinder | capsule | box | plane", node);
     return std::nullopt;
   }
   std::vector<std::string> allowed = kCommonKeys;
@@ -136,52 +143,70 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, co
   c.shape = shape_of(type);
   if (const auto name = map.text("name", std::nullopt)) {
     static const std::regex pattern("[a-z0-9_-]+");
-    if (std::regex_match(*name, pattern)) c.name = *name;
-    else r.error(map.get("name"), map.path_of("name"), "must use only a-z, 0-9, _ and -, got '" + *name + "'");
+    if (std::regex_match(*name, pattern))
+      c.name = *name;
+    else
+      r.error(map.get("name"), map.path_of("name"),
+              "must use only a-z, 0-9, _ and -, got '" + *name + "'");
   } else if (!map.has("name")) {
     map.missing("name", "a unique label such as ball or table ([a-z0-9_-]+)");
   }
-  auto required_vector = [&](const std::string& key, const std::string& expected) -> Eigen::Vector3d {
+  auto required_vector = [&](const std::string& key,
+                             const std::string& expected) -> Eigen::Vector3d {
     if (!map.has(key)) map.missing(key, expected);
-    return map.numbers(key, 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
+    return map.numbers(key, 3, Range::any(), Eigen::Vector3d::Zero())
+        .value_or(Eigen::Vector3d::Zero());
   };
   auto required_length = [&](const std::string& key, const std::string& expected) -> double {
     if (!map.has(key)) map.missing(key, expected);
     return map.number(key, Range::positive(), 1.0).value_or(1.0);
   };
   // With keyframes the centre comes from them, so `center` may be left out.
-  const bool keyframed = map.has("motion") && map.get("motion").IsMap() && map.get("motion")["keyframes"].IsDefined();
+  const bool keyframed =
+      map.has("motion") && map.get("motion").IsMap() && map.get("motion")["keyframes"].IsDefined();
   const std::string center_key = c.shape == ColliderShape::plane ? "point" : "center";
   if (c.shape == ColliderShape::plane) {
-    c.center = map.numbers("point", 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
-    c.normal = read_direction(r, map, "normal", Eigen::Vector3d::UnitY()).value_or(Eigen::Vector3d::UnitY());
+    c.center = map.numbers("point", 3, Range::any(), Eigen::Vector3d::Zero())
+                   .value_or(Eigen::Vector3d::Zero());
+    c.normal = read_direction(r, map, "normal", Eigen::Vector3d::UnitY())
+                   .value_or(Eigen::Vector3d::UnitY());
   } else if (keyframed) {
-    c.center = map.numbers("center", 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
+    c.center = map.numbers("center", 3, Range::any(), Eigen::Vector3d::Zero())
+                   .value_or(Eigen::Vector3d::Zero());
   } else {
     c.center = required_vector("center", "the collider's centre [x, y, z] in m");
   }
-  if (c.shape == ColliderShape::sphere || c.shape == ColliderShape::cylinder || c.shape == ColliderShape::capsule)
+  if (c.shape == ColliderShape::sphere || c.shape == ColliderShape::cylinder ||
+      c.shape == ColliderShape::capsule)
     c.radius = required_length("radius", "the radius in m, > 0");
   if (c.shape == ColliderShape::cylinder || c.shape == ColliderShape::capsule) {
-    c.height = required_length("height", c.shape == ColliderShape::capsule
-                                             ? "the length of the capsule's axis segment in m (without its caps), > 0"
-                                             : "the full length along the axis in m, > 0");
-    c.axis = read_direction(r, map, "axis", Eigen::Vector3d::UnitY()).value_or(Eigen::Vector3d::UnitY());
+    c.height = required_length(
+        "height", c.shape == ColliderShape::capsule
+                      ? "the length of the capsule's axis segment in m (without its caps), > 0"
+                      : "the full length along the axis in m, > 0");
+    c.axis =
+        read_direction(r, map, "axis", Eigen::Vector3d::UnitY()).value_or(Eigen::Vector3d::UnitY());
   }
   if (c.shape == ColliderShape::box) {
-    if (!map.has("half_extents")) map.missing("half_extents", "half the box's size along x, y, z in m, each > 0");
-    c.half_extents = map.numbers("half_extents", 3, Range::positive(), Eigen::Vector3d::Constant(0.5))
-                         .value_or(Eigen::Vector3d::Constant(0.5));
+    if (!map.has("half_extents"))
+      map.missing("half_extents", "half the box's size along x, y, z in m, each > 0");
+    c.half_extents =
+        map.numbers("half_extents", 3, Range::positive(), Eigen::Vector3d::Constant(0.5))
+            .value_or(Eigen::Vector3d::Constant(0.5));
   }
-  c.rotation = map.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
-  c.friction = map.number("friction", Range::non_negative(), contact.friction).value_or(contact.friction);
+  c.rotation = map.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero())
+                   .value_or(Eigen::Vector3d::Zero());
+  c.friction =
+      map.number("friction", Range::non_negative(), contact.friction).value_or(contact.friction);
   // A collider that sets only its kinetic coefficient gets the same static one.
   const double static_default = map.has("friction") ? c.friction : contact.static_friction;
-  c.static_friction = map.number("static_friction", Range::non_negative(), static_default).value_or(static_default);
+  c.static_friction =
+      map.number("static_friction", Range::non_negative(), static_default).value_or(static_default);
   if (c.static_friction < c.friction && r.error_count() == errors_before)
     r.error(map.has("static_friction") ? map.get("static_friction") : map.get("friction"),
             map.path_of("static_friction"),
-            "must be >= friction (" + format_number(c.friction) + "), got " + format_number(c.static_friction));
+            "must be >= friction (" + format_number(c.friction) + "), got " +
+                format_number(c.static_friction));
   if (map.has("motion")) read_motion(r, map.get("motion"), map.path_of("motion"), c.motion);
   if (!c.motion.keyframes.empty()) keyframe_center(r, map, center_key, c);
   if (r.error_count() != errors_before) return std::nullopt;
@@ -190,7 +215,8 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node, co
 
 }  // namespace
 
-std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list, const ContactSpec& contact) {
+std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list,
+                                     const ContactSpec& contact) {
   std::vector<Collider> colliders;
   if (list.IsNull()) return colliders;
   if (!list.IsSequence()) {
@@ -205,7 +231,9 @@ std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list
     if (!collider) continue;
     if (!names.insert(collider->name).second) {
       const YAML::Node& item = list[k];
-      reader.error(item["name"], path + ".name", "'" + collider->name + "' is already used by another collider; names must be unique");
+      reader.error(
+          item["name"], path + ".name",
+          "'" + collider->name + "' is already used by another collider; names must be unique");
       continue;
     }
     colliders.push_back(*collider);

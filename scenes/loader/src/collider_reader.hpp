@@ -12,6 +12,7 @@
 namespace drapelab::scene {
 
 // Reads and checks every collider; problems go to `reader`. Friction defaults come from `contact`.
-std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list, const ContactSpec& contact);
+std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list,
+                                     const ContactSpec& contact);
 
 }  // namespace drapelab::scene

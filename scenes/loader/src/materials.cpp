@@ -7,9 +7,9 @@ const std::vector<Material>& materials() {
   // name, areal density (kg/m^2), thickness (m), tensile (N/m), shear (N/m), bending (N*m),
   // beta (s), air damping (1/s)
   static const std::vector<Material> table = {
-      {"silk", 0.080, 0.0002, 600.0, 15.0, 2.0e-6, 5e-5, 2.0},      // 19 momme charmeuse
-      {"cotton", 0.130, 0.0003, 1000.0, 55.0, 1.0e-5, 5e-5, 1.0},   // poplin / broadcloth
-      {"denim", 0.400, 0.0008, 2000.0, 170.0, 1.0e-4, 5e-5, 0.5},   // 12 oz/yd^2
+      {"silk", 0.080, 0.0002, 600.0, 15.0, 2.0e-6, 5e-5, 2.0},       // 19 momme charmeuse
+      {"cotton", 0.130, 0.0003, 1000.0, 55.0, 1.0e-5, 5e-5, 1.0},    // poplin / broadcloth
+      {"denim", 0.400, 0.0008, 2000.0, 170.0, 1.0e-4, 5e-5, 0.5},    // 12 oz/yd^2
       {"leather", 0.800, 0.0010, 3000.0, 150.0, 1.0e-4, 5e-5, 0.3},  // garment leather, 1 mm
   };
   return table;

@@ -1,5 +1,6 @@
 // Material presets (cloth.material): fabrics described by measured physical properties, turned into
-// spring parameters for the cloth's own particle spacing. Numbers and their sources: docs/materials.md.
+// spring parameters for the cloth's own particle spacing. Numbers and their sources:
+// docs/materials.md.
 #pragma once
 
 #include <optional>
@@ -12,13 +13,13 @@ namespace drapelab::scene {
 
 struct Material {
   std::string name;
-  double areal_density;   // kg/m^2, the fabric's weight
-  double thickness;       // m
-  double tensile;         // N/m, in-plane tensile stiffness E*t (softened, see docs/materials.md)
-  double shear;           // N/m, in-plane shear stiffness G*t
-  double bending;         // N*m, bending rigidity B per unit width
-  double damping_time;    // s, beta in kd = beta * ks (stiffness-proportional damping)
-  double air_damping;     // 1/s
+  double areal_density;  // kg/m^2, the fabric's weight
+  double thickness;      // m
+  double tensile;        // N/m, in-plane tensile stiffness E*t (softened, see docs/materials.md)
+  double shear;          // N/m, in-plane shear stiffness G*t
+  double bending;        // N*m, bending rigidity B per unit width
+  double damping_time;   // s, beta in kd = beta * ks (stiffness-proportional damping)
+  double air_damping;    // 1/s
 };
 
 const std::vector<Material>& materials();
@@ -27,9 +28,9 @@ std::vector<std::string> material_names();
 
 // Spring parameters of a material at particle spacing `spacing` (m):
 //   stretch ks = tensile, shear ks = shear (a square cell of springs has the membrane's stiffness
-//   whatever its size), bend ks = 16 B / (spacing^2 theta^2) with theta = 0.3 rad (the bend spring's
-//   energy, which grows as theta^4, matches the continuum's 1/2 B kappa^2 per hinge at a typical
-//   drape angle), and kd = beta ks for each.
+//   whatever its size), bend ks = 16 B / (spacing^2 theta^2) with theta = 0.3 rad (the bend
+//   spring's energy, which grows as theta^4, matches the continuum's 1/2 B kappa^2 per hinge at a
+//   typical drape angle), and kd = beta ks for each.
 struct MaterialSprings {
   SpringParams stretch, shear, bend;
 };

@@ -14,7 +14,8 @@ std::string format_number(double value) {
 
 std::string format_list(const Eigen::VectorXd& values) {
   std::string text = "[";
-  for (Eigen::Index k = 0; k < values.size(); ++k) text += (k ? ", " : "") + format_number(values[k]);
+  for (Eigen::Index k = 0; k < values.size(); ++k)
+    text += (k ? ", " : "") + format_number(values[k]);
   return text + "]";
 }
 

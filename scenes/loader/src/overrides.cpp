@@ -28,8 +28,8 @@ std::optional<std::size_t> list_index(const std::string& part) {
 // Applies one override; returns an error message, empty on success.
 // Keys the override creates on its way down are recorded in `created`, so that errors about them
 // (a misspelled parent key, say) name the override too.
-std::string apply_one(YAML::Node& root, const std::vector<std::string>& parts, const YAML::Node& value,
-                      std::vector<std::string>& created) {
+std::string apply_one(YAML::Node& root, const std::vector<std::string>& parts,
+                      const YAML::Node& value, std::vector<std::string>& created) {
   YAML::Node node;
   node.reset(root);
   std::string walked;
@@ -69,7 +69,8 @@ std::string apply_one(YAML::Node& root, const std::vector<std::string>& parts, c
 
 }  // namespace
 
-bool apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides, SceneReader& reader) {
+bool apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides,
+                     SceneReader& reader) {
   bool ok = true;
   for (const auto& text : overrides) {
     const std::string origin = "--set " + text;

@@ -13,6 +13,7 @@ namespace drapelab::scene {
 
 // Applies each override in order. Reports malformed overrides through `reader` and records every
 // overridden path as the origin of its errors. Returns false when an override could not be applied.
-bool apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides, SceneReader& reader);
+bool apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides,
+                     SceneReader& reader);
 
 }  // namespace drapelab::scene

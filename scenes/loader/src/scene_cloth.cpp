@@ -35,8 +35,8 @@ int nearest_to(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& target) {
   return best;
 }
 
-std::vector<int> select_on_mesh(const ClothSpec& cloth, const TriangleMesh& mesh, const PinSelector& selector,
-                                std::string* error) {
+std::vector<int> select_on_mesh(const ClothSpec& cloth, const TriangleMesh& mesh,
+                                const PinSelector& selector, std::string* error) {
   const Eigen::Matrix3Xd& rest = mesh.vertices;
   const int count = static_cast<int>(rest.cols());
   if (const auto* named = std::get_if<PinNamed>(&selector)) {
@@ -44,7 +44,8 @@ std::vector<int> select_on_mesh(const ClothSpec& cloth, const TriangleMesh& mesh
       return {cloth.shape == "disc" ? 0 : nearest_to(rest, rest.rowwise().mean())};
     if (named->name == "rim" && cloth.shape == "disc") return disc_rim(cloth.disc);
     if (error) {
-      *error = "unknown pin set '" + named->name + "' for " + cloth.shape + " cloth; expected one of:";
+      *error =
+          "unknown pin set '" + named->name + "' for " + cloth.shape + " cloth; expected one of:";
       for (const auto& valid : pin_set_names(cloth)) *error += " " + valid;
     }
     return {};
@@ -55,7 +56,9 @@ std::vector<int> select_on_mesh(const ClothSpec& cloth, const TriangleMesh& mesh
   }
   if (const auto* index = std::get_if<PinIndex>(&selector)) {
     if (index->index < 0 || index->index >= count) {
-      if (error) *error = "particle index " + std::to_string(index->index) + " is outside 0.." + std::to_string(count - 1);
+      if (error)
+        *error = "particle index " + std::to_string(index->index) + " is outside 0.." +
+                 std::to_string(count - 1);
       return {};
     }
     return {index->index};
@@ -76,7 +79,8 @@ std::vector<std::string> pin_set_names(const ClothSpec& cloth) {
   return drapelab::pin_set_names(cloth.grid.plane);
 }
 
-std::vector<int> select_cloth_pins(const ClothSpec& cloth, const PinSelector& selector, std::string* error) {
+std::vector<int> select_cloth_pins(const ClothSpec& cloth, const PinSelector& selector,
+                                   std::string* error) {
   if (cloth.shape == "grid") return select_pins(cloth.grid, selector, error);
   return select_on_mesh(cloth, shape_mesh(cloth), selector, error);
 }
@@ -102,7 +106,8 @@ ClothModel build_scene_cloth(const Scene& scene) {
 }
 
 ClothState initial_scene_state(const Scene& scene, const ClothModel& model) {
-  if (scene.cloth.shape == "grid") return initial_grid_state(model, scene.cloth.grid, scene.cloth.perturbation, scene.seed);
+  if (scene.cloth.shape == "grid")
+    return initial_grid_state(model, scene.cloth.grid, scene.cloth.perturbation, scene.seed);
   return initial_mesh_state(model, scene.cloth.perturbation, scene.seed);
 }
 

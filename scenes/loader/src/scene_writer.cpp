@@ -10,16 +10,17 @@
 namespace drapelab::scene {
 namespace {
 
-
 std::string quoted(const std::string& text) { return nlohmann::json(text).dump(); }  // JSON is YAML
 
 std::string pin_text(const PinSelector& selector) {
   if (const auto* named = std::get_if<PinNamed>(&selector)) return named->name;
   if (const auto* coord = std::get_if<PinGridCoord>(&selector))
     return "[" + std::to_string(coord->i) + ", " + std::to_string(coord->j) + "]";
-  if (const auto* index = std::get_if<PinIndex>(&selector)) return "{index: " + std::to_string(index->index) + "}";
+  if (const auto* index = std::get_if<PinIndex>(&selector))
+    return "{index: " + std::to_string(index->index) + "}";
   const auto& ball = std::get<PinWithin>(selector);
-  return "{within: {center: " + format_list(ball.center) + ", radius: " + format_number(ball.radius) + "}}";
+  return "{within: {center: " + format_list(ball.center) +
+         ", radius: " + format_number(ball.radius) + "}}";
 }
 
 std::string spring_text(const SpringParams& p) {
@@ -60,8 +61,8 @@ void write_collider(std::ostream& out, const Collider& c) {
       out << "        - {t: " << format_number(k.t) << ", center: " << format_list(k.center)
           << ", rotation: " << format_list(k.rotation) << "}\n";
   } else if (!m.is_static()) {
-    out << "    motion: {velocity: " << format_list(m.velocity) << ", angular_velocity: " << format_list(m.angular_velocity)
-        << "}  # m/s, deg/s\n";
+    out << "    motion: {velocity: " << format_list(m.velocity)
+        << ", angular_velocity: " << format_list(m.angular_velocity) << "}  # m/s, deg/s\n";
   }
 }
 
@@ -76,7 +77,8 @@ std::string resolved_scene_yaml(const Scene& s) {
       << "name: " << s.name << "\n"
       << "description: " << quoted(s.description) << "\n"
       << "duration: " << format_number(s.duration) << "  # s\n"
-      << "frame_rate: " << format_number(s.frame_rate) << "  # frames recorded per simulated second\n"
+      << "frame_rate: " << format_number(s.frame_rate)
+      << "  # frames recorded per simulated second\n"
       << "gravity: " << format_list(s.gravity) << "  # m/s^2\n"
       << "seed: " << s.seed << "\n"
       << "cloth:\n"
@@ -92,11 +94,13 @@ std::string resolved_scene_yaml(const Scene& s) {
     out << "  path: " << quoted(s.cloth.mesh_file.string()) << "\n"
         << "  scale: " << format_number(s.cloth.mesh_scale) << "\n";
   if (!s.cloth.material.empty())
-    out << "  material: " << s.cloth.material << "  # a preset; the values below are what it gave, with any explicit keys\n";
+    out << "  material: " << s.cloth.material
+        << "  # a preset; the values below are what it gave, with any explicit keys\n";
   out << "  center: " << format_list(g.center) << "  # m\n"
       << "  rotation: " << format_list(g.rotation) << "  # deg, Euler x, y, z about the centre\n";
   if (g.mass) out << "  mass: " << format_number(*g.mass) << "  # kg, total\n";
-  if (g.areal_density) out << "  areal_density: " << format_number(*g.areal_density) << "  # kg/m^2\n";
+  if (g.areal_density)
+    out << "  areal_density: " << format_number(*g.areal_density) << "  # kg/m^2\n";
   out << "  thickness: " << format_number(g.thickness) << "  # m\n"
       << "  perturbation: " << format_number(s.cloth.perturbation) << "  # m\n"
       << "  air_damping: " << format_number(s.cloth.air_damping) << "  # 1/s\n"
@@ -110,28 +114,33 @@ std::string resolved_scene_yaml(const Scene& s) {
     out << "  pins:\n";
     for (const auto& pin : g.pins) out << "    - " << pin_text(pin) << "\n";
   }
-  if (s.colliders.empty()) out << "colliders: []\n";
-  else out << "colliders:\n";
+  if (s.colliders.empty())
+    out << "colliders: []\n";
+  else
+    out << "colliders:\n";
   for (const auto& collider : s.colliders) write_collider(out, collider);
   out << "contact:\n"
       << "  stiffness: " << format_number(s.contact.stiffness) << "  # N/m per particle\n"
       << "  damping: " << format_number(s.contact.damping) << "  # N*s/m\n"
       << "  friction: " << format_number(s.contact.friction) << "  # kinetic Coulomb coefficient\n"
-      << "  static_friction: " << format_number(s.contact.static_friction) << "  # static Coulomb coefficient\n"
+      << "  static_friction: " << format_number(s.contact.static_friction)
+      << "  # static Coulomb coefficient\n"
       << "solvers:\n";
   for (const auto& solver : s.solvers) {
     out << "  - name: " << solver.name << "\n"
         << "    type: " << solver_type_name(solver.type) << "\n";
     if (solver.type == SolverType::spring_damper)
       out << "    integrator: " << integrator_name(solver.integrator) << "\n"
-          << "    host: " << (solver.bullet_host ? "bullet" : "none") << "  # a plugin in a Bullet world, or bare\n"
+          << "    host: " << (solver.bullet_host ? "bullet" : "none")
+          << "  # a plugin in a Bullet world, or bare\n"
           << "    adaptive_substeps: " << (solver.adaptive_substeps ? "true" : "false")
           << "  # split dt into the substeps the shape's stable step needs\n";
     if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::implicit_euler)
       out << "    implicit: {tolerance: " << format_number(solver.implicit.tolerance)
           << ", max_iterations: " << solver.implicit.max_iterations << "}  # conjugate gradient\n";
     if (solver.type != SolverType::spring_damper) {
-      if (solver.type == SolverType::bullet_softbody) out << "    iterations: " << solver.iterations << "\n";
+      if (solver.type == SolverType::bullet_softbody)
+        out << "    iterations: " << solver.iterations << "\n";
       out << "    margin: " << format_number(solver.margin) << "  # m, soft collision margin\n"
           << "    voxel_size: " << format_number(solver.voxel_size) << "  # m, sparse SDF cell\n"
           << "    collider_margin: " << format_number(solver.collider_margin) << "  # m\n";
@@ -139,22 +148,27 @@ std::string resolved_scene_yaml(const Scene& s) {
       const char* kinds[] = {"stretch", "shear", "bend"};
       for (int k = 0; k < 3; ++k)
         if (solver.link_stiffness[k])
-          raw += std::string(raw.empty() ? "" : ", ") + kinds[k] + ": " + format_number(*solver.link_stiffness[k]);
+          raw += std::string(raw.empty() ? "" : ", ") + kinds[k] + ": " +
+                 format_number(*solver.link_stiffness[k]);
       if (!raw.empty()) out << "    kLST: {" << raw << "}\n";
     }
-    out << "    dt: " << format_number(solver.dt) << "  # s, " << solver.steps_per_frame << " steps per frame\n"
+    out << "    dt: " << format_number(solver.dt) << "  # s, " << solver.steps_per_frame
+        << " steps per frame\n"
         << "    round_dt: " << (solver.round_dt ? "true" : "false") << "\n"
         << "    max_speed: " << format_number(solver.max_speed) << "  # m/s, runaway limit\n"
-        << "    runaway_stretch: " << format_number(solver.runaway_stretch) << "  # stretch spring strain limit\n";
+        << "    runaway_stretch: " << format_number(solver.runaway_stretch)
+        << "  # stretch spring strain limit\n";
   }
-  if (!s.drape_support) out << "metrics: {}\n";
+  if (!s.drape_support)
+    out << "metrics: {}\n";
   else if (!s.drape_support->collider.empty())
-    out << "metrics:\n  drape_support: " << s.drape_support->collider << "  # a collider's cross-section, radius "
-        << format_number(s.drape_support->disc.radius) << " m\n";
+    out << "metrics:\n  drape_support: " << s.drape_support->collider
+        << "  # a collider's cross-section, radius " << format_number(s.drape_support->disc.radius)
+        << " m\n";
   else
-    out << "metrics:\n  drape_support: " << format_number(s.drape_support->disc.radius) << "  # m, a disc under the cloth's centre\n";
-  out
-      << "output:\n"
+    out << "metrics:\n  drape_support: " << format_number(s.drape_support->disc.radius)
+        << "  # m, a disc under the cloth's centre\n";
+  out << "output:\n"
       << "  meshes: " << mesh_output_name(s.output.meshes) << "  # none | obj | pc2 | both\n";
   return out.str();
 }

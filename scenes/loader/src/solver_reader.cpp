@@ -13,14 +13,18 @@
 namespace drapelab::scene {
 namespace {
 
-const std::vector<std::string> kCommonKeys = {"name", "type", "dt", "round_dt", "max_speed", "runaway_stretch"};
-const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit", "adaptive_substeps"};
-const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size", "collider_margin", "kLST"};
+const std::vector<std::string> kCommonKeys = {"name",     "type",      "dt",
+                                              "round_dt", "max_speed", "runaway_stretch"};
+const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit",
+                                                    "adaptive_substeps"};
+const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size",
+                                                      "collider_margin", "kLST"};
 const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", "collider_margin"};
 
 class SolverReader {
  public:
-  SolverReader(SceneReader& r, const Scene& scene, const ClothModel* model, std::vector<std::string>& notes)
+  SolverReader(SceneReader& r, const Scene& scene, const ClothModel* model,
+               std::vector<std::string>& notes)
       : r_(r), scene_(scene), model_(model), notes_(notes) {}
 
   std::optional<SolverSpec> read(const YAML::Node& node, const std::string& path) {
@@ -47,21 +51,26 @@ class SolverReader {
     spec.name = solver.text("name", solver_type_name(type)).value_or(solver_type_name(type));
     static const std::regex pattern("[a-z0-9_-]+");
     if (!std::regex_match(spec.name, pattern))
-      r_.error(solver.get("name"), path + ".name", "must use only a-z, 0-9, _ and -, got '" + spec.name + "'");
+      r_.error(solver.get("name"), path + ".name",
+               "must use only a-z, 0-9, _ and -, got '" + spec.name + "'");
     if (type == SolverType::spring_damper) {
       read_integrator(solver, path, spec);
       // A plugin in a Bullet world (default), or stepped bare, without Bullet.
-      spec.bullet_host = solver.choice("host", {"bullet", "none"}, "bullet").value_or("bullet") == "bullet";
+      spec.bullet_host =
+          solver.choice("host", {"bullet", "none"}, "bullet").value_or("bullet") == "bullet";
       read_adaptive_substeps(solver, path, spec);
-    }
-    else read_bullet_options(solver, spec);
+    } else
+      read_bullet_options(solver, spec);
     const double frame_period = scene_.frame_period();
-    if (solver.has("dt")) spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);
-    else spec.dt = automatic_step(spec);
+    if (solver.has("dt"))
+      spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);
+    else
+      spec.dt = automatic_step(spec);
     spec.round_dt = solver.boolean("round_dt", false).value_or(false);
     const double free_fall_speed = scene_.gravity.norm() * std::max(scene_.duration, 0.0);  // m/s
     const double default_max_speed = 100.0 + 2.0 * free_fall_speed;
-    spec.max_speed = solver.number("max_speed", Range::positive(), default_max_speed).value_or(default_max_speed);
+    spec.max_speed = solver.number("max_speed", Range::positive(), default_max_speed)
+                         .value_or(default_max_speed);
     spec.runaway_stretch = solver.number("runaway_stretch", Range::positive(), 10.0).value_or(10.0);
     if (r_.error_count() != errors_before) return std::nullopt;
     if (!whole_steps_per_frame(solver, path, spec)) return std::nullopt;
@@ -71,7 +80,8 @@ class SolverReader {
  private:
   void read_integrator(MapReader& solver, const std::string& path, SolverSpec& spec) {
     if (solver.has("integrator"))
-      if (const auto name = r_.choice(solver.get("integrator"), path + ".integrator", integrator_names()))
+      if (const auto name =
+              r_.choice(solver.get("integrator"), path + ".integrator", integrator_names()))
         spec.integrator = *parse_integrator(*name);
     if (!solver.has("implicit")) return;
     if (spec.integrator != Integrator::implicit_euler) {
@@ -80,13 +90,16 @@ class SolverReader {
                    std::string(integrator_name(spec.integrator)) + ")");
       return;
     }
-    MapReader implicit(r_, solver.get("implicit"), solver.path_of("implicit"), {"tolerance", "max_iterations"});
+    MapReader implicit(r_, solver.get("implicit"), solver.path_of("implicit"),
+                       {"tolerance", "max_iterations"});
     if (!implicit.valid()) return;
     const ImplicitSolveSettings defaults;
     spec.implicit.tolerance =
-        implicit.number("tolerance", {0.0, false, 1.0, false}, defaults.tolerance).value_or(defaults.tolerance);
+        implicit.number("tolerance", {0.0, false, 1.0, false}, defaults.tolerance)
+            .value_or(defaults.tolerance);
     spec.implicit.max_iterations = static_cast<int>(
-        implicit.integer("max_iterations", {1.0, true, 1e6, true}, defaults.max_iterations).value_or(defaults.max_iterations));
+        implicit.integer("max_iterations", {1.0, true, 1e6, true}, defaults.max_iterations)
+            .value_or(defaults.max_iterations));
   }
 
   // Adaptive substeps follow symplectic Euler's stable step as the shape changes: its damped
@@ -95,15 +108,18 @@ class SolverReader {
     spec.adaptive_substeps = solver.boolean("adaptive_substeps", false).value_or(false);
     if (spec.adaptive_substeps && spec.integrator != Integrator::symplectic_euler)
       r_.error(solver.get("adaptive_substeps"), path + ".adaptive_substeps",
-               "needs integrator symplectic_euler, whose stable step the shape bound gives exactly (this solver "
-               "uses " + std::string(integrator_name(spec.integrator)) + ")");
+               "needs integrator symplectic_euler, whose stable step the shape bound gives exactly "
+               "(this solver "
+               "uses " +
+                   std::string(integrator_name(spec.integrator)) + ")");
   }
 
   // Bullet's cloths: soft margin = thickness, voxel small enough
   // (docs/bullet.md, "Fairness table" and "Mapping our parameters to the classic cloth").
   void read_bullet_options(MapReader& solver, SolverSpec& spec) {
     if (spec.type == SolverType::bullet_softbody)
-      spec.iterations = static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
+      spec.iterations =
+          static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
     const double thickness = scene_.cloth.grid.thickness;  // every shape's thickness lives in grid
     spec.margin = solver.number("margin", Range::positive(), thickness).value_or(thickness);
     spec.collider_margin = solver.number("collider_margin", Range::positive(), 1e-3).value_or(1e-3);
@@ -119,13 +135,14 @@ class SolverReader {
   }
 
   // Without a dt: our solver takes 0.9 of its integrator's stable step estimate on its springs,
-  // dampers and contact (stability.hpp; explicit Euler and midpoint 0.1 of the symplectic bound when
-  // some spring is undamped, since they have no stable step then), and implicit Euler 1/240 s (four
-  // steps per 60 Hz frame: large steps are its point, but contacts and friction are explicit in it);
-  // Bullet's classic cloth the step where its stiffness mapping holds, ks w h^2 = 0.1. All are
-  // rounded down to a whole number of steps per frame. With adaptive substeps, 1/120 s: the solver
-  // re-evaluates its shape's stable step at every step and splits the step to fit (every scene of
-  // scenes/ stays stable with one evaluation per 60 Hz frame; the evaluation costs about five substeps).
+  // dampers and contact (stability.hpp; explicit Euler and midpoint 0.1 of the symplectic bound
+  // when some spring is undamped, since they have no stable step then), and implicit Euler 1/240 s
+  // (four steps per 60 Hz frame: large steps are its point, but contacts and friction are explicit
+  // in it); Bullet's classic cloth the step where its stiffness mapping holds, ks w h^2 = 0.1. All
+  // are rounded down to a whole number of steps per frame. With adaptive substeps, 1/120 s: the
+  // solver re-evaluates its shape's stable step at every step and splits the step to fit (every
+  // scene of scenes/ stays stable with one evaluation per 60 Hz frame; the evaluation costs about
+  // five substeps).
   double automatic_step(SolverSpec& spec) {
     const double frame_period = scene_.frame_period();
     if (!model_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
@@ -148,18 +165,22 @@ class SolverReader {
       target = 1.0 / 240.0;
       reason = "implicit Euler's default of 1/240 s";
     } else {
-      double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(), spec.integrator);
+      double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(),
+                                          spec.integrator);
       double factor = 0.9;
-      if (bound == 0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step at all
-        bound = symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
+      if (bound ==
+          0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step at all
+        bound =
+            symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
         factor = 0.1;
       }
       target = factor * bound;
-      reason = format_number(factor) + " x the " + integrator_name(spec.integrator) + " stable step estimate " +
-               format_number(bound) + " s";
+      reason = format_number(factor) + " x the " + integrator_name(spec.integrator) +
+               " stable step estimate " + format_number(bound) + " s";
     }
     const double steps = std::max(1.0, std::ceil(frame_period / target));
-    spec.note = "dt chosen automatically: " + format_number(steps) + " steps per frame (" + reason + ")";
+    spec.note =
+        "dt chosen automatically: " + format_number(steps) + " steps per frame (" + reason + ")";
     return frame_period / steps;
   }
 
@@ -167,13 +188,13 @@ class SolverReader {
     const double frame_period = scene_.frame_period();
     if (spec.dt > frame_period * (1.0 + 1e-12)) {
       r_.error(solver.get("dt"), path + ".dt",
-               "must not exceed the frame period 1/frame_rate = " + format_number(frame_period) + " s, got " +
-                   format_number(spec.dt));
+               "must not exceed the frame period 1/frame_rate = " + format_number(frame_period) +
+                   " s, got " + format_number(spec.dt));
       return false;
     }
     if (frame_period / spec.dt > kMaxStepsPerFrame) {  // before any count is cast to int
-      r_.error(solver.get("dt"), path + ".dt", too_many_steps_message(frame_period, spec.dt, !solver.has("dt")),
-               solver.node());
+      r_.error(solver.get("dt"), path + ".dt",
+               too_many_steps_message(frame_period, spec.dt, !solver.has("dt")), solver.node());
       return false;
     }
     const double steps = frame_period / spec.dt;
@@ -186,16 +207,18 @@ class SolverReader {
     if (spec.round_dt) {
       spec.steps_per_frame = static_cast<int>(std::ceil(steps));
       const double rounded = frame_period / spec.steps_per_frame;
-      spec.note = "dt rounded from " + format_number(spec.dt) + " s to " + format_number(rounded) + " s (" +
-                  std::to_string(spec.steps_per_frame) + " steps per frame)";
+      spec.note = "dt rounded from " + format_number(spec.dt) + " s to " + format_number(rounded) +
+                  " s (" + std::to_string(spec.steps_per_frame) + " steps per frame)";
       notes_.push_back("solver '" + spec.name + "': " + spec.note);
       spec.dt = rounded;
       return true;
     }
     r_.error(solver.get("dt"), path + ".dt",
-             "must divide the frame period 1/frame_rate = " + format_number(frame_period) + " s into whole steps, got " +
-                 format_number(spec.dt) + " (" + format_number(steps) + " steps per frame); try dt = " +
-                 format_number(frame_period / std::ceil(steps)) + ", or set round_dt: true on this solver");
+             "must divide the frame period 1/frame_rate = " + format_number(frame_period) +
+                 " s into whole steps, got " + format_number(spec.dt) + " (" +
+                 format_number(steps) +
+                 " steps per frame); try dt = " + format_number(frame_period / std::ceil(steps)) +
+                 ", or set round_dt: true on this solver");
     return false;
   }
 
@@ -207,11 +230,13 @@ class SolverReader {
 
 }  // namespace
 
-std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list, const Scene& scene,
-                                     const ClothModel* model, std::vector<std::string>& notes) {
+std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list,
+                                     const Scene& scene, const ClothModel* model,
+                                     std::vector<std::string>& notes) {
   std::vector<SolverSpec> solvers;
   if (!list.IsSequence() || list.size() == 0) {
-    reader.error(list, "solvers", "must be a non-empty list of solvers, got " + describe_scalar(list));
+    reader.error(list, "solvers",
+                 "must be a non-empty list of solvers, got " + describe_scalar(list));
     return solvers;
   }
   record_item_lines(reader, list, "solvers");
@@ -223,8 +248,11 @@ std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list
     if (!solver) continue;
     if (!names.insert(solver->name).second) {
       const YAML::Node& item = list[k];
-      const YAML::Node at = item["name"].IsDefined() ? item["name"] : item;  // a default name: the item
-      reader.error(at, path + ".name", "'" + solver->name + "' is already used by another solver; names must be unique");
+      const YAML::Node at =
+          item["name"].IsDefined() ? item["name"] : item;  // a default name: the item
+      reader.error(
+          at, path + ".name",
+          "'" + solver->name + "' is already used by another solver; names must be unique");
       continue;
     }
     solvers.push_back(*solver);

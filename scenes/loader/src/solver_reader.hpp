@@ -15,7 +15,8 @@ namespace drapelab::scene {
 // the automatic steps and Bullet's defaults depend on; `model` is its cloth as built, null when the
 // cloth is refused.
 // Things chosen on the user's behalf (an automatic or rounded dt) are added to `notes`.
-std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list, const Scene& scene,
-                                     const ClothModel* model, std::vector<std::string>& notes);
+std::vector<SolverSpec> read_solvers(SceneReader& reader, const YAML::Node& list,
+                                     const Scene& scene, const ClothModel* model,
+                                     std::vector<std::string>& notes);
 
 }  // namespace drapelab::scene

@@ -19,7 +19,8 @@ bool Range::contains(double value) const {
 std::string Range::describe() const {
   std::string text;
   if (min) text += std::string(min_inclusive ? ">= " : "> ") + format_number(*min);
-  if (max) text += std::string(min ? " and " : "") + (max_inclusive ? "<= " : "< ") + format_number(*max);
+  if (max)
+    text += std::string(min ? " and " : "") + (max_inclusive ? "<= " : "< ") + format_number(*max);
   return text.empty() ? "a finite number" : text;
 }
 
@@ -74,7 +75,8 @@ void SceneReader::set_key_line(const std::string& path, int line) { key_lines_[p
 void record_key_lines(SceneReader& reader, const YAML::Node& map, const std::string& path) {
   if (!map.IsMap()) return;
   for (const auto& entry : map)
-    if (!entry.first.Mark().is_null()) reader.set_key_line(join_path(path, entry.first.Scalar()), entry.first.Mark().line);
+    if (!entry.first.Mark().is_null())
+      reader.set_key_line(join_path(path, entry.first.Scalar()), entry.first.Mark().line);
 }
 
 void record_item_lines(SceneReader& reader, const YAML::Node& list, const std::string& path) {
@@ -82,8 +84,10 @@ void record_item_lines(SceneReader& reader, const YAML::Node& list, const std::s
   int line = list.Mark().line;  // a block list's mark is its first item
   for (std::size_t k = 0; k < list.size(); ++k) {
     const YAML::Node item = list[k];
-    if (!item.IsNull() && !item.Mark().is_null()) line = item.Mark().line;
-    else if (k > 0) ++line;
+    if (!item.IsNull() && !item.Mark().is_null())
+      line = item.Mark().line;
+    else if (k > 0)
+      ++line;
     reader.set_key_line(path + "." + std::to_string(k), line);
   }
 }
@@ -94,9 +98,10 @@ std::string SceneReader::where(const YAML::Node& node, const std::string& path,
   std::string origin;
   std::size_t origin_length = 0;
   for (const auto& [overridden, text] : override_origins_) {
-    const bool covers = path == overridden ||
-                        (path.size() > overridden.size() && path.compare(0, overridden.size(), overridden) == 0 &&
-                         path[overridden.size()] == '.');
+    const bool covers =
+        path == overridden ||
+        (path.size() > overridden.size() && path.compare(0, overridden.size(), overridden) == 0 &&
+         path[overridden.size()] == '.');
     if (covers && overridden.size() >= origin_length) {
       origin = text;
       origin_length = overridden.size();
@@ -105,10 +110,14 @@ std::string SceneReader::where(const YAML::Node& node, const std::string& path,
   if (!origin.empty()) return file_name_ + ": " + origin;
   int line = -1;
   const auto key_line = key_lines_.find(path);
-  if (node.IsDefined() && !node.IsNull() && !node.Mark().is_null()) line = node.Mark().line;
-  else if (key_line != key_lines_.end()) line = key_line->second;
-  else if (node.IsDefined() && !node.Mark().is_null()) line = node.Mark().line;
-  else if (parent.IsDefined() && !parent.Mark().is_null()) line = parent.Mark().line;
+  if (node.IsDefined() && !node.IsNull() && !node.Mark().is_null())
+    line = node.Mark().line;
+  else if (key_line != key_lines_.end())
+    line = key_line->second;
+  else if (node.IsDefined() && !node.Mark().is_null())
+    line = node.Mark().line;
+  else if (parent.IsDefined() && !parent.Mark().is_null())
+    line = parent.Mark().line;
   return line >= 0 ? file_name_ + ":" + std::to_string(line + 1) : file_name_;
 }
 
@@ -202,7 +211,8 @@ std::optional<Eigen::VectorXd> SceneReader::numbers(const YAML::Node& node, cons
   if (!node.IsSequence() || static_cast<int>(node.size()) != size) {
     error(node, path,
           "must be a list of " + std::to_string(size) + " numbers, got " +
-              (node.IsSequence() ? "a list of " + std::to_string(node.size()) : describe_scalar(node)));
+              (node.IsSequence() ? "a list of " + std::to_string(node.size())
+                                 : describe_scalar(node)));
     return std::nullopt;
   }
   Eigen::VectorXd values(size);
@@ -216,12 +226,14 @@ std::optional<Eigen::VectorXd> SceneReader::numbers(const YAML::Node& node, cons
   return values;
 }
 
-std::optional<std::vector<long long>> SceneReader::integers(const YAML::Node& node, const std::string& path,
-                                                            int size, const Range& range) {
+std::optional<std::vector<long long>> SceneReader::integers(const YAML::Node& node,
+                                                            const std::string& path, int size,
+                                                            const Range& range) {
   if (!node.IsSequence() || static_cast<int>(node.size()) != size) {
     error(node, path,
           "must be a list of " + std::to_string(size) + " whole numbers, got " +
-              (node.IsSequence() ? "a list of " + std::to_string(node.size()) : describe_scalar(node)));
+              (node.IsSequence() ? "a list of " + std::to_string(node.size())
+                                 : describe_scalar(node)));
     return std::nullopt;
   }
   std::vector<long long> values;
@@ -280,7 +292,8 @@ YAML::Node MapReader::get(const std::string& key) const {
 std::string MapReader::path_of(const std::string& key) const { return join_path(path_, key); }
 
 void MapReader::missing(const std::string& key, const std::string& expected) {
-  reader_.error(YAML::Node(YAML::NodeType::Undefined), path_of(key), "is required: " + expected, node_);
+  reader_.error(YAML::Node(YAML::NodeType::Undefined), path_of(key), "is required: " + expected,
+                node_);
 }
 
 std::optional<double> MapReader::number(const std::string& key, const Range& range,
@@ -300,18 +313,21 @@ std::optional<bool> MapReader::boolean(const std::string& key, bool fallback) {
   return reader_.boolean(get(key), path_of(key));
 }
 
-std::optional<std::string> MapReader::text(const std::string& key, std::optional<std::string> fallback) {
+std::optional<std::string> MapReader::text(const std::string& key,
+                                           std::optional<std::string> fallback) {
   if (!has(key)) return fallback;
   return reader_.text(get(key), path_of(key));
 }
 
-std::optional<std::string> MapReader::choice(const std::string& key, const std::vector<std::string>& choices,
+std::optional<std::string> MapReader::choice(const std::string& key,
+                                             const std::vector<std::string>& choices,
                                              std::optional<std::string> fallback) {
   if (!has(key)) return fallback;
   return reader_.choice(get(key), path_of(key), choices);
 }
 
-std::optional<Eigen::VectorXd> MapReader::numbers(const std::string& key, int size, const Range& range,
+std::optional<Eigen::VectorXd> MapReader::numbers(const std::string& key, int size,
+                                                  const Range& range,
                                                   std::optional<Eigen::VectorXd> fallback) {
   if (!has(key)) return fallback;
   return reader_.numbers(get(key), path_of(key), size, range);

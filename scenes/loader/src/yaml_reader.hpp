@@ -1,5 +1,5 @@
-// Typed, located reads from a yaml-cpp tree. Every read checks shape and range and, on failure, adds
-// an error naming the file:line (or the --set override), the key path and what was expected.
+// Typed, located reads from a yaml-cpp tree. Every read checks shape and range and, on failure,
+// adds an error naming the file:line (or the --set override), the key path and what was expected.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -37,15 +37,18 @@ class SceneReader {
   void set_key_line(const std::string& path, int line);
 
   // "scene.yaml:14" or "scene.yaml: --set a.b=3" for an overridden key.
-  std::string where(const YAML::Node& node, const std::string& path, const YAML::Node& parent) const;
+  std::string where(const YAML::Node& node, const std::string& path,
+                    const YAML::Node& parent) const;
   void error(const YAML::Node& node, const std::string& path, const std::string& message,
              const YAML::Node& parent = YAML::Node());
   std::size_t error_count() const { return errors_->size(); }
   const std::string& file_name() const { return file_name_; }
 
-  // Scalars. `node` must be defined; these report and return nullopt when it is not the right shape.
+  // Scalars. `node` must be defined; these report and return nullopt when it is not the right
+  // shape.
   std::optional<double> number(const YAML::Node& node, const std::string& path, const Range& range);
-  std::optional<long long> integer(const YAML::Node& node, const std::string& path, const Range& range);
+  std::optional<long long> integer(const YAML::Node& node, const std::string& path,
+                                   const Range& range);
   std::optional<bool> boolean(const YAML::Node& node, const std::string& path);
   std::optional<std::string> text(const YAML::Node& node, const std::string& path);
   // A string that must be one of `choices`; suggests the nearest on a miss.
@@ -61,7 +64,7 @@ class SceneReader {
   std::string file_name_;
   std::vector<std::string>* errors_;
   std::map<std::string, std::string> override_origins_;  // key path -> "--set ..."
-  std::map<std::string, int> key_lines_;                  // key path -> 0-based line of its key
+  std::map<std::string, int> key_lines_;                 // key path -> 0-based line of its key
 };
 
 // A YAML map read key by key. On construction it reports duplicate keys and keys outside `allowed`
@@ -79,8 +82,10 @@ class MapReader {
   const YAML::Node& node() const { return node_; }
   void missing(const std::string& key, const std::string& expected);  // reports a required key
 
-  std::optional<double> number(const std::string& key, const Range& range, std::optional<double> fallback);
-  std::optional<long long> integer(const std::string& key, const Range& range, std::optional<long long> fallback);
+  std::optional<double> number(const std::string& key, const Range& range,
+                               std::optional<double> fallback);
+  std::optional<long long> integer(const std::string& key, const Range& range,
+                                   std::optional<long long> fallback);
   std::optional<bool> boolean(const std::string& key, bool fallback);
   std::optional<std::string> text(const std::string& key, std::optional<std::string> fallback);
   std::optional<std::string> choice(const std::string& key, const std::vector<std::string>& choices,

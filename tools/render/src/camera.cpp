@@ -35,7 +35,8 @@ std::optional<double> parse_double(const std::string& text) {
   const std::string t = trim(text);
   double value = 0.0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-  if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(value)) return std::nullopt;
+  if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(value))
+    return std::nullopt;
   return value;
 }
 
@@ -65,12 +66,12 @@ Eigen::Vector3d up_for(const Eigen::Vector3d& forward) {
 }
 
 // The distance from `center` along the default direction at which all eight corners of `bounds` fit
-// in the view (vertical fov, width / height = aspect) with kFill of the half-widths used: for a corner
-// at offset o from the centre, seen from eye = center - d f (f the forward unit vector), depth is
-// o.f + d, so |o.r| <= tan(half_h) kFill (o.f + d) gives d >= |o.r| / (tan(half_h) kFill) - o.f, and
-// likewise vertically. Never closer than the bounding sphere (the eye stays outside it).
-double fitting_distance(const Bounds& bounds, const Eigen::Vector3d& center, double radius, double fov_degrees,
-                        double aspect) {
+// in the view (vertical fov, width / height = aspect) with kFill of the half-widths used: for a
+// corner at offset o from the centre, seen from eye = center - d f (f the forward unit vector),
+// depth is o.f + d, so |o.r| <= tan(half_h) kFill (o.f + d) gives d >= |o.r| / (tan(half_h) kFill)
+// - o.f, and likewise vertically. Never closer than the bounding sphere (the eye stays outside it).
+double fitting_distance(const Bounds& bounds, const Eigen::Vector3d& center, double radius,
+                        double fov_degrees, double aspect) {
   constexpr double kFill = 0.92;  // leave 4 % of the panel free on each side
   const double tan_v = std::tan(0.5 * fov_degrees * kDegree), tan_h = tan_v * aspect;
   const Eigen::Vector3d forward = -default_direction();
@@ -79,7 +80,8 @@ double fitting_distance(const Bounds& bounds, const Eigen::Vector3d& center, dou
   double distance = 1.05 * radius;
   if (bounds.empty()) return radius / std::sin(std::atan(std::min(tan_v, tan_h)));
   for (int k = 0; k < 8; ++k) {
-    const Eigen::Vector3d corner((k & 1) ? bounds.max.x() : bounds.min.x(), (k & 2) ? bounds.max.y() : bounds.min.y(),
+    const Eigen::Vector3d corner((k & 1) ? bounds.max.x() : bounds.min.x(),
+                                 (k & 2) ? bounds.max.y() : bounds.min.y(),
                                  (k & 4) ? bounds.max.z() : bounds.min.z());
     const Eigen::Vector3d o = corner - center;
     distance = std::max({distance, std::abs(o.dot(right)) / (tan_h * kFill) - o.dot(forward),
@@ -120,7 +122,8 @@ std::optional<CameraSpec> parse_camera_spec(const std::string& text, std::string
     } else if (key == "fov") {
       const auto v = parse_double(value);
       if (!v || *v <= 0.0 || *v >= 180.0) {
-        *error = "--camera: fov must be a vertical field of view in (0, 180) degrees, got '" + trim(value) + "'";
+        *error = "--camera: fov must be a vertical field of view in (0, 180) degrees, got '" +
+                 trim(value) + "'";
         return std::nullopt;
       }
       spec.fov_degrees = *v;
@@ -136,7 +139,8 @@ std::optional<CameraSpec> parse_camera_spec(const std::string& text, std::string
   return spec;
 }
 
-Camera frame_camera(const Bounds& bounds, double aspect, const CameraSpec& spec, double extra_radius) {
+Camera frame_camera(const Bounds& bounds, double aspect, const CameraSpec& spec,
+                    double extra_radius) {
   Camera camera;
   camera.fov_degrees = spec.fov_degrees.value_or(kDefaultFovDegrees);
   const Eigen::Vector3d center = bounds.empty() ? Eigen::Vector3d::Zero() : bounds.center();
@@ -151,10 +155,12 @@ Camera frame_camera(const Bounds& bounds, double aspect, const CameraSpec& spec,
   } else {
     camera.eye = center + distance * default_direction();
   }
-  if ((camera.eye - camera.target).norm() < 1e-9) camera.eye = camera.target + distance * default_direction();
+  if ((camera.eye - camera.target).norm() < 1e-9)
+    camera.eye = camera.target + distance * default_direction();
   camera.up = up_for(camera.target - camera.eye);
 
-  // Clip distances: everything within radius + extra_radius of the bounds' centre, seen from the eye.
+  // Clip distances: everything within radius + extra_radius of the bounds' centre, seen from the
+  // eye.
   const Eigen::Vector3d forward = (camera.target - camera.eye).normalized();
   const double reach = radius + extra_radius;
   const double along = (center - camera.eye).dot(forward);
@@ -189,10 +195,11 @@ Eigen::Matrix4d projection_matrix(const Camera& camera, double aspect) {
   return m;
 }
 
-std::optional<Eigen::Vector2d> project_to_pixel(const Camera& camera, const Eigen::Vector3d& p, int width,
-                                                int height) {
+std::optional<Eigen::Vector2d> project_to_pixel(const Camera& camera, const Eigen::Vector3d& p,
+                                                int width, int height) {
   const double aspect = double(width) / height;
-  const Eigen::Vector4d clip = projection_matrix(camera, aspect) * view_matrix(camera) * p.homogeneous();
+  const Eigen::Vector4d clip =
+      projection_matrix(camera, aspect) * view_matrix(camera) * p.homogeneous();
   if (clip.w() <= 0.0) return std::nullopt;
   const double x_ndc = clip.x() / clip.w(), y_ndc = clip.y() / clip.w();
   return Eigen::Vector2d(0.5 * (x_ndc + 1.0) * width, 0.5 * (1.0 - y_ndc) * height);

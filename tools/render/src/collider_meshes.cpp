@@ -41,7 +41,8 @@ class MeshBuilder {
       mesh.colors.col(k) = colors_[k];
     }
     mesh.triangles.resize(3, static_cast<Eigen::Index>(triangles_.size()));
-    for (std::size_t t = 0; t < triangles_.size(); ++t) mesh.triangles.col(Eigen::Index(t)) = triangles_[t];
+    for (std::size_t t = 0; t < triangles_.size(); ++t)
+      mesh.triangles.col(Eigen::Index(t)) = triangles_[t];
     return mesh;
   }
 
@@ -52,8 +53,8 @@ class MeshBuilder {
   std::vector<Eigen::Vector3i> triangles_;
 };
 
-// A unit direction at longitude phi (about +y, from +x towards -z) and latitude theta (from -pi/2 at
-// the bottom to pi/2 at the top).
+// A unit direction at longitude phi (about +y, from +x towards -z) and latitude theta (from -pi/2
+// at the bottom to pi/2 at the top).
 Eigen::Vector3d direction(double phi, double theta) {
   return {std::cos(theta) * std::cos(phi), std::sin(theta), -std::cos(theta) * std::sin(phi)};
 }
@@ -65,12 +66,14 @@ void add_revolution(MeshBuilder& builder, double radius, const std::vector<doubl
   std::vector<int> previous;
   for (std::size_t r = 0; r < latitudes.size(); ++r) {
     std::vector<int> ring;
-    for (int s = 0; s <= kSlices; ++s) {  // the seam is duplicated so every quad has its own indices
+    for (int s = 0; s <= kSlices;
+         ++s) {  // the seam is duplicated so every quad has its own indices
       const Eigen::Vector3d n = direction(2.0 * kPi * s / kSlices, latitudes[r]);
       ring.push_back(builder.vertex(radius * n + Eigen::Vector3d(0, offsets[r], 0), n));
     }
     if (!previous.empty())
-      for (int s = 0; s < kSlices; ++s) builder.quad(previous[s], previous[s + 1], ring[s + 1], ring[s]);
+      for (int s = 0; s < kSlices; ++s)
+        builder.quad(previous[s], previous[s + 1], ring[s + 1], ring[s]);
     previous = ring;
   }
 }
@@ -82,18 +85,22 @@ void add_cap(MeshBuilder& builder, double radius, double y, bool up) {
   std::vector<int> ring;
   for (int s = 0; s <= kSlices; ++s) {
     const double phi = 2.0 * kPi * s / kSlices;
-    ring.push_back(builder.vertex(Eigen::Vector3d(radius * std::cos(phi), y, -radius * std::sin(phi)), n));
+    ring.push_back(
+        builder.vertex(Eigen::Vector3d(radius * std::cos(phi), y, -radius * std::sin(phi)), n));
   }
   for (int s = 0; s < kSlices; ++s) {
-    if (up) builder.triangle(center, ring[s], ring[s + 1]);
-    else builder.triangle(center, ring[s + 1], ring[s]);
+    if (up)
+      builder.triangle(center, ring[s], ring[s + 1]);
+    else
+      builder.triangle(center, ring[s + 1], ring[s]);
   }
 }
 
 // Rotates a mesh built along +y onto `axis`.
 void orient_along(DrawMesh& mesh, const Eigen::Vector3d& axis) {
-  const Eigen::Matrix3d r = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), axis.normalized())
-                                .toRotationMatrix();
+  const Eigen::Matrix3d r =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), axis.normalized())
+          .toRotationMatrix();
   mesh.positions = r * mesh.positions;
   mesh.normals = r * mesh.normals;
 }
@@ -109,9 +116,11 @@ DrawMesh sphere_mesh(double radius, const Eigen::Vector3f& color) {
   return builder.build();
 }
 
-DrawMesh cylinder_mesh(double radius, double height, const Eigen::Vector3d& axis, const Eigen::Vector3f& color) {
+DrawMesh cylinder_mesh(double radius, double height, const Eigen::Vector3d& axis,
+                       const Eigen::Vector3f& color) {
   MeshBuilder builder(color);
-  // The side: two rings on the equator of spheres centred at the bottom and top cap (normals radial).
+  // The side: two rings on the equator of spheres centred at the bottom and top cap (normals
+  // radial).
   add_revolution(builder, radius, {0.0, 0.0}, {-height / 2, height / 2});
   add_cap(builder, radius, -height / 2, false);
   add_cap(builder, radius, height / 2, true);
@@ -120,7 +129,8 @@ DrawMesh cylinder_mesh(double radius, double height, const Eigen::Vector3d& axis
   return mesh;
 }
 
-DrawMesh capsule_mesh(double radius, double height, const Eigen::Vector3d& axis, const Eigen::Vector3f& color) {
+DrawMesh capsule_mesh(double radius, double height, const Eigen::Vector3d& axis,
+                      const Eigen::Vector3f& color) {
   MeshBuilder builder(color);
   std::vector<double> latitudes, offsets;
   const int half = kStacks / 2;
@@ -150,8 +160,8 @@ DrawMesh box_mesh(const Eigen::Vector3d& half, const Eigen::Vector3f& color) {
       const Eigen::Vector3d c = n.cwiseProduct(half);
       const Eigen::Vector3d du = u.cwiseAbs().cwiseProduct(half).norm() * u;
       const Eigen::Vector3d dv = v.cwiseAbs().cwiseProduct(half).norm() * v;
-      builder.quad(builder.vertex(c - du - dv, n), builder.vertex(c + du - dv, n), builder.vertex(c + du + dv, n),
-                   builder.vertex(c - du + dv, n));
+      builder.quad(builder.vertex(c - du - dv, n), builder.vertex(c + du - dv, n),
+                   builder.vertex(c + du + dv, n), builder.vertex(c - du + dv, n));
     }
   return builder.build();
 }
@@ -160,13 +170,19 @@ DrawMesh box_mesh(const Eigen::Vector3d& half, const Eigen::Vector3f& color) {
 
 DrawMesh solid_collider_mesh(const Collider& c, const Eigen::Vector3f& color) {
   switch (c.shape) {
-    case ColliderShape::sphere: return sphere_mesh(c.radius, color);
-    case ColliderShape::cylinder: return cylinder_mesh(c.radius, c.height, c.axis, color);
-    case ColliderShape::capsule: return capsule_mesh(c.radius, c.height, c.axis, color);
-    case ColliderShape::box: return box_mesh(c.half_extents, color);
-    case ColliderShape::plane: break;
+    case ColliderShape::sphere:
+      return sphere_mesh(c.radius, color);
+    case ColliderShape::cylinder:
+      return cylinder_mesh(c.radius, c.height, c.axis, color);
+    case ColliderShape::capsule:
+      return capsule_mesh(c.radius, c.height, c.axis, color);
+    case ColliderShape::box:
+      return box_mesh(c.half_extents, color);
+    case ColliderShape::plane:
+      break;
   }
-  throw std::invalid_argument("solid_collider_mesh: a plane has no solid mesh (use plane_patch_mesh)");
+  throw std::invalid_argument(
+      "solid_collider_mesh: a plane has no solid mesh (use plane_patch_mesh)");
 }
 
 double round_tile_size(double span) {
@@ -177,28 +193,32 @@ double round_tile_size(double span) {
   return 10.0 * decade;
 }
 
-DrawMesh plane_patch_mesh(const Collider& plane, const Eigen::Vector3d& local_center, double half_size,
-                          double tile, const Eigen::Vector3f& color_a, const Eigen::Vector3f& color_b) {
+DrawMesh plane_patch_mesh(const Collider& plane, const Eigen::Vector3d& local_center,
+                          double half_size, double tile, const Eigen::Vector3f& color_a,
+                          const Eigen::Vector3f& color_b) {
   const Eigen::Vector3d n = plane.normal.normalized();
   // In-plane axes: u from the local axis least aligned with n, v = n x u, so u x v = n.
   Eigen::Index least = 0;
   n.cwiseAbs().minCoeff(&least);
   const Eigen::Vector3d u = (Eigen::Vector3d::Unit(least) - n * n[least]).normalized();
   const Eigen::Vector3d v = n.cross(u);
-  const Eigen::Vector3d foot = local_center - n * n.dot(local_center);  // the plane passes the origin
-  // Tiles aligned to whole multiples of `tile` along u and v, so the checker does not slide when the
-  // patch centre moves between renders.
+  const Eigen::Vector3d foot =
+      local_center - n * n.dot(local_center);  // the plane passes the origin
+  // Tiles aligned to whole multiples of `tile` along u and v, so the checker does not slide when
+  // the patch centre moves between renders.
   const double u0 = std::floor((foot.dot(u) - half_size) / tile) * tile;
   const double v0 = std::floor((foot.dot(v) - half_size) / tile) * tile;
   const int count = static_cast<int>(std::ceil(2.0 * half_size / tile)) + 1;
   MeshBuilder builder(color_a);
   for (int i = 0; i < count; ++i)
     for (int j = 0; j < count; ++j) {
-      const Eigen::Vector3f& color = ((i + j + static_cast<int>(std::lround(u0 / tile + v0 / tile))) % 2 == 0)
-                                         ? color_a
-                                         : color_b;
+      const Eigen::Vector3f& color =
+          ((i + j + static_cast<int>(std::lround(u0 / tile + v0 / tile))) % 2 == 0) ? color_a
+                                                                                    : color_b;
       const double a = u0 + i * tile, b = v0 + j * tile;
-      auto corner = [&](double du, double dv) { return builder.vertex((a + du) * u + (b + dv) * v, n, color); };
+      auto corner = [&](double du, double dv) {
+        return builder.vertex((a + du) * u + (b + dv) * v, n, color);
+      };
       builder.quad(corner(0, 0), corner(tile, 0), corner(tile, tile), corner(0, tile));
     }
   return builder.build();
@@ -219,7 +239,8 @@ void add_collider_bounds(const Collider& c, const Eigen::Isometry3d& pose, Bound
   } else {
     const double extra = c.shape == ColliderShape::capsule ? c.radius : 0.0;
     half = {c.radius, c.height / 2 + extra, c.radius};
-    frame = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), c.axis.normalized()).toRotationMatrix();
+    frame = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), c.axis.normalized())
+                .toRotationMatrix();
   }
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d corner((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(),

@@ -21,7 +21,8 @@ void draw_block(Image& image, Font& font, int x, int y, const std::vector<std::s
   const int height = font.line_height() * static_cast<int>(lines.size());
   blend_rectangle(image, x, y, x + width + 2 * pad, y + height + 2 * pad, kPaper, kPaperOpacity);
   for (std::size_t k = 0; k < lines.size(); ++k)
-    font.draw(image, x + pad, y + pad + font.ascent() + static_cast<int>(k) * font.line_height(), lines[k], kInk);
+    font.draw(image, x + pad, y + pad + font.ascent() + static_cast<int>(k) * font.line_height(),
+              lines[k], kInk);
 }
 
 std::string format(const char* pattern, double value) {
@@ -38,21 +39,25 @@ PanelSpan panel_span(int k, int n, int width) {
 }
 
 std::vector<std::string> legend_lines(double time, int frame, const FrameMetrics* metrics) {
-  std::vector<std::string> lines{format("t = %.3f s", time) + " (frame " + std::to_string(frame) + ")"};
-  if (metrics && metrics->max_stretch) lines.push_back(format("max stretch %.2f %%", 100.0 * *metrics->max_stretch));
-  if (metrics && metrics->drape_coefficient) lines.push_back(format("drape coefficient %.3f", *metrics->drape_coefficient));
+  std::vector<std::string> lines{format("t = %.3f s", time) + " (frame " + std::to_string(frame) +
+                                 ")"};
+  if (metrics && metrics->max_stretch)
+    lines.push_back(format("max stretch %.2f %%", 100.0 * *metrics->max_stretch));
+  if (metrics && metrics->drape_coefficient)
+    lines.push_back(format("drape coefficient %.3f", *metrics->drape_coefficient));
   return lines;
 }
 
-Image render_frame(const OffscreenContext& context, const PanelRenderer& renderer, const Camera& camera,
-                   const std::vector<Panel>& panels, double time, int supersample, Font& font) {
+Image render_frame(const OffscreenContext& context, const PanelRenderer& renderer,
+                   const Camera& camera, const std::vector<Panel>& panels, double time,
+                   int supersample, Font& font) {
   const int n = static_cast<int>(panels.size());
   const int big_width = context.width();
   for (int k = 0; k < n; ++k) {
     // Spans computed at the output size and scaled, so panel edges fall on whole output pixels.
     const PanelSpan span = panel_span(k, n, big_width / supersample);
-    renderer.draw(camera, span.x0 * supersample, 0, (span.x1 - span.x0) * supersample, context.height(),
-                  *panels[k].cloth, time);
+    renderer.draw(camera, span.x0 * supersample, 0, (span.x1 - span.x0) * supersample,
+                  context.height(), *panels[k].cloth, time);
   }
   Image image = downsample(context.read_pixels(), supersample);
 
@@ -64,7 +69,8 @@ Image render_frame(const OffscreenContext& context, const PanelRenderer& rendere
     font.set_pixel_size(std::max(10, image.height / 24));
     draw_block(image, font, span.x0 + margin, margin, {panels[k].title});
     font.set_pixel_size(std::max(9, image.height / 30));
-    const int height = font.line_height() * static_cast<int>(panels[k].legend.size()) + 2 * std::max(2, font.pixel_size() / 4);
+    const int height = font.line_height() * static_cast<int>(panels[k].legend.size()) +
+                       2 * std::max(2, font.pixel_size() / 4);
     draw_block(image, font, span.x0 + margin, image.height - margin - height, panels[k].legend);
   }
   return image;

@@ -16,11 +16,13 @@ struct OffscreenContext::Handle {
 OffscreenContext::OffscreenContext(int width, int height)
     : handle_(std::make_unique<Handle>()), width_(width), height_(height) {
   if (width < 1 || height < 1 || width > max_size() || height > max_size())
-    throw std::runtime_error("offscreen buffer of " + std::to_string(width) + " x " + std::to_string(height) +
-                             " pixels is outside 1.." + std::to_string(max_size()));
+    throw std::runtime_error("offscreen buffer of " + std::to_string(width) + " x " +
+                             std::to_string(height) + " pixels is outside 1.." +
+                             std::to_string(max_size()));
   // RGBA colour, 24-bit depth, no stencil or accumulation buffer; no shared context.
   handle_->context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
-  if (!handle_->context) throw std::runtime_error("OSMesa could not create an offscreen GL context");
+  if (!handle_->context)
+    throw std::runtime_error("OSMesa could not create an offscreen GL context");
   buffer_.assign(std::size_t(width) * height * 4, 0);
   if (!OSMesaMakeCurrent(handle_->context, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) {
     OSMesaDestroyContext(handle_->context);
@@ -59,7 +61,8 @@ Image OffscreenContext::read_pixels() const {
   Image image(width_, height_, 3);
   const std::size_t row = std::size_t(width_) * 3;
   for (int y = 0; y < height_; ++y)  // GL's row 0 is the bottom one
-    std::memcpy(image.pixels.data() + y * row, rgb.data() + std::size_t(height_ - 1 - y) * row, row);
+    std::memcpy(image.pixels.data() + y * row, rgb.data() + std::size_t(height_ - 1 - y) * row,
+                row);
   return image;
 }
 

@@ -41,12 +41,13 @@ void draw_background() {
 
 // Two directional lights fixed to the camera (positions given in eye coordinates, with an identity
 // modelview): a key light from the upper left behind the viewer and a weaker fill from the right,
-// plus ambient light. Two-sided lighting lights a face's back with its negated normal, so both sides
-// of the cloth are shaded.
+// plus ambient light. Two-sided lighting lights a face's back with its negated normal, so both
+// sides of the cloth are shaded.
 void set_lights() {
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
-  const GLfloat key_direction[4] = {-0.45f, 0.75f, 0.5f, 0.0f};  // w = 0: a direction towards the light
+  const GLfloat key_direction[4] = {-0.45f, 0.75f, 0.5f,
+                                    0.0f};  // w = 0: a direction towards the light
   const GLfloat key_diffuse[4] = {0.75f, 0.75f, 0.72f, 1.0f};
   const GLfloat key_specular[4] = {0.35f, 0.35f, 0.35f, 1.0f};
   const GLfloat fill_direction[4] = {0.6f, 0.1f, 0.8f, 0.0f};
@@ -66,7 +67,8 @@ void set_lights() {
   glEnable(GL_LIGHT0);
   glEnable(GL_LIGHT1);
   glEnable(GL_LIGHTING);
-  glEnable(GL_NORMALIZE);  // normals stay unit under the rigid collider poses anyway; cheap insurance
+  glEnable(
+      GL_NORMALIZE);  // normals stay unit under the rigid collider poses anyway; cheap insurance
   glShadeModel(GL_SMOOTH);
   glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
 }
@@ -84,7 +86,8 @@ void draw_mesh(const DrawMesh& mesh) {
   glVertexPointer(3, GL_DOUBLE, 0, mesh.positions.data());
   glNormalPointer(GL_DOUBLE, 0, mesh.normals.data());
   glColorPointer(3, GL_FLOAT, 0, mesh.colors.data());
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.triangles.size()), GL_UNSIGNED_INT, mesh.triangles.data());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.triangles.size()), GL_UNSIGNED_INT,
+                 mesh.triangles.data());
   glDisableClientState(GL_COLOR_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_VERTEX_ARRAY);
@@ -95,10 +98,12 @@ void draw_mesh(const DrawMesh& mesh) {
 Bounds framing_bounds(const RunFrames& run, int samples) {
   Bounds bounds;
   for (const auto& solver : run.solvers) {
-    const int frames = solver.status == "ok" ? solver.source->frame_count() : std::min(1, solver.source->frame_count());
+    const int frames = solver.status == "ok" ? solver.source->frame_count()
+                                             : std::min(1, solver.source->frame_count());
     const int count = std::min(samples, frames);
     for (int k = 0; k < count; ++k) {
-      const int frame = count == 1 ? 0 : static_cast<int>(std::lround(double(k) * (frames - 1) / (count - 1)));
+      const int frame =
+          count == 1 ? 0 : static_cast<int>(std::lround(double(k) * (frames - 1) / (count - 1)));
       const Eigen::Matrix3Xd x = solver.source->positions(frame);
       for (Eigen::Index i = 0; i < x.cols(); ++i) bounds.add(Eigen::Vector3d(x.col(i)));
     }
@@ -124,14 +129,15 @@ Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& x, const Eigen::Matrix3X
   }
   for (Eigen::Index i = 0; i < normals.cols(); ++i) {
     const double length = normals.col(i).norm();
-    normals.col(i) = (length > 0.0 && std::isfinite(length)) ? Eigen::Vector3d(normals.col(i) / length)
-                                                              : Eigen::Vector3d::UnitY();
+    normals.col(i) = (length > 0.0 && std::isfinite(length))
+                         ? Eigen::Vector3d(normals.col(i) / length)
+                         : Eigen::Vector3d::UnitY();
   }
   return normals;
 }
 
-PanelRenderer::PanelRenderer(const scene::Scene& scene, const ClothModel& model, const Image& texture,
-                             const Bounds& framing)
+PanelRenderer::PanelRenderer(const scene::Scene& scene, const ClothModel& model,
+                             const Image& texture, const Bounds& framing)
     : model_(model) {
   const Eigen::Vector3d center = framing.empty() ? Eigen::Vector3d::Zero() : framing.center();
   const double radius = std::max(framing.radius(), 0.05);
@@ -143,17 +149,18 @@ PanelRenderer::PanelRenderer(const scene::Scene& scene, const ClothModel& model,
       continue;
     }
     const Eigen::Isometry3d pose = collider_pose(collider, 0.0);
-    DrawMesh patch = plane_patch_mesh(collider, pose.inverse() * center, half_size, round_tile_size(2.0 * radius),
-                                      kFloorLight, kFloorDark);
+    DrawMesh patch = plane_patch_mesh(collider, pose.inverse() * center, half_size,
+                                      round_tile_size(2.0 * radius), kFloorLight, kFloorDark);
     for (Eigen::Index k = 0; k < patch.positions.cols(); ++k)
-      extra_radius_ = std::max(extra_radius_, (pose * Eigen::Vector3d(patch.positions.col(k)) - center).norm() - radius);
+      extra_radius_ = std::max(
+          extra_radius_, (pose * Eigen::Vector3d(patch.positions.col(k)) - center).norm() - radius);
     colliders_.push_back({&collider, std::move(patch)});
   }
   texture_ = upload_texture(texture);
 }
 
-void PanelRenderer::draw(const Camera& camera, int x, int y, int width, int height, const Eigen::Matrix3Xd& cloth,
-                         double time) const {
+void PanelRenderer::draw(const Camera& camera, int x, int y, int width, int height,
+                         const Eigen::Matrix3Xd& cloth, double time) const {
   glViewport(x, y, width, height);
   glScissor(x, y, width, height);
   glEnable(GL_SCISSOR_TEST);
@@ -164,7 +171,8 @@ void PanelRenderer::draw(const Camera& camera, int x, int y, int width, int heig
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
-  glDisable(GL_CULL_FACE);  // the cloth is seen from both sides; closed colliders do not need culling
+  glDisable(
+      GL_CULL_FACE);  // the cloth is seen from both sides; closed colliders do not need culling
   set_lights();
   glMatrixMode(GL_PROJECTION);
   const Eigen::Matrix4d projection = projection_matrix(camera, double(width) / height);

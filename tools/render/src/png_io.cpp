@@ -17,7 +17,8 @@ void write_png(const std::filesystem::path& path, const Image& image) {
   png.height = static_cast<png_uint_32>(image.height);
   png.format = image.channels == 3 ? PNG_FORMAT_RGB : PNG_FORMAT_RGBA;
   const png_int_32 row_stride = image.width * image.channels;  // bytes; positive = top row first
-  if (!png_image_write_to_file(&png, path.string().c_str(), 0, image.pixels.data(), row_stride, nullptr)) {
+  if (!png_image_write_to_file(&png, path.string().c_str(), 0, image.pixels.data(), row_stride,
+                               nullptr)) {
     const std::string message = png.message;
     png_image_free(&png);
     throw std::runtime_error("cannot write " + path.string() + ": " + message);

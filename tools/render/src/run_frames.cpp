@@ -27,7 +27,8 @@ class PointCache final : public FrameSource {
   PointCache(const fs::path& file, int particle_count) : file_(file), points_(particle_count) {
     if (!fs::exists(file)) throw std::runtime_error("cannot read " + file.string());
     const auto header = run_folder::read_pc2_header(file);
-    if (!header) throw RunInputError(file.string() + " is not a PC2 point cache (POINTCACHE2, version 1)");
+    if (!header)
+      throw RunInputError(file.string() + " is not a PC2 point cache (POINTCACHE2, version 1)");
     if (header->points != particle_count)
       throw RunInputError(file.string() + " holds " + std::to_string(header->points) +
                           " points per frame, but the run's cloth (resolved.yaml) has " +
@@ -38,7 +39,9 @@ class PointCache final : public FrameSource {
   std::string description() const override { return file_.filename().string(); }
   Eigen::Matrix3Xd positions(int frame) const override {
     auto x = run_folder::read_pc2_frame(file_, points_, frame);
-    if (!x) throw std::runtime_error("cannot read frame " + std::to_string(frame) + " of " + file_.string());
+    if (!x)
+      throw std::runtime_error("cannot read frame " + std::to_string(frame) + " of " +
+                               file_.string());
     return *x;
   }
 
@@ -67,13 +70,14 @@ class ObjSequence final : public FrameSource {
       if (line.size() < 2 || line[0] != 'v' || line[1] != ' ') continue;  // vertices only
       std::istringstream fields(line.substr(2));
       Eigen::Vector3d p;
-      if (!(fields >> p.x() >> p.y() >> p.z())) throw std::runtime_error(file.string() + ": bad vertex line: " + line);
+      if (!(fields >> p.x() >> p.y() >> p.z()))
+        throw std::runtime_error(file.string() + ": bad vertex line: " + line);
       if (count < points_) x.col(count) = p;
       ++count;
     }
     if (count != points_)
-      throw std::runtime_error(file.string() + " has " + std::to_string(count) + " vertices, the cloth " +
-                               std::to_string(points_) + " particles");
+      throw std::runtime_error(file.string() + " has " + std::to_string(count) +
+                               " vertices, the cloth " + std::to_string(points_) + " particles");
     return x;
   }
 
@@ -119,10 +123,14 @@ std::unique_ptr<FrameSource> open_obj_sequence(const fs::path& folder, const std
 }
 
 RunFrames load_run_frames(const fs::path& dir) {
-  if (!fs::is_directory(dir)) throw RunInputError(dir.string() + " is not a folder (give a run folder written by drapelab run)");
+  if (!fs::is_directory(dir))
+    throw RunInputError(dir.string() +
+                        " is not a folder (give a run folder written by drapelab run)");
   const fs::path resolved = dir / "resolved.yaml", summary_file = dir / "summary.json";
   if (!fs::exists(resolved) || !fs::exists(summary_file))
-    throw RunInputError(dir.string() + " is not a run folder: it has no resolved.yaml or summary.json (write one with drapelab run SCENE --out " +
+    throw RunInputError(dir.string() +
+                        " is not a run folder: it has no resolved.yaml or summary.json (write one "
+                        "with drapelab run SCENE --out " +
                         dir.string() + " --meshes pc2)");
   auto loaded = scene::load_scene_file(resolved);
   if (!loaded.ok()) {
@@ -146,10 +154,12 @@ RunFrames load_run_frames(const fs::path& dir) {
     solver.type = entry.value("type", "");
     solver.status = entry.value("status", "");
     const fs::path cache = meshes / run_folder::point_cache_name(name);
-    if (fs::exists(cache)) solver.source = open_point_cache(cache, run.model.particle_count());
+    if (fs::exists(cache))
+      solver.source = open_point_cache(cache, run.model.particle_count());
     else if (fs::exists(meshes / run_folder::obj_frame_name(name, 0)))
       solver.source = open_obj_sequence(meshes, name, run.model.particle_count());
-    else missing.push_back(name);
+    else
+      missing.push_back(name);
     run.solvers.push_back(std::move(solver));
   }
   if (run.solvers.empty()) throw RunInputError(summary_file.string() + " lists no solver");
@@ -157,12 +167,15 @@ RunFrames load_run_frames(const fs::path& dir) {
     std::string names;
     for (const auto& name : missing) names += (names.empty() ? "'" : ", '") + name + "'";
     throw RunInputError(dir.string() + " has no positions to draw for " + names +
-                        ": neither a point cache (meshes/SOLVER.pc2) nor per-frame OBJ files (meshes/SOLVER_NNNN.obj). "
-                        "Run the scene again with them: drapelab run SCENE --out " + dir.string() +
-                        " --meshes pc2 (or output.meshes: pc2 in the scene)");
+                        ": neither a point cache (meshes/SOLVER.pc2) nor per-frame OBJ files "
+                        "(meshes/SOLVER_NNNN.obj). "
+                        "Run the scene again with them: drapelab run SCENE --out " +
+                        dir.string() + " --meshes pc2 (or output.meshes: pc2 in the scene)");
   }
-  for (const auto& solver : run.solvers) run.frame_count = std::max(run.frame_count, solver.source->frame_count());
-  if (run.frame_count == 0) throw RunInputError(dir.string() + ": the point caches hold no frame yet");
+  for (const auto& solver : run.solvers)
+    run.frame_count = std::max(run.frame_count, solver.source->frame_count());
+  if (run.frame_count == 0)
+    throw RunInputError(dir.string() + ": the point caches hold no frame yet");
   read_metrics(dir / "metrics.csv", run.solvers);
   return run;
 }

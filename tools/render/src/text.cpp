@@ -16,14 +16,19 @@ std::vector<char32_t> decode_utf8(const std::string& text) {
   std::vector<char32_t> out;
   for (std::size_t k = 0; k < text.size();) {
     const auto c = static_cast<unsigned char>(text[k]);
-    int length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    int length = c < 0x80           ? 1
+                 : (c >> 5) == 0x6  ? 2
+                 : (c >> 4) == 0xE  ? 3
+                 : (c >> 3) == 0x1E ? 4
+                                    : 0;
     if (length == 0 || k + length > text.size()) {
       out.push_back(c);
       ++k;
       continue;
     }
     char32_t code = length == 1 ? c : c & (0x7F >> length);
-    for (int j = 1; j < length; ++j) code = (code << 6) | (static_cast<unsigned char>(text[k + j]) & 0x3F);
+    for (int j = 1; j < length; ++j)
+      code = (code << 6) | (static_cast<unsigned char>(text[k + j]) & 0x3F);
     out.push_back(code);
     k += length;
   }
@@ -60,8 +65,12 @@ void Font::set_pixel_size(int pixels) {
 }
 
 // FreeType's size metrics are 26.6 fixed point: 64 units per pixel.
-int Font::line_height() const { return static_cast<int>((library_->face->size->metrics.height + 63) / 64); }
-int Font::ascent() const { return static_cast<int>((library_->face->size->metrics.ascender + 63) / 64); }
+int Font::line_height() const {
+  return static_cast<int>((library_->face->size->metrics.height + 63) / 64);
+}
+int Font::ascent() const {
+  return static_cast<int>((library_->face->size->metrics.ascender + 63) / 64);
+}
 
 int Font::text_width(const std::string& utf8) {
   long width = 0;
@@ -87,7 +96,9 @@ void Font::draw(Image& image, int x, int baseline, const std::string& utf8, Rgb 
         if (px < 0 || py < 0 || px >= image.width || py >= image.height) continue;
         const int coverage = bitmap.buffer[row * bitmap.pitch + column];  // 0..255 grey coverage
         std::uint8_t* p = image.at(px, py);
-        for (int c = 0; c < 3; ++c) p[c] = static_cast<std::uint8_t>((p[c] * (255 - coverage) + rgb[c] * coverage + 127) / 255);
+        for (int c = 0; c < 3; ++c)
+          p[c] =
+              static_cast<std::uint8_t>((p[c] * (255 - coverage) + rgb[c] * coverage + 127) / 255);
       }
     pen += glyph->advance.x;
   }

@@ -44,8 +44,10 @@ Image half_size(const Image& image) {  // 2 x 2 box filter; sizes are powers of 
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x)
       for (int c = 0; c < 4; ++c) {
-        const int x1 = std::min(2 * x + 1, image.width - 1), y1 = std::min(2 * y + 1, image.height - 1);
-        const int sum = image.at(2 * x, 2 * y)[c] + image.at(x1, 2 * y)[c] + image.at(2 * x, y1)[c] + image.at(x1, y1)[c];
+        const int x1 = std::min(2 * x + 1, image.width - 1),
+                  y1 = std::min(2 * y + 1, image.height - 1);
+        const int sum = image.at(2 * x, 2 * y)[c] + image.at(x1, 2 * y)[c] +
+                        image.at(2 * x, y1)[c] + image.at(x1, y1)[c];
         out.at(x, y)[c] = static_cast<std::uint8_t>((sum + 2) / 4);
       }
   return out;
@@ -76,7 +78,8 @@ unsigned upload_texture(const Image& image) {
     Image out(im.width, im.height, 4);
     const std::size_t row = std::size_t(im.width) * 4;
     for (int y = 0; y < im.height; ++y)
-      std::copy_n(im.pixels.data() + std::size_t(im.height - 1 - y) * row, row, out.pixels.data() + y * row);
+      std::copy_n(im.pixels.data() + std::size_t(im.height - 1 - y) * row, row,
+                  out.pixels.data() + y * row);
     return out;
   };
   GLuint name = 0;
@@ -85,8 +88,8 @@ unsigned upload_texture(const Image& image) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int lod = 0;; ++lod) {
     const Image rows = flipped(level);
-    glTexImage2D(GL_TEXTURE_2D, lod, GL_RGBA8, rows.width, rows.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 rows.pixels.data());
+    glTexImage2D(GL_TEXTURE_2D, lod, GL_RGBA8, rows.width, rows.height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, rows.pixels.data());
     if (level.width == 1 && level.height == 1) break;
     level = half_size(level);
   }

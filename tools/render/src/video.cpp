@@ -20,30 +20,45 @@ std::optional<std::filesystem::path> find_on_path(const std::string& name) {
   std::stringstream folders(path);
   std::string folder;
   while (std::getline(folders, folder, ':')) {
-    const std::filesystem::path candidate = std::filesystem::path(folder.empty() ? "." : folder) / name;
+    const std::filesystem::path candidate =
+        std::filesystem::path(folder.empty() ? "." : folder) / name;
     std::error_code ec;
-    if (std::filesystem::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+    if (std::filesystem::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0)
+      return candidate;
   }
   return std::nullopt;
 }
 
-std::vector<std::string> ffmpeg_arguments(const std::filesystem::path& folder, double frames_per_second,
+std::vector<std::string> ffmpeg_arguments(const std::filesystem::path& folder,
+                                          double frames_per_second,
                                           const std::filesystem::path& output) {
   std::ostringstream rate;
   rate.precision(17);
   rate << frames_per_second;
-  return {"-nostdin", "-y", "-loglevel", "error",
-          "-framerate", rate.str(),
-          "-pattern_type", "glob", "-i", (folder / "frame_*.png").string(),  // ffmpeg expands the glob itself
-          "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-          "-c:v", "libx264", "-pix_fmt", "yuv420p",
+  return {"-nostdin",
+          "-y",
+          "-loglevel",
+          "error",
+          "-framerate",
+          rate.str(),
+          "-pattern_type",
+          "glob",
+          "-i",
+          (folder / "frame_*.png").string(),  // ffmpeg expands the glob itself
+          "-vf",
+          "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+          "-c:v",
+          "libx264",
+          "-pix_fmt",
+          "yuv420p",
           output.string()};
 }
 
 std::string shell_command(const std::string& program, const std::vector<std::string>& arguments) {
   auto quote = [](const std::string& word) {
-    const bool plain = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                                "0123456789-_./=:,+") == std::string::npos;
+    const bool plain = !word.empty() && word.find_first_not_of(
+                                            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                            "0123456789-_./=:,+") == std::string::npos;
     if (plain) return word;
     std::string quoted = "'";
     for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -54,7 +69,8 @@ std::string shell_command(const std::string& program, const std::vector<std::str
   return line;
 }
 
-int run_program(const std::filesystem::path& program, const std::vector<std::string>& arguments, std::string* error) {
+int run_program(const std::filesystem::path& program, const std::vector<std::string>& arguments,
+                std::string* error) {
   std::vector<std::string> words{program.string()};
   words.insert(words.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;

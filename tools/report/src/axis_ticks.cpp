@@ -49,7 +49,8 @@ std::string tick_label(double value, double resolution) {
   // Between 1e-4 and 1e6 show every digit before the point (%g would write 200 as 2e+02).
   const double magnitude = std::fabs(value);
   int first_precision = 1;
-  if (magnitude >= 1.0 && magnitude < 1e6) first_precision = static_cast<int>(std::floor(std::log10(magnitude))) + 1;
+  if (magnitude >= 1.0 && magnitude < 1e6)
+    first_precision = static_cast<int>(std::floor(std::log10(magnitude))) + 1;
   for (int precision = first_precision; precision <= 17; ++precision) {
     std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
     if (std::fabs(std::strtod(buffer, nullptr) - value) <= std::fabs(resolution)) break;

@@ -32,9 +32,10 @@ FolderCheck inspect_folder(const fs::path& folder) {
   std::string list;
   for (std::size_t k = 0; k < missing.size(); ++k)
     list += (k == 0 ? "" : k + 1 == missing.size() ? " and " : ", ") + missing[k];
-  check.problem = folder.string() + " is neither a run folder (missing " + list +
-                  "; make one with drapelab run SCENE --out DIR) nor a sweep folder (missing sweep.csv; make "
-                  "one with drapelab sweep SCENE --vary ... --out DIR)";
+  check.problem =
+      folder.string() + " is neither a run folder (missing " + list +
+      "; make one with drapelab run SCENE --out DIR) nor a sweep folder (missing sweep.csv; make "
+      "one with drapelab sweep SCENE --vary ... --out DIR)";
   return check;
 }
 

@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "drapelab/run_folder/csv.hpp"
-#include "drapelab/run_folder/files.hpp"
 #include "drapelab/report/html_page.hpp"
 #include "drapelab/report/report.hpp"
 #include "drapelab/report/svg_plot.hpp"
+#include "drapelab/run_folder/csv.hpp"
+#include "drapelab/run_folder/files.hpp"
 
 namespace drapelab::report {
 
@@ -34,11 +34,11 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct RunData {
   fs::path folder;
   ordered_json summary;
-  std::string scene_text;     // scene.yaml as given
-  std::string description;    // from scene.yaml, may be empty
+  std::string scene_text;   // scene.yaml as given
+  std::string description;  // from scene.yaml, may be empty
   CsvTable metrics, compare, contacts;
-  std::vector<std::string> solvers;             // summary.json's order, then any only in metrics.csv
-  std::map<std::string, std::string> colors;    // solver -> colour, the same in every plot and table
+  std::vector<std::string> solvers;           // summary.json's order, then any only in metrics.csv
+  std::map<std::string, std::string> colors;  // solver -> colour, the same in every plot and table
 };
 
 std::string read_required(const fs::path& path) {
@@ -54,12 +54,14 @@ RunData load_run(const fs::path& folder) {
   try {
     run.summary = ordered_json::parse(summary_text);
   } catch (const std::exception& e) {
-    throw std::runtime_error((folder / "summary.json").string() + " is not valid JSON: " + e.what());
+    throw std::runtime_error((folder / "summary.json").string() +
+                             " is not valid JSON: " + e.what());
   }
   run.scene_text = read_required(folder / "scene.yaml");
   try {
     const YAML::Node scene = YAML::Load(run.scene_text);
-    if (scene["description"] && scene["description"].IsScalar()) run.description = scene["description"].as<std::string>();
+    if (scene["description"] && scene["description"].IsScalar())
+      run.description = scene["description"].as<std::string>();
   } catch (const std::exception&) {
     // The description is only shown; a scene.yaml that does not parse is still shown as text.
   }
@@ -74,16 +76,19 @@ RunData load_run(const fs::path& folder) {
   const auto solver_column = run.metrics.column("solver");
   for (std::size_t r = 0; r < run.metrics.rows.size(); ++r) {
     const std::string& name = run.metrics.text(r, solver_column);
-    if (std::find(run.solvers.begin(), run.solvers.end(), name) == run.solvers.end()) run.solvers.push_back(name);
+    if (std::find(run.solvers.begin(), run.solvers.end(), name) == run.solvers.end())
+      run.solvers.push_back(name);
   }
-  for (std::size_t k = 0; k < run.solvers.size(); ++k) run.colors[run.solvers[k]] = palette_color(k);
+  for (std::size_t k = 0; k < run.solvers.size(); ++k)
+    run.colors[run.solvers[k]] = palette_color(k);
   return run;
 }
 
 // summary.json's object for one solver (null when absent).
 const ordered_json& solver_summary(const RunData& run, const std::string& solver) {
   static const ordered_json null_json;
-  if (!run.summary.contains("solvers") || !run.summary["solvers"].contains(solver)) return null_json;
+  if (!run.summary.contains("solvers") || !run.summary["solvers"].contains(solver))
+    return null_json;
   return run.summary["solvers"][solver];
 }
 
@@ -133,8 +138,8 @@ bool any_finite(const std::vector<Series>& series) {
 // Sum over colliders of contacts.csv's normal_force, per solver and frame (N).
 std::vector<Series> contact_force_series(const RunData& run) {
   const CsvTable& t = run.contacts;
-  const auto solver_column = t.column("solver"), frame_column = t.column("frame"), time_column = t.column("time"),
-             force_column = t.column("normal_force");
+  const auto solver_column = t.column("solver"), frame_column = t.column("frame"),
+             time_column = t.column("time"), force_column = t.column("normal_force");
   std::vector<Series> series;
   if (!solver_column || !frame_column || !force_column) return series;
   for (const auto& solver : run.solvers) {
@@ -143,8 +148,10 @@ std::vector<Series> contact_force_series(const RunData& run) {
       if (t.text(r, solver_column) != solver) continue;
       const auto frame = parse_number(t.text(r, frame_column));
       if (!frame) continue;
-      auto [it, inserted] = by_frame.try_emplace(static_cast<long>(*frame), t.number(r, time_column), 0.0);
-      it->second.second += t.number(r, force_column);  // a NaN cell makes the frame's sum NaN: a gap
+      auto [it, inserted] =
+          by_frame.try_emplace(static_cast<long>(*frame), t.number(r, time_column), 0.0);
+      it->second.second +=
+          t.number(r, force_column);  // a NaN cell makes the frame's sum NaN: a gap
     }
     Series s;
     s.label = solver;
@@ -162,8 +169,8 @@ std::vector<Series> contact_force_series(const RunData& run) {
 // compare.csv's rms_distance, one line per solver pair (mm).
 std::vector<Series> distance_series(const RunData& run) {
   const CsvTable& t = run.compare;
-  const auto a_column = t.column("solver_a"), b_column = t.column("solver_b"), time_column = t.column("time"),
-             rms_column = t.column("rms_distance");
+  const auto a_column = t.column("solver_a"), b_column = t.column("solver_b"),
+             time_column = t.column("time"), rms_column = t.column("rms_distance");
   std::vector<Series> series;
   if (!a_column || !b_column || !rms_column) return series;
   std::vector<std::pair<std::string, std::string>> pairs;
@@ -174,7 +181,8 @@ std::vector<Series> distance_series(const RunData& run) {
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     Series s;
     s.label = pairs[k].first + " \u2013 " + pairs[k].second;
-    // Pairs are not solvers: colours after the solvers' ones, dashed, so no pair looks like a solver.
+    // Pairs are not solvers: colours after the solvers' ones, dashed, so no pair looks like a
+    // solver.
     s.color = palette_color(run.solvers.size() + k);
     s.dash = "7 3";
     s.stopped_early = stopped_early(run, pairs[k].first) || stopped_early(run, pairs[k].second);
@@ -193,9 +201,10 @@ std::string figure(const Plot& plot, const std::string& caption) {
 }
 
 std::string plots_section(const RunData& run) {
-  std::string html = "<h2 id=\"plots\">Metrics over time</h2>\n<p class=\"note\">Every solver on shared axes, "
-                     "one colour per solver in every plot and table. A square marks the last frame of a "
-                     "solver that stopped early; a gap is a frame with no value.</p>\n<div class=\"plots\">\n";
+  std::string html =
+      "<h2 id=\"plots\">Metrics over time</h2>\n<p class=\"note\">Every solver on shared axes, "
+      "one colour per solver in every plot and table. A square marks the last frame of a "
+      "solver that stopped early; a gap is a frame with no value.</p>\n<div class=\"plots\">\n";
   const std::string time_title = "time (s)";
   auto add = [&](const std::string& title, const std::string& y_title, std::vector<Series> series,
                  const std::string& caption) {
@@ -216,12 +225,14 @@ std::string plots_section(const RunData& run) {
   auto clearance = metric_series(run, "min_clearance", 1e3);
   if (any_finite(clearance)) {
     add("Min clearance", "min clearance (mm)", std::move(clearance),
-        "metrics.csv min_clearance: signed distance to the nearest collider less the thickness; below 0 = "
+        "metrics.csv min_clearance: signed distance to the nearest collider less the thickness; "
+        "below 0 = "
         "inside the shell");
     add("Max penetration", "max penetration (mm)", metric_series(run, "max_penetration", 1e3),
         "metrics.csv max_penetration: max(0, \u2212min_clearance)");
   } else {
-    notes += "<p class=\"note\">No clearance or penetration plots: the scene has no colliders.</p>\n";
+    notes +=
+        "<p class=\"note\">No clearance or penetration plots: the scene has no colliders.</p>\n";
   }
   auto forces = contact_force_series(run);
   if (any_finite(forces))
@@ -258,8 +269,8 @@ std::string summary_section(const RunData& run) {
     const TableCell name{color_swatch(run.colors.at(solver)) + escape_xml(solver), false};
     rows.push_back({name,
                     {escape_xml(kind), false},
-                    {"<span class=\"" + std::string(status == "ok" ? "status-ok" : "status-bad") + "\">" +
-                         escape_xml(status.empty() ? "\u2014" : status) + "</span>",
+                    {"<span class=\"" + std::string(status == "ok" ? "status-ok" : "status-bad") +
+                         "\">" + escape_xml(status.empty() ? "\u2014" : status) + "</span>",
                      false},
                     {escape_xml(json_text(s, "message")), false, true},
                     {format_value(json_number(s, "dt")), true},
@@ -268,10 +279,12 @@ std::string summary_section(const RunData& run) {
                     {format_value(json_number(s, "wall_seconds_per_simulated_second")), true},
                     {format_value(json_number(s, "settle_time")), true},
                     {format_value(json_number(s, "rest_jitter")), true}});
-    const ordered_json final_metrics = s.is_object() && s.contains("final") ? s["final"] : ordered_json();
+    const ordered_json final_metrics =
+        s.is_object() && s.contains("final") ? s["final"] : ordered_json();
     double centroid_y = kNaN;
-    if (final_metrics.is_object() && final_metrics.contains("centroid") && final_metrics["centroid"].is_array() &&
-        final_metrics["centroid"].size() == 3 && final_metrics["centroid"][1].is_number())
+    if (final_metrics.is_object() && final_metrics.contains("centroid") &&
+        final_metrics["centroid"].is_array() && final_metrics["centroid"].size() == 3 &&
+        final_metrics["centroid"][1].is_number())
       centroid_y = final_metrics["centroid"][1].get<double>();
     final_rows.push_back({name,
                           {last_row_cell(final_metrics, "kinetic_energy", 1.0), true},
@@ -286,17 +299,22 @@ std::string summary_section(const RunData& run) {
                           {last_row_cell(final_metrics, "drape_coefficient", 1.0), true},
                           {last_row_cell(final_metrics, "drape_nodes", 1.0), true}});
   }
-  html += html_table({"solver", "type (integrator)", "status", "message", "dt (s)", "steps", "ms per step",
-                      "wall s per simulated s", "settle time (s)", "rest jitter (m/s)"},
-                     rows);
-  html += "<p class=\"note\">Cost is wall-clock time on the machine that made the run. Settle time: first "
-          "time after which the kinetic energy stays below 1e-6 of the gravity energy released; rest "
-          "jitter: RMS velocity over the last second (docs/metrics.md). An em dash: not measured.</p>\n";
+  html +=
+      html_table({"solver", "type (integrator)", "status", "message", "dt (s)", "steps",
+                  "ms per step", "wall s per simulated s", "settle time (s)", "rest jitter (m/s)"},
+                 rows);
+  html +=
+      "<p class=\"note\">Cost is wall-clock time on the machine that made the run. Settle time: "
+      "first "
+      "time after which the kinetic energy stays below 1e-6 of the gravity energy released; rest "
+      "jitter: RMS velocity over the last second (docs/metrics.md). An em dash: not "
+      "measured.</p>\n";
   html += "<h3>Final metrics</h3>\n";
-  html += html_table({"solver", "kinetic energy (J)", "max stretch (%)", "mean stretch (%)", "min clearance (mm)",
-                      "max penetration (mm)", "contacts", "centroid y (m)", "lowest y (m)", "projected area (m\u00b2)",
-                      "drape coefficient", "drape nodes"},
-                     final_rows);
+  html +=
+      html_table({"solver", "kinetic energy (J)", "max stretch (%)", "mean stretch (%)",
+                  "min clearance (mm)", "max penetration (mm)", "contacts", "centroid y (m)",
+                  "lowest y (m)", "projected area (m\u00b2)", "drape coefficient", "drape nodes"},
+                 final_rows);
   return html;
 }
 
@@ -326,25 +344,32 @@ std::string media_section(const RunData& run, const fs::path& report_file) {
   if (const auto frame = last_frame(render)) {
     const auto bytes = read_file_bytes(*frame);
     if (!bytes) throw std::runtime_error("cannot read " + frame->string());
-    html += "<figure>\n<img class=\"still\" alt=\"last rendered frame, every solver side by side\" src=\"data:image/png;base64," +
-            base64_encode(*bytes) + "\"/>\n<figcaption>render/" + escape_xml(frame->filename().string()) +
-            ", every solver side by side</figcaption>\n</figure>\n";
+    html +=
+        "<figure>\n<img class=\"still\" alt=\"last rendered frame, every solver side by side\" "
+        "src=\"data:image/png;base64," +
+        base64_encode(*bytes) + "\"/>\n<figcaption>render/" +
+        escape_xml(frame->filename().string()) +
+        ", every solver side by side</figcaption>\n</figure>\n";
   } else if (fs::is_directory(run.folder / "meshes", ec)) {
     html += "<p>No rendered frames yet. Make them with <code>" + escape_xml(command) +
             "</code>, then write this report again.</p>\n";
   } else {
     // drapelab render draws from the run's point caches, which a run writes only when asked.
-    html += "<p>No rendered frames yet. The renderer draws from the run's meshes: run the scene again with "
-            "<code>--meshes pc2</code>, then <code>" + escape_xml(command) +
-            "</code>, then write this report again.</p>\n";
+    html +=
+        "<p>No rendered frames yet. The renderer draws from the run's meshes: run the scene again "
+        "with "
+        "<code>--meshes pc2</code>, then <code>" +
+        escape_xml(command) + "</code>, then write this report again.</p>\n";
   }
   const fs::path video = render / "video.mp4";
   if (fs::is_regular_file(video, ec)) {
     // Relative to the page, so the page and the run folder can move together.
     const fs::path page_folder = fs::absolute(report_file).parent_path();
-    const fs::path relative = fs::absolute(video).lexically_normal().lexically_relative(page_folder.lexically_normal());
-    html += "<h2 id=\"video\">Video</h2>\n<video controls=\"controls\" preload=\"metadata\" src=\"" +
-            escape_xml(relative.generic_string()) + "\">render/video.mp4</video>\n";
+    const fs::path relative =
+        fs::absolute(video).lexically_normal().lexically_relative(page_folder.lexically_normal());
+    html +=
+        "<h2 id=\"video\">Video</h2>\n<video controls=\"controls\" preload=\"metadata\" src=\"" +
+        escape_xml(relative.generic_string()) + "\">render/video.mp4</video>\n";
   }
   return html;
 }
@@ -364,8 +389,8 @@ std::string scene_section(const RunData& run) {
     row("run state", json_text(r, "state"));
     row("duration (s)", format_value(json_number(r, "duration"), 10));
     row("frame rate (1/s)", format_value(json_number(r, "frame_rate"), 10));
-    row("frames done / planned",
-        format_value(json_number(r, "frames_done"), 10) + " / " + format_value(json_number(r, "frames_planned"), 10));
+    row("frames done / planned", format_value(json_number(r, "frames_done"), 10) + " / " +
+                                     format_value(json_number(r, "frames_planned"), 10));
   }
   if (s.contains("model") && s["model"].is_object()) {
     const ordered_json& m = s["model"];
@@ -383,20 +408,25 @@ std::string scene_section(const RunData& run) {
 
 std::string run_report_html(const fs::path& folder, const fs::path& report_file) {
   const RunData run = load_run(folder);
-  const std::string name = json_text(run.summary, "scene").empty() ? folder.filename().string()
-                                                                   : json_text(run.summary, "scene");
+  const std::string name = json_text(run.summary, "scene").empty()
+                               ? folder.filename().string()
+                               : json_text(run.summary, "scene");
   std::string html = page_begin("drapelab report: " + name);
   html += "<h1>" + escape_xml(name) + "</h1>\n";
   if (!run.description.empty()) html += "<p>" + escape_xml(run.description) + "</p>\n";
-  html += "<p class=\"note\">Run folder <code>" + escape_xml(folder.string()) + "</code>: " +
-          std::to_string(run.solvers.size()) + " solver(s). Sections: <a href=\"#render\">last frame</a>, "
-          "<a href=\"#summary\">solvers</a>, <a href=\"#plots\">metrics over time</a>, <a href=\"#scene\">scene</a>.</p>\n";
+  html += "<p class=\"note\">Run folder <code>" + escape_xml(folder.string()) +
+          "</code>: " + std::to_string(run.solvers.size()) +
+          " solver(s). Sections: <a href=\"#render\">last frame</a>, "
+          "<a href=\"#summary\">solvers</a>, <a href=\"#plots\">metrics over time</a>, <a "
+          "href=\"#scene\">scene</a>.</p>\n";
   html += media_section(run, report_file);
   html += summary_section(run);
   html += plots_section(run);
   html += scene_section(run);
-  html += "<p class=\"note\">Written by drapelab report from summary.json, metrics.csv, compare.csv and "
-          "contacts.csv (docs/metrics.md defines every column).</p>\n";
+  html +=
+      "<p class=\"note\">Written by drapelab report from summary.json, metrics.csv, compare.csv "
+      "and "
+      "contacts.csv (docs/metrics.md defines every column).</p>\n";
   return html + page_end();
 }
 

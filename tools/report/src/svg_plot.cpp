@@ -12,14 +12,14 @@ namespace drapelab::report {
 namespace {
 
 // Layout in SVG user units (CSS pixels at 100 % zoom).
-constexpr double kWidth = 560.0;    // two plots side by side in a 1200 px window
-constexpr double kLeft = 80.0;         // room for y tick labels and the rotated y title
+constexpr double kWidth = 560.0;  // two plots side by side in a 1200 px window
+constexpr double kLeft = 80.0;    // room for y tick labels and the rotated y title
 constexpr double kRight = 18.0;
-constexpr double kTop = 34.0;          // room for the plot title
+constexpr double kTop = 34.0;  // room for the plot title
 constexpr double kPlotHeight = 230.0;
 constexpr double kLegendTop = kTop + kPlotHeight + 56.0;  // below the x tick labels and x title
 constexpr double kLegendRow = 18.0;
-constexpr double kCharWidth = 6.6;     // average width of an 11 px sans-serif character
+constexpr double kCharWidth = 6.6;  // average width of an 11 px sans-serif character
 constexpr double kPlotWidth = kWidth - kLeft - kRight;
 
 std::string fixed(double value) {
@@ -32,25 +32,30 @@ std::string fixed(double value) {
 struct Frame {
   AxisTicks x, y;
   double px(double v) const {
-    const double t = x.log ? (std::log10(v) - std::log10(x.lo)) / (std::log10(x.hi) - std::log10(x.lo))
-                           : (v - x.lo) / (x.hi - x.lo);
+    const double t =
+        x.log ? (std::log10(v) - std::log10(x.lo)) / (std::log10(x.hi) - std::log10(x.lo))
+              : (v - x.lo) / (x.hi - x.lo);
     return kLeft + t * kPlotWidth;
   }
-  double py(double v) const { return kTop + kPlotHeight - (v - y.lo) / (y.hi - y.lo) * kPlotHeight; }
+  double py(double v) const {
+    return kTop + kPlotHeight - (v - y.lo) / (y.hi - y.lo) * kPlotHeight;
+  }
 };
 
 bool usable_x(const Plot& plot, double x) { return std::isfinite(x) && (!plot.log_x || x > 0.0); }
 
 void cross(std::ostringstream& out, double cx, double cy, const std::string& color) {
   const double r = 4.5;
-  out << "<path class=\"failed-marker\" d=\"M" << fixed(cx - r) << ' ' << fixed(cy - r) << "L" << fixed(cx + r)
-      << ' ' << fixed(cy + r) << "M" << fixed(cx - r) << ' ' << fixed(cy + r) << "L" << fixed(cx + r) << ' '
-      << fixed(cy - r) << "\" stroke=\"" << color << "\" stroke-width=\"2.2\" fill=\"none\"/>\n";
+  out << "<path class=\"failed-marker\" d=\"M" << fixed(cx - r) << ' ' << fixed(cy - r) << "L"
+      << fixed(cx + r) << ' ' << fixed(cy + r) << "M" << fixed(cx - r) << ' ' << fixed(cy + r)
+      << "L" << fixed(cx + r) << ' ' << fixed(cy - r) << "\" stroke=\"" << color
+      << "\" stroke-width=\"2.2\" fill=\"none\"/>\n";
 }
 
 void end_marker(std::ostringstream& out, double cx, double cy, const std::string& color) {
   out << "<rect class=\"stop-marker\" x=\"" << fixed(cx - 4) << "\" y=\"" << fixed(cy - 4)
-      << "\" width=\"8\" height=\"8\" fill=\"" << color << "\" stroke=\"#000\" stroke-width=\"1\"/>\n";
+      << "\" width=\"8\" height=\"8\" fill=\"" << color
+      << "\" stroke=\"#000\" stroke-width=\"1\"/>\n";
 }
 
 void draw_series(std::ostringstream& out, const Plot& plot, const Frame& frame, const Series& s) {
@@ -79,7 +84,8 @@ void draw_series(std::ostringstream& out, const Plot& plot, const Frame& frame, 
       continue;
     }
     if (failed) {
-      // A failed run breaks the line; its cross sits at its value, or on the x axis when it has none.
+      // A failed run breaks the line; its cross sits at its value, or on the x axis when it has
+      // none.
       flush();
       const double cy = std::isfinite(s.y[k]) ? frame.py(s.y[k]) : kTop + kPlotHeight;
       cross(out, frame.px(s.x[k]), cy, s.color);
@@ -92,7 +98,8 @@ void draw_series(std::ostringstream& out, const Plot& plot, const Frame& frame, 
     const double px = frame.px(s.x[k]), py = frame.py(s.y[k]);
     segment.emplace_back(px, py);
     if (s.point_markers)
-      out << "<circle cx=\"" << fixed(px) << "\" cy=\"" << fixed(py) << "\" r=\"3\" fill=\"" << s.color << "\"/>\n";
+      out << "<circle cx=\"" << fixed(px) << "\" cy=\"" << fixed(py) << "\" r=\"3\" fill=\""
+          << s.color << "\"/>\n";
     last_x = px;
     last_y = py;
   }
@@ -108,11 +115,20 @@ std::string escape_xml(const std::string& text) {
   out.reserve(text.size());
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -120,7 +136,8 @@ std::string escape_xml(const std::string& text) {
 
 std::string svg_plot(const Plot& plot, bool standalone) {
   // Data range over every drawable point (failed points count on x only).
-  double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min, y_min = x_min, y_max = -x_min;
+  double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min, y_min = x_min,
+         y_max = -x_min;
   bool any_failed = false, any_stopped = false;
   for (const auto& s : plot.series) {
     const std::size_t n = std::min(s.x.size(), s.y.size());
@@ -176,14 +193,16 @@ std::string svg_plot(const Plot& plot, bool standalone) {
 
   std::ostringstream out;
   if (standalone) out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out << "<svg class=\"plot\"" << (standalone ? " xmlns=\"http://www.w3.org/2000/svg\"" : "") << " width=\""
-      << fixed(kWidth) << "\" height=\"" << fixed(height) << "\" viewBox=\"0 0 " << fixed(kWidth) << ' '
-      << fixed(height) << "\" role=\"img\" aria-label=\"" << escape_xml(plot.title)
+  out << "<svg class=\"plot\"" << (standalone ? " xmlns=\"http://www.w3.org/2000/svg\"" : "")
+      << " width=\"" << fixed(kWidth) << "\" height=\"" << fixed(height) << "\" viewBox=\"0 0 "
+      << fixed(kWidth) << ' ' << fixed(height) << "\" role=\"img\" aria-label=\""
+      << escape_xml(plot.title)
       << "\" font-family=\"DejaVu Sans, Arial, Helvetica, sans-serif\" font-size=\"11\">\n";
   out << "<title>" << escape_xml(plot.title) << "</title>\n";
   out << "<rect x=\"0\" y=\"0\" width=\"" << fixed(kWidth) << "\" height=\"" << fixed(height)
       << "\" fill=\"#fff\"/>\n";
-  out << "<text class=\"plot-title\" x=\"" << fixed(kLeft + kPlotWidth / 2) << "\" y=\"20\" text-anchor=\"middle\""
+  out << "<text class=\"plot-title\" x=\"" << fixed(kLeft + kPlotWidth / 2)
+      << "\" y=\"20\" text-anchor=\"middle\""
       << " font-size=\"13\" font-weight=\"bold\">" << escape_xml(plot.title) << "</text>\n";
 
   // Grid, then axes with ticks and labels.
@@ -192,8 +211,8 @@ std::string svg_plot(const Plot& plot, bool standalone) {
     out << "<line x1=\"" << fixed(kLeft) << "\" x2=\"" << fixed(kLeft + kPlotWidth) << "\" y1=\""
         << fixed(frame.py(v)) << "\" y2=\"" << fixed(frame.py(v)) << "\"/>\n";
   for (const double v : frame.x.values)
-    out << "<line x1=\"" << fixed(frame.px(v)) << "\" x2=\"" << fixed(frame.px(v)) << "\" y1=\"" << fixed(kTop)
-        << "\" y2=\"" << fixed(kTop + kPlotHeight) << "\"/>\n";
+    out << "<line x1=\"" << fixed(frame.px(v)) << "\" x2=\"" << fixed(frame.px(v)) << "\" y1=\""
+        << fixed(kTop) << "\" y2=\"" << fixed(kTop + kPlotHeight) << "\"/>\n";
   out << "</g>\n";
 
   const double bottom = kTop + kPlotHeight;
@@ -202,31 +221,34 @@ std::string svg_plot(const Plot& plot, bool standalone) {
       << "\" stroke=\"#000\"/>\n";
   for (std::size_t k = 0; k < frame.x.values.size(); ++k) {
     const double px = frame.px(frame.x.values[k]);
-    out << "<line class=\"tick\" x1=\"" << fixed(px) << "\" x2=\"" << fixed(px) << "\" y1=\"" << fixed(bottom)
-        << "\" y2=\"" << fixed(bottom + 5) << "\" stroke=\"#000\"/>\n"
+    out << "<line class=\"tick\" x1=\"" << fixed(px) << "\" x2=\"" << fixed(px) << "\" y1=\""
+        << fixed(bottom) << "\" y2=\"" << fixed(bottom + 5) << "\" stroke=\"#000\"/>\n"
         << "<text class=\"tick-label\" x=\"" << fixed(px) << "\" y=\"" << fixed(bottom + 18)
         << "\" text-anchor=\"middle\">" << escape_xml(frame.x.labels[k]) << "</text>\n";
   }
-  out << "<text class=\"axis-title\" x=\"" << fixed(kLeft + kPlotWidth / 2) << "\" y=\"" << fixed(bottom + 38)
-      << "\" text-anchor=\"middle\" font-size=\"12\">" << escape_xml(plot.x_title) << "</text>\n</g>\n";
+  out << "<text class=\"axis-title\" x=\"" << fixed(kLeft + kPlotWidth / 2) << "\" y=\""
+      << fixed(bottom + 38) << "\" text-anchor=\"middle\" font-size=\"12\">"
+      << escape_xml(plot.x_title) << "</text>\n</g>\n";
 
-  out << "<g class=\"y-axis\">\n<line class=\"axis-line\" x1=\"" << fixed(kLeft) << "\" x2=\"" << fixed(kLeft)
-      << "\" y1=\"" << fixed(kTop) << "\" y2=\"" << fixed(bottom) << "\" stroke=\"#000\"/>\n";
+  out << "<g class=\"y-axis\">\n<line class=\"axis-line\" x1=\"" << fixed(kLeft) << "\" x2=\""
+      << fixed(kLeft) << "\" y1=\"" << fixed(kTop) << "\" y2=\"" << fixed(bottom)
+      << "\" stroke=\"#000\"/>\n";
   for (std::size_t k = 0; k < frame.y.values.size(); ++k) {
     const double py = frame.py(frame.y.values[k]);
-    out << "<line class=\"tick\" x1=\"" << fixed(kLeft - 5) << "\" x2=\"" << fixed(kLeft) << "\" y1=\""
-        << fixed(py) << "\" y2=\"" << fixed(py) << "\" stroke=\"#000\"/>\n"
+    out << "<line class=\"tick\" x1=\"" << fixed(kLeft - 5) << "\" x2=\"" << fixed(kLeft)
+        << "\" y1=\"" << fixed(py) << "\" y2=\"" << fixed(py) << "\" stroke=\"#000\"/>\n"
         << "<text class=\"tick-label\" x=\"" << fixed(kLeft - 8) << "\" y=\"" << fixed(py + 4)
         << "\" text-anchor=\"end\">" << escape_xml(frame.y.labels[k]) << "</text>\n";
   }
   const double title_y = kTop + kPlotHeight / 2;
-  out << "<text class=\"axis-title\" x=\"16\" y=\"" << fixed(title_y) << "\" transform=\"rotate(-90 16 "
-      << fixed(title_y) << ")\" text-anchor=\"middle\" font-size=\"12\">" << escape_xml(plot.y_title)
+  out << "<text class=\"axis-title\" x=\"16\" y=\"" << fixed(title_y)
+      << "\" transform=\"rotate(-90 16 " << fixed(title_y)
+      << ")\" text-anchor=\"middle\" font-size=\"12\">" << escape_xml(plot.y_title)
       << "</text>\n</g>\n";
 
   if (!has_data)
-    out << "<text class=\"no-data\" x=\"" << fixed(kLeft + kPlotWidth / 2) << "\" y=\"" << fixed(title_y)
-        << "\" text-anchor=\"middle\" fill=\"#888\">no data</text>\n";
+    out << "<text class=\"no-data\" x=\"" << fixed(kLeft + kPlotWidth / 2) << "\" y=\""
+        << fixed(title_y) << "\" text-anchor=\"middle\" fill=\"#888\">no data</text>\n";
   for (const auto& s : plot.series) draw_series(out, plot, frame, s);
 
   out << "<g class=\"legend\">\n";
@@ -234,8 +256,8 @@ std::string svg_plot(const Plot& plot, bool standalone) {
     const auto& e = entries[k];
     const double x = positions[k].first, y = positions[k].second;
     if (e.kind == "line") {
-      out << "<line x1=\"" << fixed(x) << "\" x2=\"" << fixed(x + 26) << "\" y1=\"" << fixed(y) << "\" y2=\""
-          << fixed(y) << "\" stroke=\"" << e.color << "\" stroke-width=\"2.5\"";
+      out << "<line x1=\"" << fixed(x) << "\" x2=\"" << fixed(x + 26) << "\" y1=\"" << fixed(y)
+          << "\" y2=\"" << fixed(y) << "\" stroke=\"" << e.color << "\" stroke-width=\"2.5\"";
       if (!e.dash.empty()) out << " stroke-dasharray=\"" << e.dash << "\"";
       out << "/>\n";
     } else if (e.kind == "cross") {
@@ -243,16 +265,17 @@ std::string svg_plot(const Plot& plot, bool standalone) {
     } else {
       end_marker(out, x + 13, y, e.color);
     }
-    out << "<text class=\"legend-label\" x=\"" << fixed(x + 32) << "\" y=\"" << fixed(y + 4) << "\">"
-        << escape_xml(e.label) << "</text>\n";
+    out << "<text class=\"legend-label\" x=\"" << fixed(x + 32) << "\" y=\"" << fixed(y + 4)
+        << "\">" << escape_xml(e.label) << "</text>\n";
   }
   out << "</g>\n</svg>\n";
   return out.str();
 }
 
 const std::string& palette_color(std::size_t k) {
-  static const std::vector<std::string> kPalette{"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                                                 "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  static const std::vector<std::string> kPalette{"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                                                 "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+                                                 "#bcbd22", "#17becf"};
   return kPalette[k % kPalette.size()];
 }
 

@@ -1,12 +1,11 @@
 // Reading CSV files back (csv.hpp).
-#include "drapelab/run_folder/csv.hpp"
-
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
+#include "drapelab/run_folder/csv.hpp"
 #include "drapelab/run_folder/files.hpp"
 
 namespace drapelab::run_folder {
@@ -44,7 +43,7 @@ CsvTable parse_csv(const std::string& text) {
   std::vector<std::vector<std::string>> records;
   std::vector<std::string> record;
   std::string cell;
-  bool quoted = false;        // inside a quoted cell
+  bool quoted = false;          // inside a quoted cell
   bool record_started = false;  // the current line has any character (a blank line is no record)
   auto end_record = [&] {
     if (record_started) {

@@ -11,7 +11,8 @@ namespace drapelab::run_folder {
 namespace {
 
 void write_bytes(std::FILE* file, const void* data, std::size_t size) {
-  if (std::fwrite(data, 1, size, file) != size) throw std::runtime_error("cannot write the point cache");
+  if (std::fwrite(data, 1, size, file) != size)
+    throw std::runtime_error("cannot write the point cache");
 }
 
 template <typename T>
@@ -29,11 +30,11 @@ Pc2Writer::Pc2Writer(const std::filesystem::path& path, int point_count) : point
   if (!file_) throw std::runtime_error("cannot write " + path.string());
   const char signature[12] = "POINTCACHE2";  // 11 characters and the terminating zero
   write_bytes(file_, signature, sizeof signature);
-  write_value<std::int32_t>(file_, 1);             // file version
+  write_value<std::int32_t>(file_, 1);  // file version
   write_value<std::int32_t>(file_, point_count);
-  write_value<float>(file_, 0.0f);                  // start frame
-  write_value<float>(file_, 1.0f);                  // one sample per recorded frame
-  write_value<std::int32_t>(file_, 0);             // samples so far
+  write_value<float>(file_, 0.0f);      // start frame
+  write_value<float>(file_, 1.0f);      // one sample per recorded frame
+  write_value<std::int32_t>(file_, 0);  // samples so far
   std::fflush(file_);
 }
 
@@ -77,7 +78,8 @@ std::optional<Pc2Header> read_pc2_header(const std::filesystem::path& path) {
   return Pc2Header{points, static_cast<int>(std::max(0LL, std::min<long long>(samples, complete)))};
 }
 
-std::optional<Eigen::Matrix3Xd> read_pc2_frame(const std::filesystem::path& path, int points, int frame) {
+std::optional<Eigen::Matrix3Xd> read_pc2_frame(const std::filesystem::path& path, int points,
+                                               int frame) {
   std::vector<float> values(std::size_t(points) * 3);
   std::FILE* f = std::fopen(path.string().c_str(), "rb");
   if (!f) return std::nullopt;

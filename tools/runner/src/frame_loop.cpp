@@ -32,8 +32,8 @@ void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* inter
 
 // The metrics of one state: cloth metrics, plus clearance from FCL when there are colliders (the
 // same queries for every solver).
-FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, const ClothState& state,
-                           int frame, double time) {
+FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup,
+                           const ClothState& state, int frame, double time) {
   FrameMeasure measure;
   measure.frame = frame;
   measure.time = time;
@@ -50,28 +50,32 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, c
 // Which stretch check refuses a measured frame (none when it passes); a NaN stretch is refused too:
 // a stretch spring far beyond its rest length means the state has exploded even if every number is
 // still finite.
-StopCause stretch_check(const scene::SolverSpec& spec, const ClothMetrics& metrics, double stretch_limit) {
+StopCause stretch_check(const scene::SolverSpec& spec, const ClothMetrics& metrics,
+                        double stretch_limit) {
   if (!(metrics.max_stretch <= spec.runaway_stretch)) return StopCause::runaway_stretch;
   if (!(metrics.max_stretch < stretch_limit)) return StopCause::stretch_limit;
   return StopCause::none;
 }
 
-void stop_for_stretch(SolverRun& run, const ClothModel& model, const FrameMeasure& measure, double stretch_limit) {
+void stop_for_stretch(SolverRun& run, const ClothModel& model, const FrameMeasure& measure,
+                      double stretch_limit) {
   const bool runaway = measure.failed == StopCause::runaway_stretch;
   run.status = SolverStatus::unstable;
   run.stopped_by = measure.failed;
   run.stopped_at_frame = measure.frame;
-  run.message = describe_most_stretched_spring(model, run.solver->state()) +
-                (runaway ? " (more than runaway_stretch = " + format_number(run.spec->runaway_stretch)
-                         : " (at least the stretch limit " + format_number(stretch_limit)) +
-                ") at frame " + std::to_string(measure.frame) + ", step " + std::to_string(run.steps) +
-                (runaway ? ". Try: a smaller dt, stiffer stretch springs, or more damping." : "");
+  run.message =
+      describe_most_stretched_spring(model, run.solver->state()) +
+      (runaway ? " (more than runaway_stretch = " + format_number(run.spec->runaway_stretch)
+               : " (at least the stretch limit " + format_number(stretch_limit)) +
+      ") at frame " + std::to_string(measure.frame) + ", step " + std::to_string(run.steps) +
+      (runaway ? ". Try: a smaller dt, stiffer stretch springs, or more damping." : "");
 }
 
 }  // namespace
 
-FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup, std::vector<SolverRun>& runs,
-                            const FrameLoopOptions& options, FrameObserver& observer) {
+FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup,
+                            std::vector<SolverRun>& runs, const FrameLoopOptions& options,
+                            FrameObserver& observer) {
   FrameLoopEnd end;
   for (int frame = 0; frame <= scene.frame_count(); ++frame) {
     if (frame > 0)
@@ -87,10 +91,12 @@ FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup, 
       FrameMeasure measure = measure_frame(scene, setup, run.solver->state(), frame, time);
       measure.failed = stretch_check(*run.spec, measure.metrics, options.stretch_limit);
       run.last_metrics = measure.metrics;
-      run.rest.add(time, measure.metrics.kinetic_energy, measure.metrics.gravity_energy, setup.model->total_mass());
+      run.rest.add(time, measure.metrics.kinetic_energy, measure.metrics.gravity_energy,
+                   setup.model->total_mass());
       ++run.frames_recorded;
       observer.measured(run, measure);
-      if (measure.failed != StopCause::none) stop_for_stretch(run, *setup.model, measure, options.stretch_limit);
+      if (measure.failed != StopCause::none)
+        stop_for_stretch(run, *setup.model, measure, options.stretch_limit);
     }
     observer.frame_done(frame, time, runs);
     end.last_frame = frame;

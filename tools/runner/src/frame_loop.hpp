@@ -1,8 +1,8 @@
 // The one frame loop of every in-process run: drapelab run (run_scene) and the trials of the
-// stability, study and bench verbs (simulate_solver). Each frame, every running solver takes its own
-// steps_per_frame steps of dt; then each is measured the same way (cloth metrics, clearance with
-// colliders) and checked (its status, the scene's runaway_stretch, an optional stretch limit). A
-// solver that stops, stops alone; the others go on.
+// stability, study and bench verbs (simulate_solver). Each frame, every running solver takes its
+// own steps_per_frame steps of dt; then each is measured the same way (cloth metrics, clearance
+// with colliders) and checked (its status, the scene's runaway_stretch, an optional stretch limit).
+// A solver that stops, stops alone; the others go on.
 #pragma once
 
 #include <atomic>
@@ -20,8 +20,8 @@ namespace drapelab::runner {
 
 // One solver's state at one recorded frame, as measured.
 struct FrameMeasure {
-  int frame = 0;      // 0 = the initial state
-  double time = 0.0;  // s
+  int frame = 0;                               // 0 = the initial state
+  double time = 0.0;                           // s
   ClothMetrics metrics;                        // clearance filled in when there are colliders
   std::optional<CollisionMetrics> collisions;  // per collider, when there are colliders
   StopCause failed = StopCause::none;          // the stretch check this frame failed, if any
@@ -45,12 +45,14 @@ struct FrameLoopOptions {
 };
 
 struct FrameLoopEnd {
-  int last_frame = 0;        // the last frame measured
-  bool interrupted = false;  // stopped by options.interrupt (a partly stepped frame is not measured)
+  int last_frame = 0;  // the last frame measured
+  bool interrupted =
+      false;  // stopped by options.interrupt (a partly stepped frame is not measured)
 };
 
 // Runs `runs` (built from `setup`) through scene.duration, frame by frame.
-FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup, std::vector<SolverRun>& runs,
-                            const FrameLoopOptions& options, FrameObserver& observer);
+FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup,
+                            std::vector<SolverRun>& runs, const FrameLoopOptions& options,
+                            FrameObserver& observer);
 
 }  // namespace drapelab::runner

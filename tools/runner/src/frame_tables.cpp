@@ -36,37 +36,40 @@ StateDifference compare_states(const ClothModel& model, const ClothState& a, con
 
 FrameTables::FrameTables(const std::filesystem::path& folder)
     : metrics_(folder / "metrics.csv",
-               {"solver", "frame", "time", "kinetic_energy", "gravity_energy", "spring_energy", "max_stretch",
-                "mean_stretch", "min_clearance", "max_penetration", "contact_count", "centroid_x",
-                "centroid_y", "centroid_z", "lowest_y", "projected_area", "drape_coefficient",
-                "drape_nodes"}),
-      compare_(folder / "compare.csv",
-               {"solver_a", "solver_b", "frame", "time", "rms_distance", "max_distance", "hausdorff_distance"}),
-      contacts_(folder / "contacts.csv",
-                {"solver", "frame", "time", "collider", "contact_count", "normal_force", "friction_force",
-                 "max_penetration"}) {}
+               {"solver", "frame", "time", "kinetic_energy", "gravity_energy", "spring_energy",
+                "max_stretch", "mean_stretch", "min_clearance", "max_penetration", "contact_count",
+                "centroid_x", "centroid_y", "centroid_z", "lowest_y", "projected_area",
+                "drape_coefficient", "drape_nodes"}),
+      compare_(folder / "compare.csv", {"solver_a", "solver_b", "frame", "time", "rms_distance",
+                                        "max_distance", "hausdorff_distance"}),
+      contacts_(folder / "contacts.csv", {"solver", "frame", "time", "collider", "contact_count",
+                                          "normal_force", "friction_force", "max_penetration"}) {}
 
-void FrameTables::add_metrics(const std::string& solver, int frame, double time, const ClothMetrics& m) {
+void FrameTables::add_metrics(const std::string& solver, int frame, double time,
+                              const ClothMetrics& m) {
   metrics_.row({solver, std::to_string(frame), format_number(time), format_number(m.kinetic_energy),
-                format_number(m.gravity_energy), format_number(m.spring_energy), format_number(m.max_stretch),
-                format_number(m.mean_stretch), optional_cell(m.min_clearance), optional_cell(m.max_penetration),
-                optional_cell(m.contact_count), format_number(m.centroid.x()), format_number(m.centroid.y()),
-                format_number(m.centroid.z()), format_number(m.lowest_y), format_number(m.projected_area),
+                format_number(m.gravity_energy), format_number(m.spring_energy),
+                format_number(m.max_stretch), format_number(m.mean_stretch),
+                optional_cell(m.min_clearance), optional_cell(m.max_penetration),
+                optional_cell(m.contact_count), format_number(m.centroid.x()),
+                format_number(m.centroid.y()), format_number(m.centroid.z()),
+                format_number(m.lowest_y), format_number(m.projected_area),
                 optional_cell(m.drape_coefficient), optional_cell(m.drape_nodes)});
 }
 
-void FrameTables::add_comparison(const std::string& solver_a, const std::string& solver_b, int frame,
-                                 double time, const StateDifference& difference) {
+void FrameTables::add_comparison(const std::string& solver_a, const std::string& solver_b,
+                                 int frame, double time, const StateDifference& difference) {
   compare_.row({solver_a, solver_b, std::to_string(frame), format_number(time),
                 format_number(difference.rms_distance), format_number(difference.max_distance),
                 format_number(difference.hausdorff_distance)});
 }
 
-void FrameTables::add_contact(const std::string& solver, int frame, double time, const std::string& collider,
-                              int contact_count, double normal_force, double friction_force,
-                              double max_penetration) {
-  contacts_.row({solver, std::to_string(frame), format_number(time), collider, std::to_string(contact_count),
-                 format_number(normal_force), format_number(friction_force), format_number(max_penetration)});
+void FrameTables::add_contact(const std::string& solver, int frame, double time,
+                              const std::string& collider, int contact_count, double normal_force,
+                              double friction_force, double max_penetration) {
+  contacts_.row({solver, std::to_string(frame), format_number(time), collider,
+                 std::to_string(contact_count), format_number(normal_force),
+                 format_number(friction_force), format_number(max_penetration)});
 }
 
 void FrameTables::flush() {

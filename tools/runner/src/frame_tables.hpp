@@ -23,10 +23,11 @@ class FrameTables {
  public:
   explicit FrameTables(const std::filesystem::path& folder);
   void add_metrics(const std::string& solver, int frame, double time, const ClothMetrics& m);
-  void add_comparison(const std::string& solver_a, const std::string& solver_b, int frame, double time,
-                      const StateDifference& difference);
+  void add_comparison(const std::string& solver_a, const std::string& solver_b, int frame,
+                      double time, const StateDifference& difference);
   void add_contact(const std::string& solver, int frame, double time, const std::string& collider,
-                   int contact_count, double normal_force, double friction_force, double max_penetration);
+                   int contact_count, double normal_force, double friction_force,
+                   double max_penetration);
   void flush();  // at the end of each frame
 
  private:

@@ -21,7 +21,8 @@ void read_table(const std::filesystem::path& path, const std::vector<std::string
                 const std::set<int>& frames, std::map<int, GoldenRows>& out) {
   const run_folder::CsvTable table = run_folder::parse_csv(run_folder::read_file(path));
   const std::vector<std::string>& header = table.header;
-  const std::set<std::string> skipped = {"solver", "frame", "time", "collider", "solver_a", "solver_b"};
+  const std::set<std::string> skipped = {"solver",   "frame",    "time",
+                                         "collider", "solver_a", "solver_b"};
   const auto frame_column = table.column("frame");
   if (!frame_column) return;
   std::vector<std::size_t> keys;
@@ -34,11 +35,14 @@ void read_table(const std::filesystem::path& path, const std::vector<std::string
     std::string row;
     for (std::size_t k : keys) row += (row.empty() ? "" : "/") + cells[k];
     for (std::size_t c = 0; c < header.size(); ++c)
-      if (!skipped.count(header[c])) out[frame][row][header[c]] = run_folder::parse_number(cells[c]);
+      if (!skipped.count(header[c]))
+        out[frame][row][header[c]] = run_folder::parse_number(cells[c]);
   }
 }
 
-bool is_count_column(const std::string& column) { return column == "contact_count" || column == "drape_nodes"; }
+bool is_count_column(const std::string& column) {
+  return column == "contact_count" || column == "drape_nodes";
+}
 
 bool within(const GoldenTolerance& t, const std::string& column, std::optional<double> expected,
             std::optional<double> actual) {
@@ -48,7 +52,9 @@ bool within(const GoldenTolerance& t, const std::string& column, std::optional<d
   return difference <= t.absolute + t.relative * std::abs(*expected);
 }
 
-ordered_json value_json(std::optional<double> value) { return value ? ordered_json(*value) : ordered_json(); }
+ordered_json value_json(std::optional<double> value) {
+  return value ? ordered_json(*value) : ordered_json();
+}
 
 }  // namespace
 
@@ -58,7 +64,8 @@ std::vector<int> golden_frames(int frame_count) {
   return {frames.begin(), frames.end()};
 }
 
-std::map<int, GoldenRows> read_golden_values(const std::filesystem::path& run_dir, const std::vector<int>& frames) {
+std::map<int, GoldenRows> read_golden_values(const std::filesystem::path& run_dir,
+                                             const std::vector<int>& frames) {
   const std::set<int> chosen(frames.begin(), frames.end());
   std::map<int, GoldenRows> values;
   read_table(run_dir / "metrics.csv", {"solver"}, chosen, values);
@@ -67,7 +74,8 @@ std::map<int, GoldenRows> read_golden_values(const std::filesystem::path& run_di
   return values;
 }
 
-std::vector<GoldenDifference> compare_golden(const Golden& golden, const std::map<int, GoldenRows>& actual) {
+std::vector<GoldenDifference> compare_golden(const Golden& golden,
+                                             const std::map<int, GoldenRows>& actual) {
   std::vector<GoldenDifference> differences;
   static const GoldenRows kNoRows;
   static const std::map<std::string, std::optional<double>> kNoColumns;
@@ -77,7 +85,8 @@ std::vector<GoldenDifference> compare_golden(const Golden& golden, const std::ma
   for (int frame : frames) {
     const auto expected_frame = golden.frames.find(frame);
     const auto actual_frame = actual.find(frame);
-    const GoldenRows& expected_rows = expected_frame != golden.frames.end() ? expected_frame->second : kNoRows;
+    const GoldenRows& expected_rows =
+        expected_frame != golden.frames.end() ? expected_frame->second : kNoRows;
     const GoldenRows& actual_rows = actual_frame != actual.end() ? actual_frame->second : kNoRows;
     std::set<std::pair<std::string, std::string>> cells;
     for (const auto& [row, columns] : expected_rows)
@@ -95,7 +104,8 @@ std::vector<GoldenDifference> compare_golden(const Golden& golden, const std::ma
       const auto expected = lookup(expected_rows), found = lookup(actual_rows);
       const bool present_both = expected.has_value() && found.has_value();
       if (present_both && within(golden.tolerance, column, *expected, *found)) continue;
-      differences.push_back({frame, row, column, expected ? *expected : std::nullopt, found ? *found : std::nullopt});
+      differences.push_back(
+          {frame, row, column, expected ? *expected : std::nullopt, found ? *found : std::nullopt});
     }
   }
   return differences;
@@ -103,11 +113,12 @@ std::vector<GoldenDifference> compare_golden(const Golden& golden, const std::ma
 
 std::string describe_difference(const GoldenDifference& d) {
   auto text = [](std::optional<double> v) { return v ? format_number(*v) : std::string("(none)"); };
-  std::string line = "frame " + std::to_string(d.frame) + " " + d.row + " " + d.column + ": " + text(d.expected) +
-                     " -> " + text(d.actual);
+  std::string line = "frame " + std::to_string(d.frame) + " " + d.row + " " + d.column + ": " +
+                     text(d.expected) + " -> " + text(d.actual);
   if (d.expected && d.actual && *d.expected != 0.0) {
     char change[32];
-    std::snprintf(change, sizeof change, " (%+.3g %%)", 100.0 * (*d.actual - *d.expected) / std::abs(*d.expected));
+    std::snprintf(change, sizeof change, " (%+.3g %%)",
+                  100.0 * (*d.actual - *d.expected) / std::abs(*d.expected));
     line += change;
   }
   return line;
@@ -146,12 +157,14 @@ std::optional<Golden> golden_from_json(const std::string& text, std::string* err
     golden.scene = j.at("scene").get<std::string>();
     golden.overrides = j.at("overrides").get<std::vector<std::string>>();
     const auto& t = j.at("tolerance");
-    golden.tolerance = {t.at("relative").get<double>(), t.at("absolute").get<double>(), t.at("count").get<double>()};
+    golden.tolerance = {t.at("relative").get<double>(), t.at("absolute").get<double>(),
+                        t.at("count").get<double>()};
     for (const auto& [frame, rows] : j.at("frames").items()) {
       GoldenRows& out = golden.frames[std::stoi(frame)];
       for (const auto& [row, columns] : rows.items())
         for (const auto& [column, value] : columns.items())
-          out[row][column] = value.is_null() ? std::nullopt : std::optional<double>(value.get<double>());
+          out[row][column] =
+              value.is_null() ? std::nullopt : std::optional<double>(value.get<double>());
     }
     return golden;
   } catch (const std::exception& e) {

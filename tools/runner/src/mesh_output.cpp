@@ -8,18 +8,20 @@
 
 namespace drapelab::runner {
 
-void write_obj(const std::filesystem::path& path, const ClothModel& model, const Eigen::Matrix3Xd& x,
-               const std::string& comment) {
+void write_obj(const std::filesystem::path& path, const ClothModel& model,
+               const Eigen::Matrix3Xd& x, const std::string& comment) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw std::runtime_error("cannot write " + path.string());
   out << "# " << comment << "\n# vertex k is particle k (y up, metres)\n";
   for (Eigen::Index k = 0; k < x.cols(); ++k)
-    out << "v " << format_number(x(0, k)) << ' ' << format_number(x(1, k)) << ' ' << format_number(x(2, k)) << '\n';
+    out << "v " << format_number(x(0, k)) << ' ' << format_number(x(1, k)) << ' '
+        << format_number(x(2, k)) << '\n';
   for (Eigen::Index k = 0; k < model.uvs.cols(); ++k)
     out << "vt " << format_number(model.uvs(0, k)) << ' ' << format_number(model.uvs(1, k)) << '\n';
   for (Eigen::Index t = 0; t < model.triangles.cols(); ++t) {
     out << 'f';
-    for (int c = 0; c < 3; ++c) out << ' ' << model.triangles(c, t) + 1 << '/' << model.triangles(c, t) + 1;
+    for (int c = 0; c < 3; ++c)
+      out << ' ' << model.triangles(c, t) + 1 << '/' << model.triangles(c, t) + 1;
     out << '\n';
   }
   if (model.triangles.cols() == 0 && x.cols() > 1) {  // a chain: one polyline through the particles

@@ -6,7 +6,8 @@
 
 namespace drapelab::runner {
 
-void RestTracker::add(double time, double kinetic_energy, double gravity_energy, double total_mass) {
+void RestTracker::add(double time, double kinetic_energy, double gravity_energy,
+                      double total_mass) {
   times_.push_back(time);
   kinetic_.push_back(kinetic_energy);
   gravity_.push_back(gravity_energy);

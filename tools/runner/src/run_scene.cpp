@@ -1,6 +1,6 @@
 // drapelab run: the frame loop (frame_loop.hpp) with an observer that writes every measured frame
-// into the run folder: metrics.csv, contacts.csv, compare.csv, meshes, and summary.json at the start
-// and the end.
+// into the run folder: metrics.csv, contacts.csv, compare.csv, meshes, and summary.json at the
+// start and the end.
 #include "drapelab/runner/run_scene.hpp"
 
 #include <ostream>
@@ -21,15 +21,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool wants_obj(scene::MeshOutput m) { return m == scene::MeshOutput::obj || m == scene::MeshOutput::both; }
-bool wants_pc2(scene::MeshOutput m) { return m == scene::MeshOutput::pc2 || m == scene::MeshOutput::both; }
+bool wants_obj(scene::MeshOutput m) {
+  return m == scene::MeshOutput::obj || m == scene::MeshOutput::both;
+}
+bool wants_pc2(scene::MeshOutput m) {
+  return m == scene::MeshOutput::pc2 || m == scene::MeshOutput::both;
+}
 
-// Writes each measured frame into the run folder's tables and meshes, flushed frame by frame so that
-// every file stays complete whenever the run stops.
+// Writes each measured frame into the run folder's tables and meshes, flushed frame by frame so
+// that every file stays complete whenever the run stops.
 class RunFolderWriter final : public FrameObserver {
  public:
   RunFolderWriter(const fs::path& out, const scene::Scene& scene, const SceneSetup& setup)
-      : out_(out), scene_(scene), setup_(setup), tables_(out), obj_(wants_obj(scene.output.meshes)) {}
+      : out_(out),
+        scene_(scene),
+        setup_(setup),
+        tables_(out),
+        obj_(wants_obj(scene.output.meshes)) {}
 
   void measured(const SolverRun& run, const FrameMeasure& measure) override {
     const std::string& name = run.spec->name;
@@ -40,14 +48,17 @@ class RunFolderWriter final : public FrameObserver {
         const ColliderForce force = c < forces.size() ? forces[c] : ColliderForce{};
         const auto& per_collider = measure.collisions->per_collider[c];
         tables_.add_contact(name, measure.frame, measure.time, setup_.contacts->collider(c).name,
-                            per_collider.contact_count, force.normal, force.friction, per_collider.max_penetration);
+                            per_collider.contact_count, force.normal, force.friction,
+                            per_collider.max_penetration);
       }
     }
     tables_.add_metrics(name, measure.frame, measure.time, measure.metrics);
     const ClothState& state = run.solver->state();
     if (obj_)
-      write_obj(out_ / run_folder::kMeshesFolder / run_folder::obj_frame_name(name, measure.frame), *setup_.model, state.x,
-                name + " frame " + std::to_string(measure.frame) + " t=" + format_number(measure.time) + " s");
+      write_obj(out_ / run_folder::kMeshesFolder / run_folder::obj_frame_name(name, measure.frame),
+                *setup_.model, state.x,
+                name + " frame " + std::to_string(measure.frame) +
+                    " t=" + format_number(measure.time) + " s");
     if (run.point_cache) run.point_cache->append(state.x);
   }
 
@@ -56,8 +67,9 @@ class RunFolderWriter final : public FrameObserver {
     for (std::size_t a = 0; a < runs.size(); ++a)
       for (std::size_t b = a + 1; b < runs.size(); ++b)
         if (runs[a].running() && runs[b].running())
-          tables_.add_comparison(runs[a].spec->name, runs[b].spec->name, frame, time,
-                                 compare_states(*setup_.model, runs[a].solver->state(), runs[b].solver->state()));
+          tables_.add_comparison(
+              runs[a].spec->name, runs[b].spec->name, frame, time,
+              compare_states(*setup_.model, runs[a].solver->state(), runs[b].solver->state()));
     tables_.flush();
   }
 
@@ -74,7 +86,8 @@ class RunFolderWriter final : public FrameObserver {
 RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream& log) {
   RunResult result;
   const std::string resolved = scene::resolved_scene_yaml(scene);
-  if (const auto problem = run_folder::prepare_run_folder(options.out_dir, resolved, options.force)) {
+  if (const auto problem =
+          run_folder::prepare_run_folder(options.out_dir, resolved, options.force)) {
     log << "error: " << *problem << "\n";
     result.exit_code = kExitBadInput;
     return result;
@@ -97,15 +110,17 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
   if (wants_obj(scene.output.meshes) || wants_pc2(scene.output.meshes)) {
     const fs::path meshes = out / run_folder::kMeshesFolder;
     fs::create_directories(meshes);
-    write_obj(meshes / "rest.obj", model, model.rest_positions, "drapelab rest pose of " + scene.name);
+    write_obj(meshes / "rest.obj", model, model.rest_positions,
+              "drapelab rest pose of " + scene.name);
     if (wants_pc2(scene.output.meshes))
       for (auto& run : runs)
-        run.point_cache = std::make_unique<run_folder::Pc2Writer>(meshes / run_folder::point_cache_name(run.spec->name),
-                                                                   model.particle_count());
+        run.point_cache = std::make_unique<run_folder::Pc2Writer>(
+            meshes / run_folder::point_cache_name(run.spec->name), model.particle_count());
   }
 
   RunInfo info{"running", options.command_line, scene.frame_count(), 0};
-  run_folder::write_file_atomically(out / run_folder::kSummaryJson, summary_json(scene, model, runs, info));
+  run_folder::write_file_atomically(out / run_folder::kSummaryJson,
+                                    summary_json(scene, model, runs, info));
   FrameLoopEnd end;
   {
     RunFolderWriter writer(out, scene, setup);
@@ -117,7 +132,8 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
   const bool interrupted = options.interrupt && options.interrupt->load(std::memory_order_relaxed);
   info.state = interrupted ? "interrupted" : "finished";
   info.frames_done = end.last_frame;
-  run_folder::write_file_atomically(out / run_folder::kSummaryJson, summary_json(scene, model, runs, info));
+  run_folder::write_file_atomically(out / run_folder::kSummaryJson,
+                                    summary_json(scene, model, runs, info));
   result.state = info.state;
   result.frames_done = info.frames_done;
   bool all_ok = true;
@@ -125,7 +141,8 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
     result.solvers.push_back(outcome_of(run));
     if (run.status == SolverStatus::ok) continue;
     all_ok = false;
-    log << "solver '" << run.spec->name << "' " << solver_status_name(run.status) << ": " << run.message << "\n";
+    log << "solver '" << run.spec->name << "' " << solver_status_name(run.status) << ": "
+        << run.message << "\n";
   }
   if (interrupted) {
     log << "interrupted after frame " << info.frames_done << "; every file in " << out.string()

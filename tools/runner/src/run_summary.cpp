@@ -1,8 +1,7 @@
 #include "run_summary.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
@@ -13,7 +12,9 @@ namespace {
 using nlohmann::ordered_json;
 
 // JSON has no infinity or NaN; such values become null.
-ordered_json number_or_null(double value) { return std::isfinite(value) ? ordered_json(value) : ordered_json(); }
+ordered_json number_or_null(double value) {
+  return std::isfinite(value) ? ordered_json(value) : ordered_json();
+}
 
 ordered_json metrics_json(const ClothMetrics& m) {
   ordered_json j;
@@ -25,10 +26,12 @@ ordered_json metrics_json(const ClothMetrics& m) {
   j["min_clearance"] = m.min_clearance ? ordered_json(*m.min_clearance) : ordered_json();
   j["max_penetration"] = m.max_penetration ? ordered_json(*m.max_penetration) : ordered_json();
   j["contact_count"] = m.contact_count ? ordered_json(*m.contact_count) : ordered_json();
-  j["centroid"] = {number_or_null(m.centroid.x()), number_or_null(m.centroid.y()), number_or_null(m.centroid.z())};
+  j["centroid"] = {number_or_null(m.centroid.x()), number_or_null(m.centroid.y()),
+                   number_or_null(m.centroid.z())};
   j["lowest_y"] = number_or_null(m.lowest_y);
   j["projected_area"] = number_or_null(m.projected_area);
-  j["drape_coefficient"] = m.drape_coefficient ? ordered_json(*m.drape_coefficient) : ordered_json();
+  j["drape_coefficient"] =
+      m.drape_coefficient ? ordered_json(*m.drape_coefficient) : ordered_json();
   j["drape_nodes"] = m.drape_nodes ? ordered_json(*m.drape_nodes) : ordered_json();
   return j;
 }
@@ -39,7 +42,8 @@ ordered_json solver_json(const SolverRun& run) {
   j["type"] = solver_type_name(run.spec->type);
   j["status"] = solver_status_name(run.status);
   j["message"] = run.message;
-  if (run.spec->type == SolverType::spring_damper) j["integrator"] = integrator_name(run.spec->integrator);
+  if (run.spec->type == SolverType::spring_damper)
+    j["integrator"] = integrator_name(run.spec->integrator);
   j["dt"] = run.spec->dt;
   j["steps_per_frame"] = run.spec->steps_per_frame;
   if (!run.spec->note.empty()) j["note"] = run.spec->note;
@@ -95,16 +99,19 @@ std::string summary_json(const scene::Scene& scene, const ClothModel& model,
               {"frame_rate", scene.frame_rate},
               {"frames_planned", info.frames_planned},
               {"frames_done", info.frames_done}};
-  j["model"] = {{"particles", model.particle_count()},
-                {"pinned", (model.inverse_mass.array() == 0.0).count()},
-                {"triangles", model.triangles.cols()},
-                {"springs",
-                 {{"stretch", model.springs.count(SpringKind::stretch)},
-                  {"shear", model.springs.count(SpringKind::shear)},
-                  {"bend", model.springs.count(SpringKind::bend)}}},
-                {"total_mass", model.total_mass()},
-                {"rest_area", model.rest_area()},
-                {"stable_symplectic_step", number_or_null(stable_step_estimate(model, scene.cloth.air_damping, scene.contact_rates(), Integrator::symplectic_euler))}};
+  j["model"] = {
+      {"particles", model.particle_count()},
+      {"pinned", (model.inverse_mass.array() == 0.0).count()},
+      {"triangles", model.triangles.cols()},
+      {"springs",
+       {{"stretch", model.springs.count(SpringKind::stretch)},
+        {"shear", model.springs.count(SpringKind::shear)},
+        {"bend", model.springs.count(SpringKind::bend)}}},
+      {"total_mass", model.total_mass()},
+      {"rest_area", model.rest_area()},
+      {"stable_symplectic_step",
+       number_or_null(stable_step_estimate(model, scene.cloth.air_damping, scene.contact_rates(),
+                                           Integrator::symplectic_euler))}};
   ordered_json solvers = ordered_json::object();
   for (const auto& run : runs) solvers[run.spec->name] = solver_json(run);
   j["solvers"] = solvers;

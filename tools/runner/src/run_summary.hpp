@@ -11,9 +11,9 @@
 namespace drapelab::runner {
 
 struct RunInfo {
-  std::string state;         // running | finished | interrupted
+  std::string state;  // running | finished | interrupted
   std::string command_line;
-  int frames_planned = 0;    // after frame 0
+  int frames_planned = 0;  // after frame 0
   int frames_done = 0;
 };
 

@@ -7,24 +7,29 @@ namespace {
 
 // Up, against gravity (y without gravity): the drape shadow is cast along it.
 Eigen::Vector3d up_of(const scene::Scene& scene) {
-  return scene.gravity.squaredNorm() > 0.0 ? Eigen::Vector3d(-scene.gravity) : Eigen::Vector3d::UnitY();
+  return scene.gravity.squaredNorm() > 0.0 ? Eigen::Vector3d(-scene.gravity)
+                                           : Eigen::Vector3d::UnitY();
 }
 
 }  // namespace
 
 SceneSetup build_scene_setup(const scene::Scene& scene, std::shared_ptr<const ClothModel> model) {
   SceneSetup setup;
-  setup.model = model ? std::move(model) : std::make_shared<const ClothModel>(scene::build_scene_cloth(scene));
+  setup.model = model ? std::move(model)
+                      : std::make_shared<const ClothModel>(scene::build_scene_cloth(scene));
   setup.initial = scene::initial_scene_state(scene, *setup.model);
   if (!scene.colliders.empty())
     setup.contacts = std::make_shared<const ContactModel>(
         scene.colliders, ContactParameters{scene.contact.stiffness, scene.contact.damping},
         setup.model->thickness);
-  if (scene.drape_support) setup.drape = std::make_shared<const DrapeMeter>(*setup.model, scene.drape_support->disc, up_of(scene));
+  if (scene.drape_support)
+    setup.drape =
+        std::make_shared<const DrapeMeter>(*setup.model, scene.drape_support->disc, up_of(scene));
   return setup;
 }
 
-ClothMetrics frame_metrics(const SceneSetup& setup, const scene::Scene& scene, const ClothState& state) {
+ClothMetrics frame_metrics(const SceneSetup& setup, const scene::Scene& scene,
+                           const ClothState& state) {
   ClothMetrics metrics = compute_cloth_metrics(*setup.model, state, scene.gravity);
   if (setup.drape) {
     const DrapeMeasure drape = setup.drape->measure(*setup.model, state.x);

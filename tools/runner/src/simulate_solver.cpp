@@ -13,7 +13,8 @@ namespace {
 
 class TrialObserver final : public FrameObserver {
  public:
-  TrialObserver(SimulationResult& result, const SimulationOptions& options) : result_(result), options_(options) {}
+  TrialObserver(SimulationResult& result, const SimulationOptions& options)
+      : result_(result), options_(options) {}
 
   void measured(const SolverRun& run, const FrameMeasure& measure) override {
     result_.final_metrics = measure.metrics;
@@ -41,7 +42,8 @@ double SimulationResult::second_half_wall_seconds_per_simulated_second(double fr
   const int last = static_cast<int>(stepping_seconds_at_frame.size()) - 1;
   if (last < 2) return 0.0;
   const int middle = last / 2;
-  return (stepping_seconds_at_frame[last] - stepping_seconds_at_frame[middle]) / ((last - middle) * frame_period);
+  return (stepping_seconds_at_frame[last] - stepping_seconds_at_frame[middle]) /
+         ((last - middle) * frame_period);
 }
 
 SimulationResult simulate_solver(const scene::Scene& scene, const scene::SolverSpec& spec,

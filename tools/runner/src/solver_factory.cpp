@@ -12,7 +12,8 @@ namespace {
 
 // Our spring-damper cloth: bare, or a plugin in a Bullet world of its own (the default).
 std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scene::SolverSpec& spec,
-                                           std::shared_ptr<const ClothModel> model, const ClothState& initial,
+                                           std::shared_ptr<const ClothModel> model,
+                                           const ClothState& initial,
                                            std::shared_ptr<const ContactModel> contacts) {
   SpringDamperSettings settings;
   settings.integrator = spec.integrator;
@@ -30,16 +31,17 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
   // use, keep the analytic poses.
   auto poses = std::make_shared<ColliderPoseTable>(scene.colliders.size());
   if (contacts)
-    settings.contacts = std::make_shared<const ContactModel>(contacts->colliders(), contacts->parameters(),
-                                                             contacts->query().radius(), poses);
+    settings.contacts = std::make_shared<const ContactModel>(
+        contacts->colliders(), contacts->parameters(), contacts->query().radius(), poses);
   auto guest = std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
-  return bullet::host_in_bullet_world(std::move(guest), std::move(poses), scene.colliders, scene.gravity,
-                                      spec.collider_margin);
+  return bullet::host_in_bullet_world(std::move(guest), std::move(poses), scene.colliders,
+                                      scene.gravity, spec.collider_margin);
 }
 
 // Bullet's classic cloth on the scene's colliders (docs/bullet.md, "Fairness table").
 std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scene::SolverSpec& spec,
-                                           std::shared_ptr<const ClothModel> model, const ClothState& initial) {
+                                           std::shared_ptr<const ClothModel> model,
+                                           const ClothState& initial) {
   bullet::BulletSoftBodyOptions options;
   options.dt = spec.dt;
   options.iterations = spec.iterations;
@@ -50,12 +52,15 @@ std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scen
   options.gravity = scene.gravity;
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
-  return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders, options);
+  return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders,
+                                             options);
 }
 
 // Bullet's deformable-world cloth on the scene's colliders.
-std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene, const scene::SolverSpec& spec,
-                                              std::shared_ptr<const ClothModel> model, const ClothState& initial) {
+std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
+                                              const scene::SolverSpec& spec,
+                                              std::shared_ptr<const ClothModel> model,
+                                              const ClothState& initial) {
   bullet::BulletDeformableOptions options;
   options.dt = spec.dt;
   options.margin = spec.margin;
@@ -64,22 +69,27 @@ std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene, const s
   options.gravity = scene.gravity;
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
-  return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial, scene.colliders, options);
+  return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial,
+                                               scene.colliders, options);
 }
 
 }  // namespace
 
 std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
-                                    std::shared_ptr<const ClothModel> model, const ClothState& initial,
+                                    std::shared_ptr<const ClothModel> model,
+                                    const ClothState& initial,
                                     std::shared_ptr<const ContactModel> contacts) {
   switch (spec.type) {
-    case SolverType::spring_damper: return make_spring_damper(scene, spec, std::move(model), initial,
-                                                              std::move(contacts));
-    case SolverType::bullet_softbody: return make_classic_cloth(scene, spec, std::move(model), initial);
-    case SolverType::bullet_deformable: return make_deformable_cloth(scene, spec, std::move(model), initial);
+    case SolverType::spring_damper:
+      return make_spring_damper(scene, spec, std::move(model), initial, std::move(contacts));
+    case SolverType::bullet_softbody:
+      return make_classic_cloth(scene, spec, std::move(model), initial);
+    case SolverType::bullet_deformable:
+      return make_deformable_cloth(scene, spec, std::move(model), initial);
   }
   // Every type has a case above, so reaching here is a programming error.
-  throw std::logic_error(std::string("solver type '") + solver_type_name(spec.type) + "' has no implementation");
+  throw std::logic_error(std::string("solver type '") + solver_type_name(spec.type) +
+                         "' has no implementation");
 }
 
 }  // namespace drapelab::runner

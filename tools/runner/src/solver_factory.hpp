@@ -13,7 +13,8 @@ namespace drapelab::runner {
 
 // `contacts` holds the scene's colliders (may be null when there are none).
 std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
-                                    std::shared_ptr<const ClothModel> model, const ClothState& initial,
+                                    std::shared_ptr<const ClothModel> model,
+                                    const ClothState& initial,
                                     std::shared_ptr<const ContactModel> contacts);
 
 }  // namespace drapelab::runner

@@ -1,7 +1,7 @@
-// Bullet's deformable world (btDeformableMultiBodyDynamicsWorld) with our damped springs as a force,
-// as a drapelab Solver: the same ks and kd per spring (bend springs included), gravity as a force,
-// contacts as velocity constraints against its own kinematic copies of the scene's colliders. This
-// header includes no Bullet header.
+// Bullet's deformable world (btDeformableMultiBodyDynamicsWorld) with our damped springs as a
+// force, as a drapelab Solver: the same ks and kd per spring (bend springs included), gravity as a
+// force, contacts as velocity constraints against its own kinematic copies of the scene's
+// colliders. This header includes no Bullet header.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,17 +17,19 @@
 namespace drapelab::bullet {
 
 struct BulletDeformableOptions {
-  double margin = 0.0;                         // m, soft collision margin: the cloth's thickness
-  double voxel_size = 0.0;                     // m, sparse SDF cell
-  double collider_margin = 1e-3;               // m, rounds box and cylinder edges
-  Eigen::Vector3d gravity{0.0, -9.81, 0.0};    // m/s^2
-  double air_damping = 0.0;                    // 1/s, mapped to drag = 1 - exp(-air_damping h)
-  double dt = 0.0;                             // s, the substep (for the drag mapping)
-  double max_speed = 1000.0;                   // m/s
+  double margin = 0.0;                       // m, soft collision margin: the cloth's thickness
+  double voxel_size = 0.0;                   // m, sparse SDF cell
+  double collider_margin = 1e-3;             // m, rounds box and cylinder edges
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
+  double air_damping = 0.0;                  // 1/s, mapped to drag = 1 - exp(-air_damping h)
+  double dt = 0.0;                           // s, the substep (for the drag mapping)
+  double max_speed = 1000.0;                 // m/s
 };
 
-std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name, std::shared_ptr<const ClothModel> model,
-                                                      const ClothState& initial, std::vector<Collider> colliders,
+std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name,
+                                                      std::shared_ptr<const ClothModel> model,
+                                                      const ClothState& initial,
+                                                      std::vector<Collider> colliders,
                                                       BulletDeformableOptions options);
 
 }  // namespace drapelab::bullet

@@ -1,7 +1,7 @@
 // Bullet's classic cloth (btSoftBody in a btSoftRigidDynamicsWorld, double precision) as a drapelab
-// Solver: node i is model particle i; masses, pins and rest lengths are ours; the scene's colliders are
-// kinematic rigid bodies moved to their pose at the end of every substep. This header includes no
-// Bullet header; only bullet_bridge/ does.
+// Solver: node i is model particle i; masses, pins and rest lengths are ours; the scene's colliders
+// are kinematic rigid bodies moved to their pose at the end of every substep. This header includes
+// no Bullet header; only bullet_bridge/ does.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,19 +22,22 @@ namespace drapelab::bullet {
 // The mapping from our scene to the classic solver's parameters (docs/bullet.md, "Mapping our
 // parameters to the classic cloth"):
 struct BulletSoftBodyOptions {
-  double dt = 0.0;                             // s, the substep h, one stepSimulation(h, 0) each
-  int iterations = 1;                          // position-solver sweeps per substep (piterations)
-  double margin = 0.0;                         // m, soft collision margin: the cloth's thickness
-  double voxel_size = 0.0;                     // m, sparse SDF cell: <= margin and <= features / 10
-  double collider_margin = 1e-3;               // m, rounds box and cylinder edges; keep small
-  std::array<std::optional<double>, 3> raw_link_stiffness;  // kLST per spring kind, overriding the mapping
-  Eigen::Vector3d gravity{0.0, -9.81, 0.0};    // m/s^2
-  double air_damping = 0.0;                    // 1/s, mapped to kDP = 1 - exp(-air_damping h)
-  double max_speed = 1000.0;                   // m/s: a faster node stops the solver as unstable
+  double dt = 0.0;                // s, the substep h, one stepSimulation(h, 0) each
+  int iterations = 1;             // position-solver sweeps per substep (piterations)
+  double margin = 0.0;            // m, soft collision margin: the cloth's thickness
+  double voxel_size = 0.0;        // m, sparse SDF cell: <= margin and <= features / 10
+  double collider_margin = 1e-3;  // m, rounds box and cylinder edges; keep small
+  std::array<std::optional<double>, 3>
+      raw_link_stiffness;                    // kLST per spring kind, overriding the mapping
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
+  double air_damping = 0.0;                  // 1/s, mapped to kDP = 1 - exp(-air_damping h)
+  double max_speed = 1000.0;                 // m/s: a faster node stops the solver as unstable
 };
 
-std::unique_ptr<Solver> make_bullet_softbody_solver(std::string name, std::shared_ptr<const ClothModel> model,
-                                                    const ClothState& initial, std::vector<Collider> colliders,
+std::unique_ptr<Solver> make_bullet_softbody_solver(std::string name,
+                                                    std::shared_ptr<const ClothModel> model,
+                                                    const ClothState& initial,
+                                                    std::vector<Collider> colliders,
                                                     BulletSoftBodyOptions options);
 
 }  // namespace drapelab::bullet

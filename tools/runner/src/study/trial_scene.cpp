@@ -8,8 +8,9 @@
 
 namespace drapelab::runner {
 
-std::optional<scene::Scene> load_trial_scene(const std::string& file, std::vector<std::string> overrides,
-                                             double duration, std::shared_ptr<const ClothModel>* model) {
+std::optional<scene::Scene> load_trial_scene(const std::string& file,
+                                             std::vector<std::string> overrides, double duration,
+                                             std::shared_ptr<const ClothModel>* model) {
   if (duration > 0.0) overrides.push_back("duration=" + format_number(duration));
   const auto loaded = scene::load_scene_file(file, overrides);
   if (!loaded.ok()) {
@@ -26,7 +27,8 @@ std::optional<std::size_t> choose_solver(const scene::Scene& scene, const std::s
                                          bool spring_damper_only, std::string* error) {
   std::string available;
   for (const auto& spec : scene.solvers)
-    available += (available.empty() ? "" : ", ") + spec.name + " (" + solver_type_name(spec.type) + ")";
+    available +=
+        (available.empty() ? "" : ", ") + spec.name + " (" + solver_type_name(spec.type) + ")";
   std::optional<std::size_t> chosen;
   for (std::size_t k = 0; k < scene.solvers.size() && !chosen; ++k) {
     const auto& spec = scene.solvers[k];
@@ -49,10 +51,11 @@ std::optional<std::size_t> choose_solver(const scene::Scene& scene, const std::s
   }
   if (scene.solvers[*chosen].adaptive_substeps) {
     // These verbs vary the step, and an adaptive solver chooses its own substeps whatever dt is.
-    *error = "solver '" + scene.solvers[*chosen].name +
-             "' has adaptive_substeps: true, so it picks its own substeps and the step this verb varies "
-             "decides nothing; run it without (--set solvers." + std::to_string(*chosen) +
-             ".adaptive_substeps=false)";
+    *error =
+        "solver '" + scene.solvers[*chosen].name +
+        "' has adaptive_substeps: true, so it picks its own substeps and the step this verb varies "
+        "decides nothing; run it without (--set solvers." +
+        std::to_string(*chosen) + ".adaptive_substeps=false)";
     return std::nullopt;
   }
   return chosen;

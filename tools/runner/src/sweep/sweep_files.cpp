@@ -1,8 +1,8 @@
 #include "drapelab/runner/sweep_files.hpp"
 
-#include "drapelab/run_folder/csv.hpp"
-
 #include <nlohmann/json.hpp>
+
+#include "drapelab/run_folder/csv.hpp"
 
 namespace drapelab::runner {
 
@@ -18,7 +18,8 @@ std::string sweep_csv(const SweepPlan& plan,
   for (const auto& name : sweep_solver_measures()) header.push_back(name);
   header.emplace_back("run_folder");
   std::string text;
-  for (std::size_t k = 0; k < header.size(); ++k) text += (k ? "," : "") + run_folder::csv_cell(header[k]);
+  for (std::size_t k = 0; k < header.size(); ++k)
+    text += (k ? "," : "") + run_folder::csv_cell(header[k]);
   text += "\n";
   for (const auto& [index, outcome] : finished) {  // std::map: in combination order
     const auto values = plan.values(index);

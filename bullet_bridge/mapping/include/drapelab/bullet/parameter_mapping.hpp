@@ -1,6 +1,6 @@
-// How our cloth's parameters become Bullet's (docs/bullet.md, "Mapping our parameters to the classic
-// cloth" and "Fairness table"). Plain arithmetic on our model and colliders, with no Bullet header, so
-// that the scene loader can choose Bullet's defaults without linking Bullet.
+// How our cloth's parameters become Bullet's (docs/bullet.md, "Mapping our parameters to the
+// classic cloth" and "Fairness table"). Plain arithmetic on our model and colliders, with no Bullet
+// header, so that the scene loader can choose Bullet's defaults without linking Bullet.
 #pragma once
 
 #include <vector>
@@ -14,15 +14,15 @@ namespace drapelab::bullet {
 // network); above it the classic cloth is measurably softer.
 inline constexpr double kMaxMappedLinkCompliance = 0.1;
 
-// kLST of a link with stiffness ks (N/m) between particles of inverse masses summing to w (1/kg), for
-// n sweeps of substep h (s): 1 - (1 + ks w h^2)^(-1/n), exact for one link.
+// kLST of a link with stiffness ks (N/m) between particles of inverse masses summing to w (1/kg),
+// for n sweeps of substep h (s): 1 - (1 + ks w h^2)^(-1/n), exact for one link.
 double mapped_link_stiffness(double ks, double w, double h, int iterations);
 
 // The largest ks w over the model's springs (1/s^2); times h^2 it is the ratio above.
 double largest_link_rate(const ClothModel& model);
 
-// The longest substep (s) at which every link stays within kMaxMappedLinkCompliance; infinity without
-// springs.
+// The longest substep (s) at which every link stays within kMaxMappedLinkCompliance; infinity
+// without springs.
 double largest_mapped_step(const ClothModel& model);
 
 // A voxel size that resolves the colliders: min(margin, smallest feature / 10) (m).

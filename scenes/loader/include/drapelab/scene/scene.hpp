@@ -4,10 +4,10 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <optional>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,52 +15,54 @@
 #include "drapelab/disc_cloth.hpp"
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
-#include "drapelab/mesh_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
+#include "drapelab/mesh_cloth.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/stability.hpp"
 
 namespace drapelab::scene {
 
 struct ClothSpec {
-  std::string shape = "grid";   // grid | disc | mesh
+  std::string shape = "grid";  // grid | disc | mesh
   // Every shape's common keys live here too: center, rotation, mass or areal_density, thickness,
   // springs and pins (grid coordinates only for a grid).
-  GridClothSpec grid;           // size, resolution, plane, ...
-  DiscSpec disc;                // shape: disc: radius, rings (center, rotation and ring_at filled in)
-  std::filesystem::path mesh_file;  // shape: mesh: the OBJ file, resolved against the scene file's folder
-  double mesh_scale = 1.0;      // shape: mesh: factor applied to the file's coordinates
+  GridClothSpec grid;  // size, resolution, plane, ...
+  DiscSpec disc;       // shape: disc: radius, rings (center, rotation and ring_at filled in)
+  std::filesystem::path
+      mesh_file;            // shape: mesh: the OBJ file, resolved against the scene file's folder
+  double mesh_scale = 1.0;  // shape: mesh: factor applied to the file's coordinates
   std::shared_ptr<const TriangleMesh> mesh;  // shape: mesh: read at load, scaled, turned and moved
-  std::string material;         // preset applied before the explicit keys (empty: none)
-  double perturbation = 0.0;    // m, random initial offset along the sheet normal
-  double air_damping = 0.0;     // 1/s
+  std::string material;       // preset applied before the explicit keys (empty: none)
+  double perturbation = 0.0;  // m, random initial offset along the sheet normal
+  double air_damping = 0.0;   // 1/s
 };
 
 // metrics.drape_support: the support disc of the drape coefficient.
 struct DrapeSupportSpec {
-  std::string collider;         // the collider it comes from, or empty when given as a radius
-  DrapeSupport disc;            // centre and radius (m)
+  std::string collider;  // the collider it comes from, or empty when given as a radius
+  DrapeSupport disc;     // centre and radius (m)
 };
 
 struct ContactSpec {
-  double stiffness = 5000.0;  // N/m per particle
-  double damping = 5.0;       // N*s/m
+  double stiffness = 5000.0;     // N/m per particle
+  double damping = 5.0;          // N*s/m
   double friction = 0.3;         // kinetic Coulomb coefficient, the colliders' default
   double static_friction = 0.3;  // static Coulomb coefficient (default: friction), >= friction
 };
 
 struct SolverSpec {
-  std::string name;                   // label in every output; defaults to the type
+  std::string name;  // label in every output; defaults to the type
   SolverType type = SolverType::spring_damper;
   Integrator integrator = Integrator::symplectic_euler;
-  double dt = 0.0;                    // s, internal step; a frame is steps_per_frame steps
-  bool round_dt = false;              // round dt down to a whole number of steps per frame
-  int steps_per_frame = 0;            // derived: frame period / dt
-  double max_speed = 0.0;             // m/s, a faster particle stops the solver as unstable
-  double runaway_stretch = 10.0;      // a stretch spring longer than (1 + this) x rest is unstable
-  std::string note;                   // what the loader chose or changed (automatic or rounded dt)
-  // spring_damper only: stepped as an action inside a Bullet world (host: bullet) or bare (host: none).
+  double dt = 0.0;                // s, internal step; a frame is steps_per_frame steps
+  bool round_dt = false;          // round dt down to a whole number of steps per frame
+  int steps_per_frame = 0;        // derived: frame period / dt
+  double max_speed = 0.0;         // m/s, a faster particle stops the solver as unstable
+  double runaway_stretch = 10.0;  // a stretch spring longer than (1 + this) x rest is unstable
+  std::string note;               // what the loader chose or changed (automatic or rounded dt)
+  // spring_damper only: stepped as an action inside a Bullet world (host: bullet) or bare (host:
+  // none).
   bool bullet_host = true;
   // spring_damper only: split each dt into the substeps the current shape's stable step needs
   // (SpringDamperSettings::adaptive_substeps); symplectic_euler only.
@@ -69,11 +71,12 @@ struct SolverSpec {
   ImplicitSolveSettings implicit;
   // Bullet's cloths (docs/bullet.md, "Fairness table"); iterations and link_stiffness are for
   // bullet_softbody only (docs/bullet.md, "Mapping our parameters to the classic cloth"):
-  int iterations = 1;                 // position-solver sweeps per substep
-  double margin = 0.0;                // m, soft collision margin (default: the cloth's thickness)
-  double voxel_size = 0.0;            // m, sparse SDF cell (default: min(margin, smallest feature / 10))
-  double collider_margin = 1e-3;      // m, Bullet's rounding of box and cylinder edges
-  std::array<std::optional<double>, 3> link_stiffness;  // raw kLST per spring kind, replacing the mapping
+  int iterations = 1;       // position-solver sweeps per substep
+  double margin = 0.0;      // m, soft collision margin (default: the cloth's thickness)
+  double voxel_size = 0.0;  // m, sparse SDF cell (default: min(margin, smallest feature / 10))
+  double collider_margin = 1e-3;  // m, Bullet's rounding of box and cylinder edges
+  std::array<std::optional<double>, 3>
+      link_stiffness;  // raw kLST per spring kind, replacing the mapping
 };
 
 enum class MeshOutput { none, obj, pc2, both };
@@ -84,11 +87,11 @@ struct OutputSpec {
 };
 
 struct Scene {
-  std::filesystem::path source;          // the scene file as given
-  std::string name;                      // [a-z0-9_-]+
+  std::filesystem::path source;  // the scene file as given
+  std::string name;              // [a-z0-9_-]+
   std::string description;
-  double duration = 0.0;                 // s
-  double frame_rate = 60.0;              // frames recorded per simulated second
+  double duration = 0.0;                     // s
+  double frame_rate = 60.0;                  // frames recorded per simulated second
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   std::uint64_t seed = 0;
   ClothSpec cloth;
@@ -98,7 +101,7 @@ struct Scene {
   std::optional<DrapeSupportSpec> drape_support;
   OutputSpec output;
 
-  int frame_count() const;         // recorded frames after frame 0: duration x frame_rate
+  int frame_count() const;  // recorded frames after frame 0: duration x frame_rate
   double frame_period() const { return 1.0 / frame_rate; }  // s
   // The penalty contact's stiffness and damping when there are colliders (they bound the step).
   ContactRates contact_rates() const {
@@ -106,17 +109,18 @@ struct Scene {
   }
 };
 
-// The scene's cloth as a model (any shape), and its initial state (rest pose, the seeded perturbation
-// along the normals, zero velocity). A grid is perturbed along its sheet's one normal, exact and
-// the same for every particle (initial_grid_state), so the initial state that grid scenes' golden
-// files rest on does not depend on how vertex normals round; other shapes use their vertex normals
-// (initial_mesh_state).
+// The scene's cloth as a model (any shape), and its initial state (rest pose, the seeded
+// perturbation along the normals, zero velocity). A grid is perturbed along its sheet's one normal,
+// exact and the same for every particle (initial_grid_state), so the initial state that grid
+// scenes' golden files rest on does not depend on how vertex normals round; other shapes use their
+// vertex normals (initial_mesh_state).
 ClothModel build_scene_cloth(const Scene& scene);
 ClothState initial_scene_state(const Scene& scene, const ClothModel& model);
 
 // Named pin sets of the scene's cloth shape (grid: corners, ...; disc: center, rim; mesh: center).
 std::vector<std::string> pin_set_names(const ClothSpec& cloth);
 // The particles a selector picks on the scene's cloth, or empty with `error` set.
-std::vector<int> select_cloth_pins(const ClothSpec& cloth, const PinSelector& selector, std::string* error);
+std::vector<int> select_cloth_pins(const ClothSpec& cloth, const PinSelector& selector,
+                                   std::string* error);
 
 }  // namespace drapelab::scene

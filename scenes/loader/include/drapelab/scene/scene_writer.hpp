@@ -1,5 +1,5 @@
-// Writes a resolved scene as YAML: every key with its value (defaults filled in), units in comments.
-// Loading the text again gives the same scene.
+// Writes a resolved scene as YAML: every key with its value (defaults filled in), units in
+// comments. Loading the text again gives the same scene.
 #pragma once
 
 #include <string>

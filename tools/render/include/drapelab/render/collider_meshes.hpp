@@ -18,18 +18,21 @@ struct DrawMesh {
   Eigen::Matrix3Xi triangles;  // vertex indices, counter-clockwise seen from outside
 };
 
-// Sphere, capped cylinder, capsule and box as the contact model sees them (cylinder and capsule along
-// `axis`, of full length `height` between cap centres; a capsule's hemispheres add `radius` at each
-// end). Smooth normals on curved surfaces, flat ones on caps and box faces. `color` for every vertex.
+// Sphere, capped cylinder, capsule and box as the contact model sees them (cylinder and capsule
+// along `axis`, of full length `height` between cap centres; a capsule's hemispheres add `radius`
+// at each end). Smooth normals on curved surfaces, flat ones on caps and box faces. `color` for
+// every vertex.
 DrawMesh solid_collider_mesh(const Collider& collider, const Eigen::Vector3f& color);
 
 // A plane drawn as a finite square floor patch of half side `half_size` (m) with a checker of
-// `tile` m squares, centred on the foot (in the plane) of `local_center`, a point given in the plane
-// collider's local frame. Two tile colours.
-DrawMesh plane_patch_mesh(const Collider& plane, const Eigen::Vector3d& local_center, double half_size,
-                          double tile, const Eigen::Vector3f& color_a, const Eigen::Vector3f& color_b);
+// `tile` m squares, centred on the foot (in the plane) of `local_center`, a point given in the
+// plane collider's local frame. Two tile colours.
+DrawMesh plane_patch_mesh(const Collider& plane, const Eigen::Vector3d& local_center,
+                          double half_size, double tile, const Eigen::Vector3f& color_a,
+                          const Eigen::Vector3f& color_b);
 
-// A tile size of 1, 2 or 5 times a power of ten close to span / 10 (m): a floor grid with round sizes.
+// A tile size of 1, 2 or 5 times a power of ten close to span / 10 (m): a floor grid with round
+// sizes.
 double round_tile_size(double span);
 
 // The world-space box of a solid collider at a pose (planes are unbounded and give an empty box).

@@ -14,8 +14,8 @@
 namespace drapelab::render {
 
 struct Panel {
-  std::string title;                  // the solver's name (and status when it stopped)
-  std::vector<std::string> legend;    // lines drawn at the panel's bottom left
+  std::string title;                        // the solver's name (and status when it stopped)
+  std::vector<std::string> legend;          // lines drawn at the panel's bottom left
   const Eigen::Matrix3Xd* cloth = nullptr;  // positions to draw (m)
 };
 
@@ -25,11 +25,12 @@ struct PanelSpan {
 };
 PanelSpan panel_span(int k, int n, int width);
 
-// Renders the panels into the context (whose size is the output size times `supersample`), reads the
-// pixels back, averages supersample x supersample blocks (antialiasing), and draws the legends and a
-// 1-pixel line between panels. `time` (s) poses the colliders.
-Image render_frame(const OffscreenContext& context, const PanelRenderer& renderer, const Camera& camera,
-                   const std::vector<Panel>& panels, double time, int supersample, Font& font);
+// Renders the panels into the context (whose size is the output size times `supersample`), reads
+// the pixels back, averages supersample x supersample blocks (antialiasing), and draws the legends
+// and a 1-pixel line between panels. `time` (s) poses the colliders.
+Image render_frame(const OffscreenContext& context, const PanelRenderer& renderer,
+                   const Camera& camera, const std::vector<Panel>& panels, double time,
+                   int supersample, Font& font);
 
 // The legend lines of a solver at a frame: "t = 0.500 s (frame 30)", "max stretch 1.23 %" and, when
 // present, "drape coefficient 0.612".

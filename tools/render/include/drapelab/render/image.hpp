@@ -17,7 +17,8 @@ struct Image {
   std::vector<std::uint8_t> pixels;  // width x height x channels, row 0 at the top
 
   Image() = default;
-  Image(int w, int h, int c) : width(w), height(h), channels(c), pixels(std::size_t(w) * h * c, 0) {}
+  Image(int w, int h, int c)
+      : width(w), height(h), channels(c), pixels(std::size_t(w) * h * c, 0) {}
   std::uint8_t* at(int x, int y) { return pixels.data() + (std::size_t(y) * width + x) * channels; }
   const std::uint8_t* at(int x, int y) const {
     return pixels.data() + (std::size_t(y) * width + x) * channels;
@@ -28,8 +29,8 @@ struct Image {
 // The width and height must be multiples of factor.
 Image downsample(const Image& image, int factor);
 
-// Blends `color` over the rectangle [x0, x1) x [y0, y1) (clipped to the image) with opacity alpha in
-// [0, 1].
+// Blends `color` over the rectangle [x0, x1) x [y0, y1) (clipped to the image) with opacity alpha
+// in [0, 1].
 void blend_rectangle(Image& image, int x0, int y0, int x1, int y1, Rgb color, double alpha);
 
 }  // namespace drapelab::render

@@ -1,6 +1,6 @@
-// A GL context without a display or GPU: Mesa's OSMesa renders into a buffer in main memory with its
-// software rasteriser (legacy, fixed-function GL is available). One context per render; it is made
-// current on the calling thread when created.
+// A GL context without a display or GPU: Mesa's OSMesa renders into a buffer in main memory with
+// its software rasteriser (legacy, fixed-function GL is available). One context per render; it is
+// made current on the calling thread when created.
 #pragma once
 
 #include <memory>

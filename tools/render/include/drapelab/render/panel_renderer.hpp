@@ -27,13 +27,15 @@ class PanelRenderer {
  public:
   // Builds the collider meshes (planes as floor patches around `framing`) and uploads `texture`
   // (RGBA); needs the current GL context.
-  PanelRenderer(const scene::Scene& scene, const ClothModel& model, const Image& texture, const Bounds& framing);
-  // Distance (m) beyond the framing sphere that the floor patches reach: for the camera's far plane.
+  PanelRenderer(const scene::Scene& scene, const ClothModel& model, const Image& texture,
+                const Bounds& framing);
+  // Distance (m) beyond the framing sphere that the floor patches reach: for the camera's far
+  // plane.
   double extra_radius() const { return extra_radius_; }
   // Draws into the GL viewport (x, y, width, height) (pixels, y up from the buffer's bottom), with
   // the cloth at `cloth` (3 x particles, m) and the colliders posed at `time` (s).
-  void draw(const Camera& camera, int x, int y, int width, int height, const Eigen::Matrix3Xd& cloth,
-            double time) const;
+  void draw(const Camera& camera, int x, int y, int width, int height,
+            const Eigen::Matrix3Xd& cloth, double time) const;
 
  private:
   struct ColliderDrawable {

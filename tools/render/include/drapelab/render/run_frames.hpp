@@ -1,7 +1,7 @@
 // A run folder read back for drawing: the scene (resolved.yaml), the cloth's topology and UVs
-// (scene::build_scene_cloth), the solvers in summary.json's order, each one's positions per recorded
-// frame from its point cache (meshes/SOLVER.pc2) or per-frame OBJ files (meshes/SOLVER_NNNN.obj),
-// and the legend values of metrics.csv.
+// (scene::build_scene_cloth), the solvers in summary.json's order, each one's positions per
+// recorded frame from its point cache (meshes/SOLVER.pc2) or per-frame OBJ files
+// (meshes/SOLVER_NNNN.obj), and the legend values of metrics.csv.
 #pragma once
 
 #include <Eigen/Core>
@@ -28,17 +28,20 @@ class RunInputError : public std::runtime_error {
 class FrameSource {
  public:
   virtual ~FrameSource() = default;
-  virtual int frame_count() const = 0;                      // frames recorded, frame 0 included
-  virtual Eigen::Matrix3Xd positions(int frame) const = 0;  // m, 3 x particles; throws if unreadable
-  virtual std::string description() const = 0;             // "meshes/ours.pc2"
+  virtual int frame_count() const = 0;  // frames recorded, frame 0 included
+  virtual Eigen::Matrix3Xd positions(
+      int frame) const = 0;                     // m, 3 x particles; throws if unreadable
+  virtual std::string description() const = 0;  // "meshes/ours.pc2"
 };
 
-// PC2 point cache as tools/runner/src/mesh_output.cpp writes it (float32, little endian). The sample
-// count is the header's, or fewer if the file is shorter (a run still being written).
-std::unique_ptr<FrameSource> open_point_cache(const std::filesystem::path& file, int particle_count);
-// SOLVER_0000.obj, SOLVER_0001.obj, ... in `folder`: the frames run while the files are consecutive.
-std::unique_ptr<FrameSource> open_obj_sequence(const std::filesystem::path& folder, const std::string& solver,
-                                               int particle_count);
+// PC2 point cache as tools/runner/src/mesh_output.cpp writes it (float32, little endian). The
+// sample count is the header's, or fewer if the file is shorter (a run still being written).
+std::unique_ptr<FrameSource> open_point_cache(const std::filesystem::path& file,
+                                              int particle_count);
+// SOLVER_0000.obj, SOLVER_0001.obj, ... in `folder`: the frames run while the files are
+// consecutive.
+std::unique_ptr<FrameSource> open_obj_sequence(const std::filesystem::path& folder,
+                                               const std::string& solver, int particle_count);
 
 // The legend's numbers for one solver at one frame, from metrics.csv.
 struct FrameMetrics {
@@ -49,8 +52,8 @@ struct FrameMetrics {
 
 struct SolverFrames {
   std::string name;
-  std::string type;     // spring_damper, bullet_softbody, bullet_deformable
-  std::string status;   // ok, unstable, error (summary.json)
+  std::string type;    // spring_damper, bullet_softbody, bullet_deformable
+  std::string status;  // ok, unstable, error (summary.json)
   std::unique_ptr<FrameSource> source;
   std::map<int, FrameMetrics> metrics;  // by frame; empty when metrics.csv is missing
 };

@@ -25,8 +25,8 @@ class Font {
   // Pixel size (em height) used by the calls below.
   void set_pixel_size(int pixels);
   int pixel_size() const { return pixels_; }
-  int line_height() const;  // pixels from one baseline to the next
-  int ascent() const;       // pixels above the baseline
+  int line_height() const;                  // pixels from one baseline to the next
+  int ascent() const;                       // pixels above the baseline
   int text_width(const std::string& utf8);  // pixels advanced by the text
   // Draws UTF-8 text with its baseline at y, starting at x (pixels, y down), blended in `color`.
   void draw(Image& image, int x, int baseline, const std::string& utf8, Rgb color);

@@ -15,10 +15,10 @@ Image checker_texture(int squares = 8, int size = 512);
 // A texture from a PNG file (any PNG libpng reads). Throws std::runtime_error naming the file.
 Image load_texture(const std::filesystem::path& path);
 
-// Uploads `image` (RGBA) as the current GL_TEXTURE_2D with box-filtered mipmaps (made here: the image
-// is first resampled to a power-of-two square of at most 1024 pixels), trilinear filtering and repeat
-// wrapping. The image's top row is at v = 1 (OBJ's convention: v grows upwards in the image).
-// Returns the GL texture name.
+// Uploads `image` (RGBA) as the current GL_TEXTURE_2D with box-filtered mipmaps (made here: the
+// image is first resampled to a power-of-two square of at most 1024 pixels), trilinear filtering
+// and repeat wrapping. The image's top row is at v = 1 (OBJ's convention: v grows upwards in the
+// image). Returns the GL texture name.
 unsigned upload_texture(const Image& image);
 
 }  // namespace drapelab::render

@@ -11,8 +11,8 @@ namespace drapelab::report {
 struct AxisTicks {
   double lo = 0.0, hi = 1.0;  // the axis range, in data units (positive on a log axis)
   bool log = false;
-  std::vector<double> values;        // tick positions, lo <= value <= hi, increasing
-  std::vector<std::string> labels;   // one per tick
+  std::vector<double> values;       // tick positions, lo <= value <= hi, increasing
+  std::vector<std::string> labels;  // one per tick
 };
 
 // Ticks covering [data_min, data_max] with about `target` intervals. Non-finite input gives [0, 1];

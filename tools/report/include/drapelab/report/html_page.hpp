@@ -19,7 +19,8 @@ struct TableCell {
   bool wrap = false;     // may break across lines (messages); other cells keep to one line
 };
 // A table with a header row of plain text and cells of markup, scrolling sideways when too wide.
-std::string html_table(const std::vector<std::string>& header, const std::vector<std::vector<TableCell>>& rows);
+std::string html_table(const std::vector<std::string>& header,
+                       const std::vector<std::vector<TableCell>>& rows);
 
 // A number with `digits` significant digits (%g, exponent written plainly), or an em dash for NaN.
 std::string format_value(double value, int digits = 4);

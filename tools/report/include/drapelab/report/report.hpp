@@ -20,7 +20,8 @@ FolderCheck inspect_folder(const std::filesystem::path& folder);
 
 // The page for a run folder. `report_file` is where the page will be written: the video's src is
 // relative to it. Throws std::runtime_error naming the file when one cannot be read or parsed.
-std::string run_report_html(const std::filesystem::path& folder, const std::filesystem::path& report_file);
+std::string run_report_html(const std::filesystem::path& folder,
+                            const std::filesystem::path& report_file);
 
 // The page for a sweep folder. Throws std::runtime_error like run_report_html.
 std::string sweep_report_html(const std::filesystem::path& folder);

@@ -10,13 +10,13 @@
 namespace drapelab::report {
 
 struct Series {
-  std::string label;            // legend text
-  std::string color;            // CSS colour, e.g. "#1f77b4"
-  std::string dash;             // stroke-dasharray ("6 3"), empty for a solid line
-  std::vector<double> x, y;     // equal lengths; a NaN in either breaks the line there
-  std::vector<bool> failed;     // empty, or one per point: true draws a cross (a failed run)
-  bool stopped_early = false;   // mark the last drawn point: the solver stopped before the end
-  bool point_markers = false;   // a dot at every point (for plots of a few points, like sweeps)
+  std::string label;           // legend text
+  std::string color;           // CSS colour, e.g. "#1f77b4"
+  std::string dash;            // stroke-dasharray ("6 3"), empty for a solid line
+  std::vector<double> x, y;    // equal lengths; a NaN in either breaks the line there
+  std::vector<bool> failed;    // empty, or one per point: true draws a cross (a failed run)
+  bool stopped_early = false;  // mark the last drawn point: the solver stopped before the end
+  bool point_markers = false;  // a dot at every point (for plots of a few points, like sweeps)
 };
 
 struct Plot {

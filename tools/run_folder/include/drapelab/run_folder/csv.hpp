@@ -28,8 +28,8 @@ class CsvWriter {
 // A cell quoted when it must be (RFC 4180: commas, quotes, line breaks, edge spaces), or always.
 std::string csv_cell(const std::string& text, bool always = false);
 
-// A CSV file read whole into memory: a header row and string cells. An empty or unreadable cell reads
-// as NaN, so a plot can leave a gap where a run wrote nothing.
+// A CSV file read whole into memory: a header row and string cells. An empty or unreadable cell
+// reads as NaN, so a plot can leave a gap where a run wrote nothing.
 struct CsvTable {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;  // each padded or cut to header.size() cells

@@ -14,10 +14,12 @@ inline constexpr const char* kSceneYaml = "scene.yaml";        // the scene as g
 inline constexpr const char* kResolvedYaml = "resolved.yaml";  // every default filled in
 inline constexpr const char* kMetricsCsv = "metrics.csv";      // one row per (solver, frame)
 inline constexpr const char* kCompareCsv = "compare.csv";      // one row per (solver pair, frame)
-inline constexpr const char* kContactsCsv = "contacts.csv";    // one row per (solver, frame, collider)
-inline constexpr const char* kSummaryJson = "summary.json";    // per solver status, cost, final metrics
-inline constexpr const char* kMeshesFolder = "meshes";         // rest.obj, SOLVER.pc2, SOLVER_NNNN.obj
-inline constexpr const char* kRenderFolder = "render";         // drapelab render's default output
+inline constexpr const char* kContactsCsv =
+    "contacts.csv";  // one row per (solver, frame, collider)
+inline constexpr const char* kSummaryJson =
+    "summary.json";                                     // per solver status, cost, final metrics
+inline constexpr const char* kMeshesFolder = "meshes";  // rest.obj, SOLVER.pc2, SOLVER_NNNN.obj
+inline constexpr const char* kRenderFolder = "render";  // drapelab render's default output
 
 // Writes `text` to `path` through a temporary file and a rename, so readers never see half a file.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);
@@ -30,8 +32,9 @@ std::optional<std::string> read_file_bytes(const std::filesystem::path& path);
 const std::vector<std::string>& run_output_names();
 
 // Checks the output folder before anything is written. Returns an error message (exit code 2) when
-// it may not be used: it is a file, or holds a different run or other files and --force was not given.
-// With `force`, removes the previous run's outputs (only drapelab's own files). Creates the folder.
+// it may not be used: it is a file, or holds a different run or other files and --force was not
+// given. With `force`, removes the previous run's outputs (only drapelab's own files). Creates the
+// folder.
 std::optional<std::string> prepare_run_folder(const std::filesystem::path& folder,
                                               const std::string& resolved_scene, bool force);
 

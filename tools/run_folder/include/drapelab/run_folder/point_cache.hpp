@@ -1,6 +1,6 @@
-// The run folder's meshes/: per-solver PC2 point caches (Blender's Mesh Cache modifier reads them onto
-// rest.obj; vertex order is particle order) and the names of the per-frame OBJ files.
-// PC2: "POINTCACHE2\0", int32 version 1, int32 points, float32 start frame, float32 sample rate
+// The run folder's meshes/: per-solver PC2 point caches (Blender's Mesh Cache modifier reads them
+// onto rest.obj; vertex order is particle order) and the names of the per-frame OBJ files. PC2:
+// "POINTCACHE2\0", int32 version 1, int32 points, float32 start frame, float32 sample rate
 // (frames), int32 samples, then per sample points x 3 float32, little endian.
 #pragma once
 
@@ -40,7 +40,9 @@ struct Pc2Header {
 };
 // The header of a PC2 file; nullopt when the file cannot be read or is not PC2 version 1.
 std::optional<Pc2Header> read_pc2_header(const std::filesystem::path& path);
-// Sample `frame` of a point cache of `points` points (m, 3 x points); nullopt when it cannot be read.
-std::optional<Eigen::Matrix3Xd> read_pc2_frame(const std::filesystem::path& path, int points, int frame);
+// Sample `frame` of a point cache of `points` points (m, 3 x points); nullopt when it cannot be
+// read.
+std::optional<Eigen::Matrix3Xd> read_pc2_frame(const std::filesystem::path& path, int points,
+                                               int frame);
 
 }  // namespace drapelab::run_folder

@@ -9,13 +9,13 @@ namespace drapelab::runner {
 
 struct BenchRow {
   std::string scene;
-  int size = 0;                 // particles per side
+  int size = 0;  // particles per side
   int particles = 0;
   long long springs = 0;
   std::string solver, type;
-  std::string setting;          // integrator, iterations, or why it was skipped
-  double dt = 0.0;              // s
-  std::string status;           // ok | unstable | error | skipped
+  std::string setting;              // integrator, iterations, or why it was skipped
+  double dt = 0.0;                  // s
+  std::string status;               // ok | unstable | error | skipped
   double wall_per_simulated = 0.0;  // wall s per simulated s
   double ms_per_step = 0.0;
   double max_stretch = 0.0;      // over every frame

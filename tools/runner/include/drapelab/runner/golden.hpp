@@ -25,11 +25,12 @@ struct Golden {
   std::string scene;                   // the scene's name
   std::vector<std::string> overrides;  // --set values the run used
   GoldenTolerance tolerance;
-  std::map<int, GoldenRows> frames;    // frame -> rows
+  std::map<int, GoldenRows> frames;  // frame -> rows
 };
 
 // Reads metrics.csv and contacts.csv of a run folder at the given frames.
-std::map<int, GoldenRows> read_golden_values(const std::filesystem::path& run_dir, const std::vector<int>& frames);
+std::map<int, GoldenRows> read_golden_values(const std::filesystem::path& run_dir,
+                                             const std::vector<int>& frames);
 
 // Five frames spread over the run: 0, a quarter, half, three quarters, the last.
 std::vector<int> golden_frames(int frame_count);
@@ -41,7 +42,8 @@ struct GoldenDifference {
 };
 
 // Values outside the tolerance, and values present on one side only.
-std::vector<GoldenDifference> compare_golden(const Golden& golden, const std::map<int, GoldenRows>& actual);
+std::vector<GoldenDifference> compare_golden(const Golden& golden,
+                                             const std::map<int, GoldenRows>& actual);
 std::string describe_difference(const GoldenDifference& difference);
 
 std::string golden_to_json(const Golden& golden);

@@ -12,7 +12,7 @@ namespace drapelab::runner {
 
 // OBJ with one vertex and one texture coordinate per particle (v/vt share the index, so importers
 // keep the vertex order), faces from the model's triangles, and polylines along a chain.
-void write_obj(const std::filesystem::path& path, const ClothModel& model, const Eigen::Matrix3Xd& x,
-               const std::string& comment);
+void write_obj(const std::filesystem::path& path, const ClothModel& model,
+               const Eigen::Matrix3Xd& x, const std::string& comment);
 
 }  // namespace drapelab::runner

@@ -1,4 +1,5 @@
-// drapelab run: steps every solver of a scene in lock-step, frame by frame, and writes the run folder.
+// drapelab run: steps every solver of a scene in lock-step, frame by frame, and writes the run
+// folder.
 #pragma once
 
 #include <atomic>
@@ -17,17 +18,17 @@ namespace drapelab::runner {
 
 struct RunOptions {
   std::filesystem::path out_dir;
-  bool force = false;                          // replace a previous run in out_dir
-  std::string scene_text;                      // the scene file as given, copied to scene.yaml
-  std::string command_line;                    // recorded in summary.json
+  bool force = false;                            // replace a previous run in out_dir
+  std::string scene_text;                        // the scene file as given, copied to scene.yaml
+  std::string command_line;                      // recorded in summary.json
   const std::atomic<bool>* interrupt = nullptr;  // set by Ctrl-C: stop after the current step
-  std::shared_ptr<const ClothModel> model;       // the loader's cloth (built from the scene when null)
+  std::shared_ptr<const ClothModel> model;  // the loader's cloth (built from the scene when null)
 };
 
 // Exit codes (docs/outputs.md, "Exit codes").
-inline constexpr int kExitOk = 0;           // every solver ok
-inline constexpr int kExitUnstable = 1;     // a solver became unstable or failed
-inline constexpr int kExitBadInput = 2;     // bad input: nothing was run
+inline constexpr int kExitOk = 0;             // every solver ok
+inline constexpr int kExitUnstable = 1;       // a solver became unstable or failed
+inline constexpr int kExitBadInput = 2;       // bad input: nothing was run
 inline constexpr int kExitInterrupted = 130;  // Ctrl-C: files hold every frame recorded so far
 
 // What one solver did in a run, as summary.json records it.
@@ -35,13 +36,15 @@ struct SolverOutcome {
   std::string name;
   SolverType type = SolverType::spring_damper;
   SolverStatus status = SolverStatus::ok;
-  std::string message;        // why not ok: which particle, which step, what to try
+  std::string message;  // why not ok: which particle, which step, what to try
   std::int64_t steps = 0;
   double dt = 0.0;            // s
   int frames_recorded = 0;    // rows in metrics.csv, frame 0 included
   double wall_seconds = 0.0;  // s, stepping only
 
-  double ms_per_step() const { return steps > 0 ? 1e3 * wall_seconds / static_cast<double>(steps) : 0.0; }
+  double ms_per_step() const {
+    return steps > 0 ? 1e3 * wall_seconds / static_cast<double>(steps) : 0.0;
+  }
   double wall_seconds_per_simulated_second() const {
     const double simulated = static_cast<double>(steps) * dt;  // s
     return simulated > 0.0 ? wall_seconds / simulated : 0.0;

@@ -6,9 +6,9 @@
 #include <memory>
 #include <string>
 
+#include "drapelab/cloth_metrics.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
-#include "drapelab/cloth_metrics.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/scene/scene.hpp"
@@ -22,14 +22,17 @@ struct SceneSetup {
   std::shared_ptr<const DrapeMeter> drape;       // null without metrics.drape_support
 };
 
-// Builds the cloth (any shape) unless `model` is given (the loader's, scene::LoadResult::model, built
-// from this very scene), its initial state (scene.cloth.perturbation, scene.seed), the contact model
-// (scene.contact, the cloth's thickness as the particles' radius) and the drape meter.
-SceneSetup build_scene_setup(const scene::Scene& scene, std::shared_ptr<const ClothModel> model = nullptr);
+// Builds the cloth (any shape) unless `model` is given (the loader's, scene::LoadResult::model,
+// built from this very scene), its initial state (scene.cloth.perturbation, scene.seed), the
+// contact model (scene.contact, the cloth's thickness as the particles' radius) and the drape
+// meter.
+SceneSetup build_scene_setup(const scene::Scene& scene,
+                             std::shared_ptr<const ClothModel> model = nullptr);
 
 // The per-frame metrics of a state that need no colliders: ClothMetrics, plus the drape coefficient
 // and node count when the scene names a drape support.
-ClothMetrics frame_metrics(const SceneSetup& setup, const scene::Scene& scene, const ClothState& state);
+ClothMetrics frame_metrics(const SceneSetup& setup, const scene::Scene& scene,
+                           const ClothState& state);
 
 // "the stretch spring between particle a (grid i, j) and particle b (...) is stretched by s": the
 // most stretched stretch spring of `state` (strain |x_a - x_b| / L - 1), for unstable-run messages.

@@ -48,7 +48,8 @@ struct SimulationResult {
   int stopped_at_frame = -1;  // the frame at which the run stopped unstable, -1 otherwise
   double max_stretch = 0.0;   // max over the measured frames (the failing one included)
   double wall_seconds = 0.0;  // s, stepping only (no metrics), as in summary.json
-  // s: wall_seconds when each recorded frame was reached (frame 0: 0), for the cost of part of a run.
+  // s: wall_seconds when each recorded frame was reached (frame 0: 0), for the cost of part of a
+  // run.
   std::vector<double> stepping_seconds_at_frame;
   std::int64_t steps = 0;
   double dt = 0.0;                                       // s, the step used
@@ -71,8 +72,8 @@ struct SimulationResult {
     return simulated_seconds() > 0.0 ? wall_seconds / simulated_seconds() : 0.0;
   }
   // Stepping wall seconds per simulated second over the second half of the recorded frames (from
-  // frame K / 2 to the last, K), where a run that starts in free fall has settled into its contacts;
-  // 0 with fewer than three frames. frame_period in s.
+  // frame K / 2 to the last, K), where a run that starts in free fall has settled into its
+  // contacts; 0 with fewer than three frames. frame_period in s.
   double second_half_wall_seconds_per_simulated_second(double frame_period) const;
 };
 

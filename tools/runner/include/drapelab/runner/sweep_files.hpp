@@ -14,7 +14,6 @@
 
 namespace drapelab::runner {
 
-
 // sweep.csv: a header, then the rows of every finished combination in combination order, each
 // combination's solvers in summary.json's order. Columns: combination, one per varied key (named
 // by its key path), solver, type, status, exit_code, message, the final metrics and the solver's

@@ -14,13 +14,15 @@ namespace drapelab::runner {
 // Loads the scene with the overrides, plus duration=S when `duration` > 0 (validated like the file:
 // duration x frame_rate must be whole). Prints every error to stderr and returns nothing on bad
 // input. `model`, when given, receives the cloth the loader built (for build_scene_setup).
-std::optional<scene::Scene> load_trial_scene(const std::string& file, std::vector<std::string> overrides,
-                                             double duration, std::shared_ptr<const ClothModel>* model = nullptr);
+std::optional<scene::Scene> load_trial_scene(const std::string& file,
+                                             std::vector<std::string> overrides, double duration,
+                                             std::shared_ptr<const ClothModel>* model = nullptr);
 
 // The solver named `name`; without a name, the first spring_damper solver, else the first solver.
 // With `spring_damper_only`, other types are refused; so is a solver with adaptive substeps (the
-// verbs that choose a solver vary its step, which such a solver overrides). Returns its index, or nothing with `error`
-// set to a message that names what was expected (the scene's solvers and their types).
+// verbs that choose a solver vary its step, which such a solver overrides). Returns its index, or
+// nothing with `error` set to a message that names what was expected (the scene's solvers and their
+// types).
 std::optional<std::size_t> choose_solver(const scene::Scene& scene, const std::string& name,
                                          bool spring_damper_only, std::string* error);
 
