@@ -34,7 +34,7 @@ ctest --test-dir build -j "$jobs" --output-on-failure
 if [[ "$mode" != "--no-sanitizers" ]]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build, fast and physics tests"
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDRAPELAB_SANITIZE=ON >/dev/null
-  cmake --build build-sanitize -j "$jobs"
+  cmake --build build-sanitize -j "$jobs" --target tests_fast_physics
   # lsan-suppressions.txt: leaks inside system libraries (Mesa's OSMesa), each explained there.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     LSAN_OPTIONS=suppressions="$root/tools/lsan-suppressions.txt" \
