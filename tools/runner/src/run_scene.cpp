@@ -33,11 +33,7 @@ bool wants_pc2(scene::MeshOutput m) {
 class RunFolderWriter final : public FrameObserver {
  public:
   RunFolderWriter(const fs::path& out, const scene::Scene& scene, const SceneSetup& setup)
-      : out_(out),
-        scene_(scene),
-        setup_(setup),
-        tables_(out),
-        obj_(wants_obj(scene.output.meshes)) {}
+      : out_(out), setup_(setup), tables_(out), obj_(wants_obj(scene.output.meshes)) {}
 
   void measured(const SolverRun& run, const FrameMeasure& measure) override {
     const std::string& name = run.spec->name;
@@ -75,7 +71,6 @@ class RunFolderWriter final : public FrameObserver {
 
  private:
   const fs::path& out_;
-  const scene::Scene& scene_;
   const SceneSetup& setup_;
   FrameTables tables_;
   bool obj_;
