@@ -20,7 +20,7 @@ using namespace fixtures;  // fixtures/cli.hpp
 namespace fs = std::filesystem;
 
 std::size_t count_lines(const fs::path& path) {
-  if (!fs::exists(path)) return 0;
+  if (path.empty() || !fs::exists(path)) return 0;
   const std::string text = read_text(path);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
@@ -53,7 +53,7 @@ TEST_F(CliInterrupt, CtrlCLeavesCompleteFilesAndExits130) {
   // Interrupted once a few frames are on disk.
   const int exit_code =
       interrupt_drapelab_when({"run", scene.string(), "--out", out.string()},
-                              [&] { return count_lines(out / "metrics.csv") >= 4; });
+                              [&] { return count_lines(staged_file(out, "metrics.csv")) >= 4; });
   EXPECT_EQ(exit_code, 130);
   const std::size_t frames = whole_rows(out / "metrics.csv").size();
   EXPECT_GE(frames, 3u);

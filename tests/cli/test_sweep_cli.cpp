@@ -261,9 +261,11 @@ TEST_F(SweepCli, CtrlCStopsTheRunsAndKeepsTheTableValid) {
     std::error_code ec;
     if (!fs::is_directory(out / "runs", ec)) return false;
     for (const auto& entry : fs::directory_iterator(out / "runs", ec)) {
-      const fs::path metrics = entry.path() / "metrics.csv";
+      if (!entry.is_directory()) continue;
+      const fs::path metrics =
+          fixtures::staged_file(entry.path(), "metrics.csv");  // the run's, as it runs
       std::error_code size_error;
-      if (entry.is_directory() && fs::exists(metrics) && fs::file_size(metrics, size_error) > 2000)
+      if (!metrics.empty() && fs::exists(metrics) && fs::file_size(metrics, size_error) > 2000)
         ++running;
     }
     return running == 2;

@@ -1,17 +1,19 @@
 // drapelab: the command line. Verbs: run, validate, check, stability, study, sweep, bench, render,
 // report (one file each, verb_*.cpp; docs/cli.md). Exit codes: 0 ok, 1 a solver became unstable or
-// failed, 2 bad input (nothing was run), 130 interrupted (files hold the frames recorded so far).
+// failed, 2 bad input (nothing was run) or a file that could not be written, 3 an internal error (a
+// bug), 130 interrupted (files hold the frames recorded so far).
 #include <CLI/CLI.hpp>
-#include <atomic>
-#include <csignal>
+#include <filesystem>
 #include <iostream>
+#include <new>
 
+#include "drapelab/run_folder/output_file.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 
 namespace {
 
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_interrupt(int) { g_interrupted.store(true); }
+constexpr int kExitInternalError = 3;
 
 }  // namespace
 
@@ -93,15 +95,36 @@ int main(int argc, char** argv) {
     return drapelab::cli::kExitBadInput;  // usage errors are bad input too
   }
 
-  std::signal(SIGINT, on_interrupt);
-  std::signal(SIGTERM, on_interrupt);
-  if (*run) return drapelab::cli::run_verb(run_arguments, command_line, g_interrupted);
-  if (*check) return drapelab::cli::check_verb(check_arguments, g_interrupted);
-  if (*stability) return drapelab::cli::stability_verb(stability_arguments, g_interrupted);
-  if (*bench) return drapelab::cli::bench_verb(bench_arguments, g_interrupted);
-  if (*study) return drapelab::cli::study_verb(study_arguments, command_line, g_interrupted);
-  if (*sweep) return drapelab::cli::sweep_verb(sweep_arguments, command_line, g_interrupted);
-  if (*render) return drapelab::cli::render_verb(render_arguments, g_interrupted);
-  if (*report) return drapelab::cli::report_verb(report_arguments);
-  return drapelab::cli::validate_verb(validate_arguments);
+  const std::atomic<bool>& interrupted = drapelab::cli::install_interrupt_handlers();
+  // Every verb's failure ends here with a message and its exit code, never an abort.
+  try {
+    if (*run) return drapelab::cli::run_verb(run_arguments, command_line, interrupted);
+    if (*check) return drapelab::cli::check_verb(check_arguments, interrupted);
+    if (*stability) return drapelab::cli::stability_verb(stability_arguments, interrupted);
+    if (*bench) return drapelab::cli::bench_verb(bench_arguments, interrupted);
+    if (*study) return drapelab::cli::study_verb(study_arguments, command_line, interrupted);
+    if (*sweep) return drapelab::cli::sweep_verb(sweep_arguments, command_line, interrupted);
+    if (*render) return drapelab::cli::render_verb(render_arguments, interrupted);
+    if (*report) return drapelab::cli::report_verb(report_arguments);
+    return drapelab::cli::validate_verb(validate_arguments);
+  } catch (const drapelab::run_folder::WriteError& error) {
+    std::cerr << "error: " << error.what() << "\n";
+    return drapelab::cli::kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& error) {
+    std::cerr << "error: " << error.what() << "\n";
+    return drapelab::cli::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: out of memory; the scene needs more memory than this machine has (try a "
+                 "coarser cloth: docs/cli.md, \"Limits\")\n";
+    return drapelab::cli::kExitBadInput;
+  } catch (const std::exception& error) {
+    std::cerr << "internal error: " << error.what()
+              << "\nthis is a bug in drapelab; please report it with the command line and the "
+                 "scene file\n";
+    return kExitInternalError;
+  } catch (...) {
+    std::cerr << "internal error: an unknown exception\nthis is a bug in drapelab; please report "
+                 "it with the command line and the scene file\n";
+    return kExitInternalError;
+  }
 }

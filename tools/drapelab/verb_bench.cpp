@@ -21,6 +21,7 @@
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/runner/trial_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -177,6 +178,8 @@ void add_bench_options(CLI::App& verb, BenchArguments& arguments) {
 }
 
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt) {
+  // Ctrl-C stops the current measurement; the cells measured so far are written.
+  const PollingSection polling;
   std::vector<int> sizes = arguments.sizes;
   if (sizes.empty())
     sizes = arguments.quick ? std::vector<int>{33} : std::vector<int>{33, 65, 129, 257};

@@ -6,8 +6,11 @@
 #include <sstream>
 
 #include "drapelab/run_folder/files.hpp"
+#include "drapelab/run_folder/run_transaction.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "interrupt.hpp"
+#include "scene_warnings.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -21,7 +24,9 @@ void add_run_options(CLI::App& verb, RunArguments& arguments) {
   verb.add_option("--meshes", arguments.meshes,
                   "Also write meshes: obj (per frame), pc2 (point cache) or both")
       ->check(CLI::IsMember({"none", "obj", "pc2", "both"}));
-  verb.add_flag("--force", arguments.force, "Replace a different run already in the output folder");
+  verb.add_flag("--force", arguments.force,
+                "Use a folder that holds a different run or other files: replaces only the files "
+                "drapelab wrote there");
   verb.add_flag("--quiet,-q", arguments.quiet, "Print only problems");
   verb.footer(
       "Example:\n  drapelab run scenes/curtain.yaml --out out/curtain --set "
@@ -45,7 +50,8 @@ void print_outcome(const runner::RunResult& result, const std::filesystem::path&
   std::cout << "outputs in " << out.string() << "/:\n";
   std::vector<std::string> names;
   for (const auto& entry : std::filesystem::directory_iterator(out))
-    names.push_back(entry.path().filename().string());
+    if (!run_folder::is_bookkeeping_name(entry.path().filename().string()))
+      names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
   for (const auto& name : names)
     std::cout << "  " << name << (std::filesystem::is_directory(out / name) ? "/" : "") << "\n";
@@ -64,6 +70,8 @@ int run_verb(const RunArguments& arguments, const std::string& command_line,
     return kExitBadInput;
   }
   for (const auto& note : loaded.notes) std::cerr << "note: " << note << "\n";
+  for (const auto& warning : stability_warnings(*loaded.scene, *loaded.model))
+    std::cerr << "warning: " << warning << "\n";
   runner::RunOptions options;
   options.out_dir = arguments.out;
   options.force = arguments.force;
@@ -74,8 +82,9 @@ int run_verb(const RunArguments& arguments, const std::string& command_line,
   if (!arguments.quiet)
     std::cout << "running " << loaded.scene->name << " (" << loaded.scene->frame_count()
               << " frames) into " << arguments.out << "\n";
+  const PollingSection polling;  // Ctrl-C stops the run after its current step
   const runner::RunResult result = runner::run_scene(*loaded.scene, options, std::cerr);
-  if (result.exit_code != kExitBadInput && !arguments.quiet) print_outcome(result, arguments.out);
+  if (!result.folder.empty() && !arguments.quiet) print_outcome(result, result.folder);
   return result.exit_code;
 }
 

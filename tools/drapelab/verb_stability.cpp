@@ -16,6 +16,7 @@
 #include "drapelab/runner/trial_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -137,6 +138,7 @@ int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>&
   const auto scene =
       load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
   if (!scene) return kExitBadInput;
+  const PollingSection polling;  // the trials stop at Ctrl-C
   std::string problem;
   const auto index = choose_solver(*scene, arguments.solver, false, &problem);
   if (!index) {

@@ -15,6 +15,7 @@
 #include "drapelab/runner/study_report.hpp"
 #include "drapelab/runner/trial_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -108,6 +109,7 @@ int study_verb(const StudyArguments& arguments, const std::string& command_line,
   const auto scene =
       load_trial_scene(arguments.scene, arguments.overrides, arguments.duration, &model);
   if (!scene) return kExitBadInput;
+  const PollingSection polling;  // the trials stop at Ctrl-C
   std::string problem;
   const auto index = choose_solver(*scene, arguments.solver, true, &problem);
   if (!index) {

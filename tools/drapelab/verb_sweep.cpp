@@ -21,6 +21,7 @@
 #include "drapelab/runner/sweep_outcome.hpp"
 #include "drapelab/runner/sweep_plan.hpp"
 #include "drapelab/runner/sweep_validation.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -227,7 +228,7 @@ int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
     std::cerr << "nothing was run\n";
     return kExitBadInput;
   }
-  if (interrupt.load()) return runner::kExitInterrupted;
+  const PollingSection polling;  // Ctrl-C: the children stop, and sweep.csv keeps the finished runs
   const fs::path out = arguments.out;
   if (const auto problem = prepare_sweep_folder(out, arguments.force)) {
     std::cerr << "error: " << *problem << "\nnothing was run\n";

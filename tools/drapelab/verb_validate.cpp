@@ -7,6 +7,7 @@
 #include "drapelab/scene/scene_writer.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
+#include "scene_warnings.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -60,31 +61,17 @@ int validate_verb(const ValidateArguments& arguments) {
     if (solver.type != SolverType::spring_damper)
       std::cout << ", margin " << solver.margin << " m, voxel " << solver.voxel_size << " m";
     std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";
-    if (solver.type != SolverType::spring_damper) continue;
-    if (solver.adaptive_substeps) {
-      // The shape bound at the start; it is re-evaluated at every dt as the cloth moves.
-      const double shape_step =
-          shape_stable_step(model, scene::initial_scene_state(s, model).x, s.cloth.air_damping);
-      const double safety = SpringDamperSettings{}.substep_safety;
-      std::cout << "    adaptive substeps: " << safety << " x the shape's stable step, "
-                << shape_step << " s at the start (" << std::ceil(solver.dt / (safety * shape_step))
-                << " substeps per dt), re-evaluated at every dt\n";
-      continue;  // its substeps follow the shape's bound, so the fixed-step warning does not apply
-    }
-    // Each integrator's own bound (with the contact for every explicit scheme but symplectic
-    // Euler).
-    const double solver_bound =
-        stable_step_estimate(model, s.cloth.air_damping, s.contact_rates(), solver.integrator);
-    if (solver_bound == 0.0)
-      std::cerr
-          << "warning: solver " << solver.name << ": " << integrator_name(solver.integrator)
-          << " has no stable step here (an undamped spring, or a contact without contact.damping); "
-             "the run may become unstable\n";
-    else if (solver.dt > solver_bound)
-      std::cerr << "warning: solver " << solver.name << ": dt " << solver.dt << " s is above the "
-                << integrator_name(solver.integrator) << " stable step estimate " << solver_bound
-                << " s; the run may become unstable (the bound is sufficient, not necessary)\n";
+    if (solver.type != SolverType::spring_damper || !solver.adaptive_substeps) continue;
+    // The shape bound at the start; it is re-evaluated at every dt as the cloth moves.
+    const double shape_step =
+        shape_stable_step(model, scene::initial_scene_state(s, model).x, s.cloth.air_damping);
+    const double safety = SpringDamperSettings{}.substep_safety;
+    std::cout << "    adaptive substeps: " << safety << " x the shape's stable step, " << shape_step
+              << " s at the start (" << std::ceil(solver.dt / (safety * shape_step))
+              << " substeps per dt), re-evaluated at every dt\n";
   }
+  for (const auto& warning : stability_warnings(s, model))
+    std::cerr << "warning: " << warning << "\n";
   return 0;
 }
 

@@ -78,4 +78,17 @@ void FrameTables::flush() {
   contacts_.flush();
 }
 
+void FrameTables::commit() {
+  metrics_.commit();
+  compare_.commit();
+  contacts_.commit();
+}
+
+bool FrameTables::rollback() noexcept {
+  const bool metrics = metrics_.rollback();
+  const bool compare = compare_.rollback();
+  const bool contacts = contacts_.rollback();
+  return metrics && compare && contacts;
+}
+
 }  // namespace drapelab::runner

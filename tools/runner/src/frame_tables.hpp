@@ -28,7 +28,11 @@ class FrameTables {
   void add_contact(const std::string& solver, int frame, double time, const std::string& collider,
                    int contact_count, double normal_force, double friction_force,
                    double max_penetration);
-  void flush();  // at the end of each frame
+  void flush();   // at the end of each frame; throws run_folder::WriteError
+  void commit();  // the frame's rows are all written
+  // Cuts every table back to its last committed frame after a write error; false when a table
+  // could not be cut.
+  bool rollback() noexcept;
 
  private:
   run_folder::CsvWriter metrics_;

@@ -1,17 +1,16 @@
 // OBJ and PC2 mesh outputs.
 #include "drapelab/runner/mesh_output.hpp"
 
-#include <fstream>
-#include <stdexcept>
+#include <sstream>
 
+#include "drapelab/run_folder/output_file.hpp"
 #include "drapelab/scene/number_format.hpp"
 
 namespace drapelab::runner {
 
 void write_obj(const std::filesystem::path& path, const ClothModel& model,
                const Eigen::Matrix3Xd& x, const std::string& comment) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error("cannot write " + path.string());
+  std::ostringstream out;
   out << "# " << comment << "\n# vertex k is particle k (y up, metres)\n";
   for (Eigen::Index k = 0; k < x.cols(); ++k)
     out << "v " << format_number(x(0, k)) << ' ' << format_number(x(1, k)) << ' '
@@ -29,6 +28,7 @@ void write_obj(const std::filesystem::path& path, const ClothModel& model,
     for (Eigen::Index k = 0; k < x.cols(); ++k) out << ' ' << k + 1;
     out << '\n';
   }
+  run_folder::write_whole_file(path, out.str());
 }
 
 }  // namespace drapelab::runner

@@ -1,12 +1,18 @@
 // drapelab run: the frame loop (frame_loop.hpp) with an observer that writes every measured frame
 // into the run folder: metrics.csv, contacts.csv, compare.csv, meshes, and summary.json at the
-// start and the end.
+// start and the end. The folder is written as a transaction (run_transaction.hpp): files go to a
+// staging folder and move into place when the run ends.
 #include "drapelab/runner/run_scene.hpp"
 
+#include <algorithm>
+#include <optional>
 #include <ostream>
+#include <variant>
 
 #include "drapelab/run_folder/files.hpp"
+#include "drapelab/run_folder/output_file.hpp"
 #include "drapelab/run_folder/point_cache.hpp"
+#include "drapelab/run_folder/run_transaction.hpp"
 #include "drapelab/runner/mesh_output.hpp"
 #include "drapelab/runner/scene_setup.hpp"
 #include "drapelab/scene/number_format.hpp"
@@ -28,12 +34,13 @@ bool wants_pc2(scene::MeshOutput m) {
   return m == scene::MeshOutput::pc2 || m == scene::MeshOutput::both;
 }
 
-// Writes each measured frame into the run folder's tables and meshes, flushed frame by frame so
-// that every file stays complete whenever the run stops.
+// Writes each measured frame into the run folder's tables and meshes. A frame's rows are committed
+// when the frame ends; a write error rolls every file back to the last committed frame.
 class RunFolderWriter final : public FrameObserver {
  public:
-  RunFolderWriter(const fs::path& out, const scene::Scene& scene, const SceneSetup& setup)
-      : out_(out), setup_(setup), tables_(out), obj_(wants_obj(scene.output.meshes)) {}
+  RunFolderWriter(const fs::path& out, const scene::Scene& scene, const SceneSetup& setup,
+                  std::vector<SolverRun>& runs)
+      : out_(out), setup_(setup), runs_(runs), tables_(out), obj_(wants_obj(scene.output.meshes)) {}
 
   void measured(const SolverRun& run, const FrameMeasure& measure) override {
     const std::string& name = run.spec->name;
@@ -50,11 +57,13 @@ class RunFolderWriter final : public FrameObserver {
     }
     tables_.add_metrics(name, measure.frame, measure.time, measure.metrics);
     const ClothState& state = run.solver->state();
-    if (obj_)
-      write_obj(out_ / run_folder::kMeshesFolder / run_folder::obj_frame_name(name, measure.frame),
-                *setup_.model, state.x,
+    if (obj_) {
+      pending_objs_.push_back(out_ / run_folder::kMeshesFolder /
+                              run_folder::obj_frame_name(name, measure.frame));
+      write_obj(pending_objs_.back(), *setup_.model, state.x,
                 name + " frame " + std::to_string(measure.frame) +
                     " t=" + format_number(measure.time) + " s");
+    }
     if (run.point_cache) run.point_cache->append(state.x);
   }
 
@@ -67,29 +76,60 @@ class RunFolderWriter final : public FrameObserver {
               runs[a].spec->name, runs[b].spec->name, frame, time,
               compare_states(*setup_.model, runs[a].solver->state(), runs[b].solver->state()));
     tables_.flush();
+    tables_.commit();
+    for (auto& run : runs_)
+      if (run.point_cache) run.point_cache->commit();
+    pending_objs_.clear();
+    committed_frame_ = frame;
   }
+
+  // After a write error: every file back to the last committed frame, and the solvers' recorded
+  // frame counts with them. Returns false when a file could not be cut back.
+  bool rollback() noexcept {
+    bool whole = tables_.rollback();
+    for (auto& run : runs_) {
+      if (run.point_cache) whole = run.point_cache->rollback() && whole;
+      run.frames_recorded = std::min(run.frames_recorded, committed_frame_ + 1);
+    }
+    std::error_code ignored;
+    for (const auto& path : pending_objs_) fs::remove(path, ignored);
+    pending_objs_.clear();
+    return whole;
+  }
+  int committed_frame() const { return committed_frame_; }  // -1 before frame 0 is complete
 
  private:
   const fs::path& out_;
   const SceneSetup& setup_;
+  std::vector<SolverRun>& runs_;
   FrameTables tables_;
   bool obj_;
+  std::vector<fs::path> pending_objs_;  // OBJ files of the frame not yet committed
+  int committed_frame_ = -1;
 };
+
+// The path of a file inside the staging folder as it is named once the run is in place.
+std::string as_placed(const fs::path& file, const fs::path& staging, const fs::path& folder) {
+  const fs::path relative = file.lexically_relative(staging);
+  if (relative.empty() || *relative.begin() == "..") return file.string();
+  return (folder / relative).string();
+}
 
 }  // namespace
 
 RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream& log) {
   RunResult result;
   const std::string resolved = scene::resolved_scene_yaml(scene);
-  if (const auto problem =
-          run_folder::prepare_run_folder(options.out_dir, resolved, options.force)) {
-    log << "error: " << *problem << "\n";
+  auto opened = run_folder::RunTransaction::open(options.out_dir, resolved, options.force);
+  if (const auto* refusal = std::get_if<std::string>(&opened)) {
+    log << "error: " << *refusal << "\n";
     result.exit_code = kExitBadInput;
     return result;
   }
-  const fs::path& out = options.out_dir;
-  run_folder::write_file_atomically(out / run_folder::kSceneYaml, options.scene_text);
-  run_folder::write_file_atomically(out / run_folder::kResolvedYaml, resolved);
+  run_folder::RunTransaction& transaction =
+      *std::get<std::unique_ptr<run_folder::RunTransaction>>(opened);
+  for (const auto& note : transaction.notes()) log << "note: " << note << "\n";
+  const fs::path& out = transaction.staging();
 
   const SceneSetup setup = build_scene_setup(scene, options.model);
   const ClothModel& model = *setup.model;
@@ -102,33 +142,45 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
     runs.push_back(std::move(run));
   }
 
-  if (wants_obj(scene.output.meshes) || wants_pc2(scene.output.meshes)) {
-    const fs::path meshes = out / run_folder::kMeshesFolder;
-    fs::create_directories(meshes);
-    write_obj(meshes / "rest.obj", model, model.rest_positions,
-              "drapelab rest pose of " + scene.name);
-    if (wants_pc2(scene.output.meshes))
-      for (auto& run : runs)
-        run.point_cache = std::make_unique<run_folder::Pc2Writer>(
-            meshes / run_folder::point_cache_name(run.spec->name), model.particle_count());
-  }
-
   RunInfo info{"running", options.command_line, scene.frame_count(), 0};
-  run_folder::write_file_atomically(out / run_folder::kSummaryJson,
-                                    summary_json(scene, model, runs, info));
   FrameLoopEnd end;
-  {
-    RunFolderWriter writer(out, scene, setup);
+  std::optional<run_folder::WriteError> write_error;
+  std::unique_ptr<RunFolderWriter> writer;
+  try {
+    run_folder::write_whole_file(out / run_folder::kSceneYaml, options.scene_text);
+    run_folder::write_whole_file(out / run_folder::kResolvedYaml, resolved);
+    if (wants_obj(scene.output.meshes) || wants_pc2(scene.output.meshes)) {
+      const fs::path meshes = out / run_folder::kMeshesFolder;
+      fs::create_directories(meshes);
+      write_obj(meshes / "rest.obj", model, model.rest_positions,
+                "drapelab rest pose of " + scene.name);
+      if (wants_pc2(scene.output.meshes))
+        for (auto& run : runs)
+          run.point_cache = std::make_unique<run_folder::Pc2Writer>(
+              meshes / run_folder::point_cache_name(run.spec->name), model.particle_count());
+    }
+    run_folder::write_file_atomically(out / run_folder::kSummaryJson,
+                                      summary_json(scene, model, runs, info));
+    writer = std::make_unique<RunFolderWriter>(out, scene, setup, runs);
     FrameLoopOptions loop;
     loop.interrupt = options.interrupt;
-    end = run_frame_loop(scene, setup, runs, loop, writer);
+    end = run_frame_loop(scene, setup, runs, loop, *writer);
+  } catch (const run_folder::WriteError& error) {
+    // Disk full or refused: free the reserve so the summary fits, and end on the last whole frame.
+    transaction.release_reserve();
+    if (writer && !writer->rollback())
+      log << "warning: a table could not be cut back to its last whole frame\n";
+    write_error = error;
+  } catch (const fs::filesystem_error& error) {
+    transaction.release_reserve();
+    if (writer) writer->rollback();
+    write_error = run_folder::WriteError(error.path1(), error.code());
   }
 
   const bool interrupted = options.interrupt && options.interrupt->load(std::memory_order_relaxed);
-  info.state = interrupted ? "interrupted" : "finished";
-  info.frames_done = end.last_frame;
-  run_folder::write_file_atomically(out / run_folder::kSummaryJson,
-                                    summary_json(scene, model, runs, info));
+  info.state = write_error ? "write_failed" : interrupted ? "interrupted" : "finished";
+  info.frames_done =
+      write_error ? (writer ? std::max(writer->committed_frame(), 0) : 0) : end.last_frame;
   result.state = info.state;
   result.frames_done = info.frames_done;
   bool all_ok = true;
@@ -139,9 +191,29 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
     log << "solver '" << run.spec->name << "' " << solver_status_name(run.status) << ": "
         << run.message << "\n";
   }
-  if (interrupted) {
-    log << "interrupted after frame " << info.frames_done << "; every file in " << out.string()
-        << " holds the frames recorded so far\n";
+  try {
+    run_folder::write_file_atomically(out / run_folder::kSummaryJson,
+                                      summary_json(scene, model, runs, info));
+    result.folder = transaction.commit(info.state == "finished");
+  } catch (const run_folder::WriteError& error) {
+    log << "error: " << as_placed(error.path(), out, transaction.folder()) << ": cannot write ("
+        << error.error().message() << "); the run's files stay in " << out.string() << "\n";
+    result.folder = out;
+    result.exit_code = all_ok ? kExitBadInput : kExitUnstable;
+    return result;
+  }
+  if (result.folder != transaction.folder())
+    log << "note: " << transaction.folder().string()
+        << " holds a finished run, which is kept; this incomplete run is in "
+        << result.folder.string() << "\n";
+  if (write_error) {
+    log << "error: cannot write " << as_placed(write_error->path(), out, result.folder) << ": "
+        << write_error->error().message() << "; the run stopped, and every file in "
+        << result.folder.string() << " holds frames 0.." << info.frames_done << "\n";
+    result.exit_code = all_ok ? kExitBadInput : kExitUnstable;
+  } else if (interrupted) {
+    log << "interrupted after frame " << info.frames_done << "; every file in "
+        << result.folder.string() << " holds the frames recorded so far\n";
     result.exit_code = kExitInterrupted;
   } else {
     result.exit_code = all_ok ? kExitOk : kExitUnstable;

@@ -4,24 +4,32 @@
 
 #include <cstddef>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "drapelab/run_folder/output_file.hpp"
+
 namespace drapelab::run_folder {
 
-// A CSV table written a row at a time. Each row is flushed when the frame ends, so a run stopped at
-// any moment leaves a valid table (header + whole rows).
+// A CSV table written a row at a time. Rows wait in memory until flush(), which the run calls when
+// a frame ends; commit() then marks the frame complete, and rollback() cuts the file back to the
+// last complete frame after a write error, so the table always ends on a whole row.
 class CsvWriter {
  public:
   CsvWriter(const std::filesystem::path& path, const std::vector<std::string>& columns);
   void row(const std::vector<std::string>& cells);
-  void flush();
+  void flush();  // throws WriteError (output_file.hpp)
+  void commit() { file_.commit(); }
+  bool rollback() noexcept {
+    pending_.clear();
+    return file_.rollback();
+  }
   std::size_t column_count() const { return columns_; }
 
  private:
-  std::ofstream out_;
+  OutputFile file_;
+  std::string pending_;  // rows not yet written
   std::size_t columns_;
 };
 

@@ -1,6 +1,6 @@
 // The run folder's files (docs/outputs.md, "The run folder"): their names, whole-file reads, writes
-// that replace a file atomically, and the folder's safety checks. The one place that decides what a
-// run folder holds: the runner writes it, and check, report and render read it.
+// that replace a file atomically. How a run fills its folder: run_transaction.hpp. The one place
+// that decides what a run folder holds: the runner writes it, and check, report and render read it.
 #pragma once
 
 #include <filesystem>
@@ -22,20 +22,11 @@ inline constexpr const char* kMeshesFolder = "meshes";  // rest.obj, SOLVER.pc2,
 inline constexpr const char* kRenderFolder = "render";  // drapelab render's default output
 
 // Writes `text` to `path` through a temporary file and a rename, so readers never see half a file.
+// Throws WriteError (output_file.hpp); the temporary is removed on failure.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);
 // A whole file as bytes ("" when it cannot be read).
 std::string read_file(const std::filesystem::path& path);
 // A whole file as bytes; nullopt when it cannot be opened.
 std::optional<std::string> read_file_bytes(const std::filesystem::path& path);
-
-// Every file and folder a run may write into its folder (and --force may replace).
-const std::vector<std::string>& run_output_names();
-
-// Checks the output folder before anything is written. Returns an error message (exit code 2) when
-// it may not be used: it is a file, or holds a different run or other files and --force was not
-// given. With `force`, removes the previous run's outputs (only drapelab's own files). Creates the
-// folder.
-std::optional<std::string> prepare_run_folder(const std::filesystem::path& folder,
-                                              const std::string& resolved_scene, bool force);
 
 }  // namespace drapelab::run_folder

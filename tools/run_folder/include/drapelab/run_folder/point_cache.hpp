@@ -5,11 +5,12 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "drapelab/run_folder/output_file.hpp"
 
 namespace drapelab::run_folder {
 
@@ -18,20 +19,21 @@ std::string point_cache_name(const std::string& solver);
 std::string obj_frame_name(const std::string& solver, int frame);
 
 // Writes a point cache a frame at a time. The sample count in the header is rewritten after every
-// frame, so the file is valid whenever it is read.
+// frame, so the file is valid whenever it is read; commit() marks the samples so far complete and
+// rollback() cuts the file back to them after a write error. Writes throw WriteError.
 class Pc2Writer {
  public:
   Pc2Writer(const std::filesystem::path& path, int point_count);
-  ~Pc2Writer();
-  Pc2Writer(const Pc2Writer&) = delete;
-  Pc2Writer& operator=(const Pc2Writer&) = delete;
   void append(const Eigen::Matrix3Xd& x);  // m, 3 x points
+  void commit();
+  bool rollback() noexcept;
   int sample_count() const { return samples_; }
 
  private:
-  std::FILE* file_ = nullptr;
+  OutputFile file_;
   int points_ = 0;
-  int samples_ = 0;
+  int samples_ = 0;            // in the file
+  int committed_samples_ = 0;  // at the last commit
 };
 
 struct Pc2Header {

@@ -11,7 +11,8 @@
 namespace drapelab::runner {
 
 // OBJ with one vertex and one texture coordinate per particle (v/vt share the index, so importers
-// keep the vertex order), faces from the model's triangles, and polylines along a chain.
+// keep the vertex order), faces from the model's triangles, and polylines along a chain. Throws
+// run_folder::WriteError; a file not written whole is removed.
 void write_obj(const std::filesystem::path& path, const ClothModel& model,
                const Eigen::Matrix3Xd& x, const std::string& comment);
 

@@ -28,7 +28,7 @@ struct RunOptions {
 // Exit codes (docs/outputs.md, "Exit codes").
 inline constexpr int kExitOk = 0;             // every solver ok
 inline constexpr int kExitUnstable = 1;       // a solver became unstable or failed
-inline constexpr int kExitBadInput = 2;       // bad input: nothing was run
+inline constexpr int kExitBadInput = 2;       // bad input (nothing run), or a file not written
 inline constexpr int kExitInterrupted = 130;  // Ctrl-C: files hold every frame recorded so far
 
 // What one solver did in a run, as summary.json records it.
@@ -52,9 +52,11 @@ struct SolverOutcome {
 };
 
 struct RunResult {
-  int exit_code = kExitOk;             // one of the codes above
-  std::string state;                   // finished | interrupted; empty when refused (bad input)
+  int exit_code = kExitOk;  // one of the codes above
+  // finished | interrupted | write_failed; empty when refused (bad input)
+  std::string state;
   int frames_done = 0;                 // the last frame recorded
+  std::filesystem::path folder;        // where the run's files are (empty when refused)
   std::vector<SolverOutcome> solvers;  // in the scene's order
 };
 
