@@ -353,3 +353,67 @@ TEST_F(RenderCli, BadArgumentsAreBadInput) {
 }
 
 }  // namespace
+
+namespace {
+
+// A copy of the test's run folder, for tests that damage it.
+fs::path copy_of_run(const fs::path& root, const std::string& name) {
+  const fs::path copy = root / name;
+  fs::remove_all(copy);
+  fs::copy(root / "run", copy, fs::copy_options::recursive);
+  fs::remove_all(copy / "render");
+  return copy;
+}
+
+TEST_F(RenderCli, APointCacheCutShortIsRefusedNamingTheFrames) {
+  const fs::path run = copy_of_run(root(), "cut_pc2");
+  const fs::path cache = run / "meshes" / "ours.pc2";
+  // Cut the file in the middle of its last frames: the header still counts every frame.
+  fs::resize_file(cache, fs::file_size(cache) - 1000);
+  const auto result = run_drapelab({"render", run.string(), "--size", "64x64"});
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("ours.pc2 is cut short"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("whole frames"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(run / "render" / "frame_0000.png"));
+}
+
+TEST_F(RenderCli, APointCacheWithFewerFramesThanTheRunRecordedIsRefused) {
+  const fs::path run = copy_of_run(root(), "short_pc2");
+  const fs::path cache = run / "meshes" / "ours.pc2";
+  // Drop the last two frames and make the header agree: summary.json still counts them.
+  const auto bytes = fs::file_size(cache);
+  const int points = 9 * 9;
+  fs::resize_file(cache, bytes - 2 * 12 * points);
+  std::fstream file(cache, std::ios::binary | std::ios::in | std::ios::out);
+  const std::int32_t samples =
+      static_cast<std::int32_t>((bytes - 2 * 12 * points - 32) / (12 * points));
+  file.seekp(28);  // the sample count, after the signature, version, points, start and rate
+  file.write(reinterpret_cast<const char*>(&samples), 4);
+  file.close();
+  const auto result = run_drapelab({"render", run.string(), "--size", "64x64"});
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("holds " + std::to_string(samples) + " frames"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("recorded " + std::to_string(samples + 2)), std::string::npos)
+      << result.output;
+}
+
+TEST_F(RenderCli, AKilledRunIsDrawnAndSaidIncomplete) {
+  const fs::path run = copy_of_run(root(), "killed");
+  std::string summary = read_text(run / "summary.json");
+  summary.replace(summary.find("\"finished\""), 10, "\"running\"");
+  drapelab::fixtures::write_text(run / "summary.json", summary);
+  without_ffmpeg();
+  const auto result = run_drapelab({"render", run.string(), "--size", "64x64", "--every", "4"});
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("the run is incomplete"), std::string::npos) << result.output;
+  EXPECT_TRUE(fs::exists(run / "render" / "frame_0000.png"));
+}
+
+TEST_F(RenderCli, SizesAboveTheBoundAreRefusedBeforeAnyAllocation) {
+  const auto result = run_drapelab({"render", run_dir().string(), "--size", "16384x16384"});
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("8192"), std::string::npos) << result.output;
+}
+
+}  // namespace

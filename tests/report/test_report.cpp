@@ -24,6 +24,7 @@
 
 #include "drapelab/report/axis_ticks.hpp"
 #include "drapelab/report/html_page.hpp"
+#include "drapelab/report/run_completeness.hpp"
 #include "drapelab/report/svg_plot.hpp"
 #include "drapelab/run_folder/csv.hpp"
 #include "fixtures/cli.hpp"
@@ -628,6 +629,70 @@ TEST(ReportParts, SvgBreaksLinesAtMissingValuesAndMarksStoppedSolvers) {
   EXPECT_EQ(svg.find("nan"), std::string::npos);
   EXPECT_NE(svg.find("xmlns=\"http://www.w3.org/2000/svg\""), std::string::npos)
       << "a standalone file";
+}
+
+}  // namespace
+
+namespace {
+
+// Sets summary.json's run state ("finished" in a whole run) to `state`.
+void set_run_state(const fs::path& run, const std::string& state) {
+  std::string summary = drapelab::fixtures::read_text(run / "summary.json");
+  summary.replace(summary.find("\"finished\""), 10, "\"" + state + "\"");
+  drapelab::fixtures::write_text(run / "summary.json", summary);
+}
+
+// Keeps the header and the rows of metrics.csv up to frame `last`, then half of the next row.
+void cut_metrics_after(const fs::path& run, int last) {
+  const auto lines =
+      drapelab::fixtures::split_lines(drapelab::fixtures::read_text(run / "metrics.csv"));
+  std::string text = lines[0] + "\n";
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    const int frame = std::stoi(drapelab::fixtures::split_csv(lines[k])[1]);
+    if (frame <= last) {
+      text += lines[k] + "\n";
+    } else {
+      text += lines[k].substr(0, lines[k].size() / 2);  // cut mid-row, no newline
+      break;
+    }
+  }
+  drapelab::fixtures::write_text(run / "metrics.csv", text);
+}
+
+TEST_F(ReportCli, AKilledRunWithACutMetricsFileIsReportedIncomplete) {
+  const fs::path run = make_run();
+  set_run_state(run, "running");
+  cut_metrics_after(run, 5);
+  const auto result = run_drapelab({"report", run.string()});
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  // On stderr: the state, the cut file, and the frames missing per solver.
+  EXPECT_NE(result.output.find("warning: the run is incomplete"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("metrics.csv ends in the middle of a row"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("ours: frames 0-5 recorded"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("missing 6-"), std::string::npos) << result.output;
+  // On the page too, and the page still parses.
+  const std::string html = drapelab::fixtures::read_text(run / "report.html");
+  EXPECT_NE(html.find("Incomplete run"), std::string::npos);
+  EXPECT_NE(html.find("missing 6-"), std::string::npos);
+}
+
+TEST_F(ReportCli, AnInterruptedRunIsReportedWithItsMissingFrames) {
+  const fs::path run = make_run();
+  set_run_state(run, "interrupted");
+  cut_metrics_after(run, 3);
+  // Ctrl-C leaves whole rows: put the newline back.
+  drapelab::fixtures::write_text(
+      run / "metrics.csv",
+      drapelab::report::whole_rows(drapelab::fixtures::read_text(run / "metrics.csv"), nullptr));
+  const auto result = run_drapelab({"report", run.string()});
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("note: the run was interrupted"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("missing 4-"), std::string::npos) << result.output;
+  EXPECT_NE(drapelab::fixtures::read_text(run / "report.html").find("Interrupted run"),
+            std::string::npos);
 }
 
 }  // namespace

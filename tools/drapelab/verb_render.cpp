@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <new>
 #include <regex>
 
 #include "drapelab/render/camera.hpp"
@@ -17,6 +19,7 @@
 #include "drapelab/render/text.hpp"
 #include "drapelab/render/texture.hpp"
 #include "drapelab/render/video.hpp"
+#include "drapelab/report/run_completeness.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "verbs.hpp"
 
@@ -44,8 +47,10 @@ void add_render_options(CLI::App& verb, RenderArguments& arguments) {
   verb.footer(
       "Example:\n  drapelab run scenes/sphere_drape.yaml --out out/sphere_drape --meshes pc2\n"
       "  drapelab render out/sphere_drape --size 1280x480\n"
-      "Exit codes: 0 done, 1 ffmpeg failed (the PNG files are written), 2 bad input (nothing "
-      "rendered), 130 interrupted.");
+      "--size is at most 8192 pixels a side, and refused when its frame needs more memory than "
+      "is available.\nExit codes: 0 done, 1 rendering or ffmpeg failed, or the run is incomplete "
+      "(killed: drawn as far as it goes, and said on stderr), 2 bad input (not a run folder, a "
+      "point cache cut short, a bad option; nothing rendered), 130 interrupted.");
 }
 
 namespace {
@@ -53,6 +58,29 @@ namespace {
 constexpr int kSupersample = 2;         // rendered at 2x and averaged down: antialiased edges
 constexpr int kDefaultPanelSize = 480;  // pixels, square panels by default
 constexpr int kMinimumSize = 16;        // pixels, smallest width or height accepted
+// Pixels, the largest width or height accepted, and the largest buffer side rendered (larger
+// images skip supersampling). At 8192 x 8192 a frame needs about 1.5 GB (estimated_bytes).
+constexpr int kMaximumSize = 8192;
+
+// Bytes a frame needs at its peak: per rendered pixel the GL colour (4) and depth (4) buffers,
+// the read-back copy (3), the flipped image (3) and the image handed to the downsampling (3); per
+// output pixel the downsampled image and the one written to PNG (3 + 3).
+double estimated_bytes(int width, int height, int supersample) {
+  const double rendered = double(width) * supersample * height * supersample;
+  return 17.0 * rendered + 6.0 * double(width) * height;
+}
+
+// Bytes of memory available to a new allocation (MemAvailable of /proc/meminfo); nullopt when
+// unknown.
+std::optional<double> available_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kilobytes = 0.0;
+  std::string unit;
+  while (meminfo >> key >> kilobytes >> unit)
+    if (key == "MemAvailable:") return kilobytes * 1024.0;
+  return std::nullopt;
+}
 
 std::optional<std::pair<int, int>> parse_size(const std::string& text) {
   std::smatch match;
@@ -82,7 +110,9 @@ void remove_previous_render(const fs::path& folder) {
 
 }  // namespace
 
-int render_verb(const RenderArguments& arguments, const std::atomic<bool>& interrupt) {
+namespace {
+
+int render_run(const RenderArguments& arguments, const std::atomic<bool>& interrupt) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   std::string error;
@@ -94,7 +124,7 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
   std::optional<std::pair<int, int>> size;
   if (!arguments.size.empty()) {
     size = parse_size(arguments.size);
-    const int limit = render::OffscreenContext::max_size();
+    const int limit = std::min(kMaximumSize, render::OffscreenContext::max_size());
     if (!size || size->first < kMinimumSize || size->second < kMinimumSize || size->first > limit ||
         size->second > limit) {
       std::cerr << "error: --size must be WxH with each between " << kMinimumSize << " and "
@@ -131,14 +161,26 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
               << "\nnothing was rendered\n";
     return kExitBadInput;
   }
+  // Supersampling needs a buffer twice the size; large images render at 1x.
+  const int supersample = std::max(width, height) * kSupersample <=
+                                  std::min(kMaximumSize, render::OffscreenContext::max_size())
+                              ? kSupersample
+                              : 1;
+  const double needed = estimated_bytes(width, height, supersample);
+  if (const auto available = available_bytes(); available && needed > *available) {
+    std::cerr << "error: a " << width << " x " << height << " image needs about "
+              << std::round(needed / 1e8) / 10 << " GB of memory, and "
+              << std::round(*available / 1e8) / 10
+              << " GB is available; choose a smaller --size\nnothing was rendered\n";
+    return kExitBadInput;
+  }
+  // A run that did not end whole is drawn as far as it goes, and said so.
+  const report::RunCompleteness completeness = report::inspect_run(arguments.run_dir);
+  for (const auto& line : completeness.notices())
+    std::cerr << (completeness.incomplete() ? "warning: " : "note: ") << line << "\n";
   remove_previous_render(out);
 
   try {
-    // Supersampling needs a buffer twice the size; large images that would not fit render at 1x.
-    const int supersample =
-        std::max(width, height) * kSupersample <= render::OffscreenContext::max_size()
-            ? kSupersample
-            : 1;
     render::OffscreenContext context(width * supersample, height * supersample);
     const render::Bounds framing = render::framing_bounds(run);
     const render::PanelRenderer renderer(run.scene, run.model, texture, framing);
@@ -191,10 +233,15 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
     std::cout << "camera: eye=" << camera.eye.x() << "," << camera.eye.y() << "," << camera.eye.z()
               << ";target=" << camera.target.x() << "," << camera.target.y() << ","
               << camera.target.z() << ";fov=" << camera.fov_degrees << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: out of memory while rendering " << width << " x " << height
+              << " images; choose a smaller --size\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;
   }
+  const int done = completeness.incomplete() ? 1 : 0;  // an incomplete run: drawn, but not whole
 
   // The video, at the rate the frames were recorded (every Nth frame: rate / N).
   const double fps = run.scene.frame_rate / arguments.every;
@@ -204,7 +251,7 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
   if (!ffmpeg) {
     std::cout << "no video: ffmpeg is not on PATH; to make one, apt-get install ffmpeg, then run: "
               << render::shell_command("ffmpeg", ffmpeg_arguments) << "\n";
-    return 0;
+    return done;
   }
   const int status = render::run_program(*ffmpeg, ffmpeg_arguments, &error);
   if (status != 0) {
@@ -216,7 +263,21 @@ int render_verb(const RenderArguments& arguments, const std::atomic<bool>& inter
     return 1;
   }
   std::cout << "video: " << video.string() << " (H.264, " << fps << " frames per second)\n";
-  return 0;
+  return done;
+}
+
+}  // namespace
+
+int render_verb(const RenderArguments& arguments, const std::atomic<bool>& interrupt) {
+  try {
+    return render_run(arguments, interrupt);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: drapelab render ran out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {  // reading the run folder: bad input
+    std::cerr << "error: " << e.what() << "\nnothing was rendered\n";
+    return kExitBadInput;
+  }
 }
 
 }  // namespace drapelab::cli

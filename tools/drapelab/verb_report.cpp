@@ -4,9 +4,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <stdexcept>
 
 #include "drapelab/report/report.hpp"
+#include "drapelab/report/run_completeness.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -27,12 +29,16 @@ void add_report_options(CLI::App& verb, ReportArguments& arguments) {
       "render/ "
       "are used when present); a sweep folder needs sweep.csv (and uses sweep.json). Prints the "
       "report's "
-      "path. Exit codes: 0 written, 2 not a run or sweep folder (the message names what is "
-      "missing), a "
-      "file that cannot be read, or a report that cannot be written.");
+      "path. Exit codes: 0 written (an interrupted run with a notice of its missing frames), 1 "
+      "written, but the run is incomplete (killed: summary.json in state running, or a CSV cut "
+      "mid-row; the page and stderr say which frames are missing), 2 not a run or sweep folder "
+      "(the message names what is missing), a file that cannot be read, or a report that cannot "
+      "be written.");
 }
 
-int report_verb(const ReportArguments& arguments) {
+namespace {
+
+int write_report(const ReportArguments& arguments) {
   const fs::path folder = arguments.folder;
   const report::FolderCheck check = report::inspect_folder(folder);
   if (!check.kind) {
@@ -68,7 +74,26 @@ int report_verb(const ReportArguments& arguments) {
     return kExitBadInput;
   }
   std::cout << out.string() << "\n";
-  return 0;
+  if (*check.kind != report::FolderKind::run) return 0;
+  // A run that is not whole is said on stderr too, for whoever reads only the terminal.
+  const report::RunCompleteness completeness = report::inspect_run(folder);
+  for (const auto& line : completeness.notices())
+    std::cerr << (completeness.incomplete() ? "warning: " : "note: ") << line << "\n";
+  return completeness.incomplete() ? 1 : 0;
+}
+
+}  // namespace
+
+int report_verb(const ReportArguments& arguments) {
+  try {
+    return write_report(arguments);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: drapelab report ran out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {  // a file of the folder that cannot be read or parsed
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
 }
 
 }  // namespace drapelab::cli

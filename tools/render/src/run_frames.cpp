@@ -1,7 +1,9 @@
 // Reading a run folder's frames: point caches, per-frame OBJ files, summary.json and metrics.csv.
 #include "drapelab/render/run_frames.hpp"
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -22,6 +24,17 @@ std::string read_text(const fs::path& path) {
   return std::move(*text);
 }
 
+// The sample count a PC2 header claims (bytes 28 to 31, little endian as written), before it is
+// capped by the file's size; nullopt when it cannot be read.
+std::optional<std::int32_t> pc2_claimed_samples(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char bytes[4];
+  if (!in.seekg(28) || !in.read(bytes, 4)) return std::nullopt;
+  std::int32_t samples = 0;
+  std::memcpy(&samples, bytes, 4);
+  return samples;
+}
+
 class PointCache final : public FrameSource {
  public:
   PointCache(const fs::path& file, int particle_count) : file_(file), points_(particle_count) {
@@ -34,6 +47,14 @@ class PointCache final : public FrameSource {
                           " points per frame, but the run's cloth (resolved.yaml) has " +
                           std::to_string(particle_count) + " particles");
     samples_ = header->samples;
+    // The writer rewrites the count after each whole frame, so a count above the whole frames in
+    // the file means the file was cut after it was written.
+    const auto claimed = pc2_claimed_samples(file);
+    if (claimed && *claimed > samples_)
+      throw RunInputError(
+          file.string() + " is cut short: its header says " + std::to_string(*claimed) +
+          " frames, but the file holds " + std::to_string(samples_) + " whole frames (" +
+          std::to_string(fs::file_size(file)) + " bytes); run the scene again with --meshes pc2");
   }
   int frame_count() const override { return samples_; }
   std::string description() const override { return file_.filename().string(); }
@@ -153,6 +174,8 @@ RunFrames load_run_frames(const fs::path& dir) {
     solver.name = name;
     solver.type = entry.value("type", "");
     solver.status = entry.value("status", "");
+    if (entry.contains("frames_recorded") && entry["frames_recorded"].is_number_integer())
+      solver.frames_recorded = entry["frames_recorded"].get<int>();
     const fs::path cache = meshes / run_folder::point_cache_name(name);
     if (fs::exists(cache))
       solver.source = open_point_cache(cache, run.model.particle_count());
@@ -172,8 +195,18 @@ RunFrames load_run_frames(const fs::path& dir) {
                         "Run the scene again with them: drapelab run SCENE --out " +
                         dir.string() + " --meshes pc2 (or output.meshes: pc2 in the scene)");
   }
-  for (const auto& solver : run.solvers)
+  for (const auto& solver : run.solvers) {
+    // Fewer frames than the run recorded: the file lost frames after the run; drawing it would
+    // silently draw fewer frames than the run has.
+    if (solver.frames_recorded > solver.source->frame_count())
+      throw RunInputError((meshes / solver.source->description()).string() + " holds " +
+                          std::to_string(solver.source->frame_count()) + " frames, but " +
+                          summary_file.string() + " says '" + solver.name + "' recorded " +
+                          std::to_string(solver.frames_recorded) +
+                          " (frame 0 included); the file is cut short. Run the scene again with "
+                          "--meshes pc2");
     run.frame_count = std::max(run.frame_count, solver.source->frame_count());
+  }
   if (run.frame_count == 0)
     throw RunInputError(dir.string() + ": the point caches hold no frame yet");
   read_metrics(dir / "metrics.csv", run.solvers);

@@ -12,6 +12,7 @@
 
 #include "drapelab/report/html_page.hpp"
 #include "drapelab/report/report.hpp"
+#include "drapelab/report/run_completeness.hpp"
 #include "drapelab/report/svg_plot.hpp"
 #include "drapelab/run_folder/csv.hpp"
 #include "drapelab/run_folder/files.hpp"
@@ -24,7 +25,6 @@ using nlohmann::ordered_json;
 using run_folder::CsvTable;
 using run_folder::parse_csv;
 using run_folder::parse_number;
-using run_folder::read_csv_file;
 using run_folder::read_file_bytes;
 
 namespace {
@@ -65,11 +65,15 @@ RunData load_run(const fs::path& folder) {
   } catch (const std::exception&) {
     // The description is only shown; a scene.yaml that does not parse is still shown as text.
   }
-  run.metrics = parse_csv(read_required(folder / "metrics.csv"));
+  // A CSV whose writer was killed may end in half a row: it is left out (run_completeness.hpp says
+  // so on the page).
+  run.metrics = parse_csv(whole_rows(read_required(folder / "metrics.csv"), nullptr));
   if (!run.metrics.column("solver") || !run.metrics.column("time"))
     throw std::runtime_error((folder / "metrics.csv").string() + " has no solver and time columns");
-  if (auto table = read_csv_file(folder / "compare.csv")) run.compare = std::move(*table);
-  if (auto table = read_csv_file(folder / "contacts.csv")) run.contacts = std::move(*table);
+  if (auto text = read_file_bytes(folder / "compare.csv"))
+    run.compare = parse_csv(whole_rows(*text, nullptr));
+  if (auto text = read_file_bytes(folder / "contacts.csv"))
+    run.contacts = parse_csv(whole_rows(*text, nullptr));
 
   if (run.summary.contains("solvers") && run.summary["solvers"].is_object())
     for (const auto& [name, value] : run.summary["solvers"].items()) run.solvers.push_back(name);
@@ -374,6 +378,19 @@ std::string media_section(const RunData& run, const fs::path& report_file) {
   return html;
 }
 
+// A notice at the top of the page when the run is not whole: killed, cut or interrupted.
+std::string completeness_section(const RunCompleteness& completeness) {
+  const auto notices = completeness.notices();
+  if (notices.empty()) return "";
+  std::string html = "<div class=\"" +
+                     std::string(completeness.incomplete() ? "status-bad" : "note") +
+                     "\" id=\"completeness\">\n<p>" +
+                     (completeness.incomplete() ? "Incomplete run" : "Interrupted run") +
+                     ": this page shows only the frames recorded.</p>\n<ul>\n";
+  for (const auto& line : notices) html += "<li>" + escape_xml(line) + "</li>\n";
+  return html + "</ul>\n</div>\n";
+}
+
 std::string scene_section(const RunData& run) {
   const ordered_json& s = run.summary;
   std::string html = "<h2 id=\"scene\">Scene</h2>\n";
@@ -419,6 +436,7 @@ std::string run_report_html(const fs::path& folder, const fs::path& report_file)
           " solver(s). Sections: <a href=\"#render\">last frame</a>, "
           "<a href=\"#summary\">solvers</a>, <a href=\"#plots\">metrics over time</a>, <a "
           "href=\"#scene\">scene</a>.</p>\n";
+  html += completeness_section(inspect_run(folder));
   html += media_section(run, report_file);
   html += summary_section(run);
   html += plots_section(run);

@@ -52,8 +52,9 @@ struct FrameMetrics {
 
 struct SolverFrames {
   std::string name;
-  std::string type;    // spring_damper, bullet_softbody, bullet_deformable
-  std::string status;  // ok, unstable, error (summary.json)
+  std::string type;          // spring_damper, bullet_softbody, bullet_deformable
+  std::string status;        // ok, unstable, error (summary.json)
+  int frames_recorded = -1;  // summary.json's frames_recorded (frame 0 included); -1 when absent
   std::unique_ptr<FrameSource> source;
   std::map<int, FrameMetrics> metrics;  // by frame; empty when metrics.csv is missing
 };
@@ -67,8 +68,9 @@ struct RunFrames {
 };
 
 // Reads a run folder. Throws RunInputError when it is not a run folder, its resolved.yaml does not
-// load, or a solver has neither a point cache nor per-frame OBJ files (the message says to run with
-// --meshes pc2); std::runtime_error for unreadable files.
+// load, a solver has neither a point cache nor per-frame OBJ files (the message says to run with
+// --meshes pc2), or a point cache or OBJ sequence holds fewer frames than its header or
+// summary.json says (a cut file); std::runtime_error for unreadable files.
 RunFrames load_run_frames(const std::filesystem::path& dir);
 
 }  // namespace drapelab::render
