@@ -1,16 +1,21 @@
 // drapelab check SCENE --golden FILE [--update]: the regression test of collision response. Runs
-// the scene with the overrides recorded in the golden file and compares its key metrics at the
-// recorded frames, within the file's tolerances. --update records a new golden file and prints what
-// changed.
+// the scene with the overrides recorded in the golden file and compares the means of its metrics
+// over the file's windows of frames, each within its own tolerance. --update records a new golden
+// file from a run whose every solver is ok, measuring the tolerances with a probe run, and prints
+// what changed.
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <new>
 #include <optional>
 
 #include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/golden.hpp"
 #include "drapelab/runner/run_scene.hpp"
+#include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_loader.hpp"
 #include "verbs.hpp"
 
@@ -26,16 +31,21 @@ void add_check_options(CLI::App& verb, CheckArguments& arguments) {
   verb.add_flag("--update", arguments.update,
                 "Run the scene and record its metrics as the new golden file");
   verb.add_option("--set", arguments.overrides,
-                  "With --update: override a key for the recorded run (kept in the golden file)");
+                  "Override a key. With --update: for the recorded run (kept in the golden file); "
+                  "without: on top of the golden file's overrides, to see whether the golden file "
+                  "notices the change");
   verb.add_option("--out,-o", arguments.out,
                   "Keep the run's folder here (default: a temporary folder, removed)");
   verb.footer(
       "Examples:\n"
       "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
+      "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json "
+      "--set contact.stiffness=1100\n"
       "  drapelab check my_scene.yaml --golden my_scene.golden.json --update --set duration=1\n"
       "Exit codes: 0 every value within tolerance (or the file written), 1 a value differs from "
-      "the "
-      "golden file, 2 bad input.");
+      "the golden file, or --update refused a run whose solvers are not all ok, 2 bad input "
+      "(the scene; a golden file that is missing, unreadable, a folder, or compares nothing; a "
+      "golden path that cannot be written), 130 interrupted.");
 }
 
 namespace {
@@ -43,14 +53,16 @@ namespace {
 // A run folder: the --out folder, or a fresh temporary one removed when this goes out of scope.
 class RunFolder {
  public:
-  explicit RunFolder(const std::string& out) {
+  RunFolder(const std::string& out, const std::string& purpose) {
     if (!out.empty()) {
       path_ = out;
       return;
     }
-    path_ = fs::temp_directory_path() / ("drapelab-check-" + std::to_string(::getpid()));
+    path_ = fs::temp_directory_path() /
+            ("drapelab-check-" + purpose + "-" + std::to_string(::getpid()));
     temporary_ = true;
-    fs::remove_all(path_);
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
   }
   ~RunFolder() {
     std::error_code ignored;
@@ -65,43 +77,139 @@ class RunFolder {
   bool temporary_ = false;
 };
 
-// Runs the scene; returns the run's exit code, or nothing when the scene is bad input.
-std::optional<int> run_for_check(const CheckArguments& arguments,
-                                 const std::vector<std::string>& overrides, const fs::path& folder,
-                                 const std::atomic<bool>& interrupt, scene::Scene* loaded) {
-  const auto result = scene::load_scene_file(arguments.scene, overrides);
-  if (!result.ok()) {
-    for (const auto& error : result.errors) std::cerr << "error: " << error << "\n";
+struct CheckRun {
+  scene::Scene scene;
+  runner::RunResult result;
+};
+
+// Runs the scene with `overrides`; nothing when the scene is bad input (the errors are printed).
+std::optional<CheckRun> run_for_check(const CheckArguments& arguments,
+                                      const std::vector<std::string>& overrides,
+                                      const fs::path& folder, const std::atomic<bool>& interrupt) {
+  const auto loaded = scene::load_scene_file(arguments.scene, overrides);
+  if (!loaded.ok()) {
+    for (const auto& error : loaded.errors) std::cerr << "error: " << error << "\n";
     return std::nullopt;
   }
-  *loaded = *result.scene;
+  CheckRun run;
+  run.scene = *loaded.scene;
   runner::RunOptions options;
   options.out_dir = folder;
   options.force = true;
   options.scene_text = run_folder::read_file(arguments.scene);
   options.command_line = "drapelab check " + arguments.scene;
   options.interrupt = &interrupt;
-  options.model = result.model;
-  return runner::run_scene(*result.scene, options, std::cerr).exit_code;
+  options.model = loaded.model;
+  run.result = runner::run_scene(*loaded.scene, options, std::cerr);
+  if (run.result.folder.empty()) run.result.folder = folder;
+  return run;
+}
+
+// The solvers of a run that did not end ok, one line each.
+std::string solver_problems(const runner::RunResult& result) {
+  std::string lines;
+  for (const auto& solver : result.solvers)
+    if (solver.status != SolverStatus::ok)
+      lines += "  " + solver.name + ": " + solver_status_name(solver.status) +
+               (solver.message.empty() ? "" : ": " + solver.message) + "\n";
+  if (lines.empty()) lines = "  the run ended in state '" + result.state + "'\n";
+  return lines;
+}
+
+// Refuses a golden path that cannot take a file: a folder, or a folder that cannot be created or
+// written. Checked before the run, so a bad path costs no simulation. Returns the problem.
+std::optional<std::string> golden_path_problem(const fs::path& golden) {
+  std::error_code ec;
+  if (fs::is_directory(golden, ec))
+    return golden.string() + " is a folder; --golden takes a file, e.g. " +
+           (golden / "scene.json").string();
+  const fs::path folder = fs::absolute(golden, ec).parent_path();
+  fs::create_directories(folder, ec);
+  if (!fs::is_directory(folder))
+    return "cannot create the folder " + folder.string() + " for " + golden.string() +
+           (ec ? " (" + ec.message() + ")" : "");
+  const fs::path trial = folder / (".drapelab-check-write-test-" + std::to_string(::getpid()));
+  {
+    std::ofstream file(trial);
+    if (!file) return "cannot write in " + folder.string() + " (it is not writable)";
+  }
+  fs::remove(trial, ec);
+  if (fs::exists(golden) && ::access(golden.c_str(), W_OK) != 0)
+    return golden.string() + " is not writable";
+  return std::nullopt;
+}
+
+// The overrides of the probe run: gravity changed by `probe` of itself (golden.hpp, GoldenRule).
+std::vector<std::string> probe_overrides(const std::vector<std::string>& overrides,
+                                         const scene::Scene& scene, double probe) {
+  std::vector<std::string> probed = overrides;
+  const Eigen::Vector3d g = scene.gravity * (1.0 + probe);
+  probed.push_back("gravity=[" + format_number(g.x()) + ", " + format_number(g.y()) + ", " +
+                   format_number(g.z()) + "]");
+  return probed;
 }
 
 int update_golden(const CheckArguments& arguments, const std::atomic<bool>& interrupt) {
+  if (const auto problem = golden_path_problem(arguments.golden)) {
+    std::cerr << "error: " << *problem << "\nnothing was run\n";
+    return kExitBadInput;
+  }
   std::optional<runner::Golden> previous;
-  if (fs::exists(arguments.golden))
-    previous = runner::golden_from_json(run_folder::read_file(arguments.golden), nullptr);
-  RunFolder folder(arguments.out);
-  scene::Scene scene;
-  const auto code = run_for_check(arguments, arguments.overrides, folder.path(), interrupt, &scene);
-  if (!code) return kExitBadInput;
-  if (*code == runner::kExitInterrupted) return *code;
+  if (fs::exists(arguments.golden)) {
+    std::string problem;
+    previous = runner::golden_from_json(run_folder::read_file(arguments.golden), &problem);
+    if (!previous)
+      std::cout << "note: the previous " << arguments.golden << " " << problem
+                << "; it is replaced without a comparison\n";
+  }
+  RunFolder folder(arguments.out, "run");
+  const auto run = run_for_check(arguments, arguments.overrides, folder.path(), interrupt);
+  if (!run) return kExitBadInput;
+  if (run->result.exit_code == runner::kExitInterrupted) return runner::kExitInterrupted;
+  if (run->result.exit_code != runner::kExitOk) {
+    std::cerr << "error: not recorded: --update records only a run whose every solver is ok, and "
+                 "this one is not:\n"
+              << solver_problems(run->result) << arguments.golden << " is left as it was\n";
+    return run->result.exit_code == runner::kExitBadInput ? kExitBadInput : runner::kExitUnstable;
+  }
   runner::Golden golden;
-  golden.scene = scene.name;
+  golden.scene = run->scene.name;
   golden.overrides = arguments.overrides;
-  if (previous) golden.tolerance = previous->tolerance;  // tolerances are kept across updates
-  golden.frames =
-      runner::read_golden_values(folder.path(), runner::golden_frames(scene.frame_count()));
+  if (run->scene.gravity.norm() == 0.0) {
+    std::cerr << "error: " << arguments.scene << " has no gravity, which the probe runs that "
+              << "measure the tolerances changes; give the scene a gravity\n";
+    return kExitBadInput;
+  }
+  // The probe runs: the same scene with gravity changed by +probe and -probe of itself.
+  std::vector<std::map<int, runner::GoldenRows>> probes;
+  const auto ends = runner::golden_window_ends(run->scene.frame_count(), golden.rule.windows);
+  for (const double sign : {1.0, -1.0}) {
+    RunFolder probe_folder("", "probe");
+    const auto probe = run_for_check(
+        arguments, probe_overrides(arguments.overrides, run->scene, sign * golden.rule.probe),
+        probe_folder.path(), interrupt);
+    if (!probe) return kExitBadInput;
+    if (probe->result.exit_code == runner::kExitInterrupted) return runner::kExitInterrupted;
+    if (probe->result.exit_code != runner::kExitOk) {
+      std::cerr << "error: not recorded: a probe run (gravity changed by "
+                << sign * golden.rule.probe
+                << " of itself) did not end ok, so a rounding difference decides this run:\n"
+                << solver_problems(probe->result) << arguments.golden << " is left as it was\n";
+      return runner::kExitUnstable;
+    }
+    probes.push_back(runner::window_means(runner::read_run_values(probe->result.folder), ends));
+  }
+  const auto frames = runner::read_run_values(run->result.folder);
+  golden.windows = runner::window_means(frames, ends);
+  golden.scale = runner::golden_scales(frames);
+  golden.relative = runner::golden_relative(golden.rule, golden.scale, golden.windows, probes);
+  if (golden.value_count() == 0) {
+    std::cerr << "error: not recorded: the run wrote no values to compare ("
+              << run->result.folder.string() << ")\n";
+    return runner::kExitUnstable;
+  }
   if (previous) {
-    const auto changes = runner::compare_golden(*previous, golden.frames);
+    const auto changes = runner::compare_golden(*previous, golden.windows);
     std::cout << arguments.golden << ": "
               << (changes.empty() ? "no value changed beyond the tolerance"
                                   : std::to_string(changes.size()) + " values changed:")
@@ -111,20 +219,20 @@ int update_golden(const CheckArguments& arguments, const std::atomic<bool>& inte
   } else {
     std::cout << arguments.golden << ": new golden file\n";
   }
-  fs::create_directories(fs::absolute(arguments.golden).parent_path());
-  run_folder::write_file_atomically(arguments.golden, runner::golden_to_json(golden));
-  if (*code != runner::kExitOk)
-    std::cout << "note: the recorded run did not end ok (exit " << *code << ")\n";
+  if (const auto problem =
+          runner::write_golden_file(arguments.golden, runner::golden_to_json(golden))) {
+    std::cerr << "error: " << *problem << "\n";
+    return kExitBadInput;
+  }
+  std::cout << "wrote " << arguments.golden << ": " << golden.value_count() << " values at "
+            << golden.windows.size() << " windows\n";
   return runner::kExitOk;
 }
 
-}  // namespace
-
-int check_verb(const CheckArguments& arguments, const std::atomic<bool>& interrupt) {
-  if (arguments.update) return update_golden(arguments, interrupt);
-  if (!arguments.overrides.empty()) {
-    std::cerr << "error: --set goes with --update: the golden file fixes the overrides of the run "
-                 "it checks\n";
+int compare_with_golden(const CheckArguments& arguments, const std::atomic<bool>& interrupt) {
+  std::error_code ec;
+  if (fs::is_directory(arguments.golden, ec)) {
+    std::cerr << "error: " << arguments.golden << " is a folder; --golden takes a golden file\n";
     return kExitBadInput;
   }
   if (!fs::exists(arguments.golden)) {
@@ -133,43 +241,67 @@ int check_verb(const CheckArguments& arguments, const std::atomic<bool>& interru
               << " --golden " << arguments.golden << " --update\n";
     return kExitBadInput;
   }
+  const auto text = run_folder::read_file_bytes(arguments.golden);
+  if (!text) {
+    std::cerr << "error: " << arguments.golden << " cannot be read\n";
+    return kExitBadInput;
+  }
   std::string problem;
-  const auto golden = runner::golden_from_json(run_folder::read_file(arguments.golden), &problem);
+  const auto golden = runner::golden_from_json(*text, &problem);
   if (!golden) {
-    std::cerr << "error: " << arguments.golden << ": " << problem << "\n";
+    std::cerr << "error: " << arguments.golden << " " << problem << "\n";
     return kExitBadInput;
   }
-  RunFolder folder(arguments.out);
-  scene::Scene scene;
-  const auto code = run_for_check(arguments, golden->overrides, folder.path(), interrupt, &scene);
-  if (!code) return kExitBadInput;
-  if (*code == runner::kExitInterrupted) return *code;
-  if (scene.name != golden->scene) {
+  // Overrides given here go after the file's own: the way to ask whether the golden file notices a
+  // change of the scene (a contact parameter, say).
+  std::vector<std::string> overrides = golden->overrides;
+  overrides.insert(overrides.end(), arguments.overrides.begin(), arguments.overrides.end());
+  RunFolder folder(arguments.out, "run");
+  const auto run = run_for_check(arguments, overrides, folder.path(), interrupt);
+  if (!run) return kExitBadInput;
+  if (run->result.exit_code == runner::kExitInterrupted) return runner::kExitInterrupted;
+  if (run->scene.name != golden->scene) {
     std::cerr << "error: " << arguments.golden << " records scene '" << golden->scene << "', but "
-              << arguments.scene << " is scene '" << scene.name << "'\n";
+              << arguments.scene << " is scene '" << run->scene.name << "'\n";
     return kExitBadInput;
   }
-  std::vector<int> frames;
-  for (const auto& [frame, rows] : golden->frames) frames.push_back(frame);
-  const auto differences =
-      runner::compare_golden(*golden, runner::read_golden_values(folder.path(), frames));
-  std::size_t values = 0;
-  for (const auto& [frame, rows] : golden->frames)
-    for (const auto& [row, columns] : rows) values += columns.size();
+  std::vector<int> ends;
+  for (const auto& [frame, rows] : golden->windows) ends.push_back(frame);
+  const auto differences = runner::compare_golden(
+      *golden, runner::window_means(runner::read_run_values(run->result.folder), ends));
+  const std::string extra = arguments.overrides.empty()
+                                ? ""
+                                : " (with " + std::to_string(arguments.overrides.size()) +
+                                      " extra override(s) given here)";
+  if (run->result.exit_code != runner::kExitOk)
+    std::cout << "note: the run did not end ok:\n" << solver_problems(run->result);
   if (differences.empty()) {
-    std::cout << arguments.scene << ": " << values << " values at " << frames.size()
-              << " frames match " << arguments.golden << "\n";
+    std::cout << arguments.scene << extra << ": " << golden->value_count() << " values at "
+              << ends.size() << " windows match " << arguments.golden << "\n";
     return runner::kExitOk;
   }
-  std::cout << arguments.scene << ": " << differences.size() << " of " << values
-            << " values differ from " << arguments.golden << " (tolerance: relative "
-            << golden->tolerance.relative << ", absolute " << golden->tolerance.absolute
-            << ", counts " << golden->tolerance.count << "):\n";
+  std::cout << arguments.scene << extra << ": " << differences.size() << " of "
+            << golden->value_count() << " values differ from " << arguments.golden << ":\n";
   for (const auto& difference : differences)
     std::cout << "  " << runner::describe_difference(difference) << "\n";
   std::cout << "If the change is intended, record it with tools/update-golden.sh (or --update) and "
-               "review "
-               "the diff of the golden file.\n";
+               "review the diff of the golden file.\n";
+  return runner::kExitUnstable;
+}
+
+}  // namespace
+
+int check_verb(const CheckArguments& arguments, const std::atomic<bool>& interrupt) {
+  // Any failure below the verb is reported, never an abort: reading a run's files is the verb's
+  // own work (exit 1), and running out of memory is a failure of this run (exit 1).
+  try {
+    return arguments.update ? update_golden(arguments, interrupt)
+                            : compare_with_golden(arguments, interrupt);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: drapelab check ran out of memory\n";
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+  }
   return runner::kExitUnstable;
 }
 

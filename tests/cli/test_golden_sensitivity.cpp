@@ -1,0 +1,104 @@
+// The golden files notice collision response: for every scene with colliders, `drapelab check`
+// against its golden file passes on the scene as it is and fails when the contact stiffness, the
+// contact damping or every collider's friction is 10 % higher (docs/contact.md, "Golden files",
+// gives the measured changes against the tolerances).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "drapelab/scene/number_format.hpp"
+#include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/cli.hpp"
+
+namespace drapelab {
+namespace {
+
+namespace fs = std::filesystem;
+using fixtures::run_drapelab;
+
+enum class Change { none, stiffness, damping, friction };
+
+struct Case {
+  std::string scene;  // NAME of scenes/NAME.yaml
+  Change change;
+};
+
+// Every scene of scenes/ with colliders, by name, sorted.
+std::vector<std::string> contact_scenes() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(fs::path(DRAPELAB_SOURCE_DIR) / "scenes")) {
+    if (entry.path().extension() != ".yaml") continue;
+    const auto loaded = scene::load_scene_file(entry.path());
+    if (loaded.ok() && !loaded.scene->colliders.empty())
+      names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (const auto& name : contact_scenes())
+    for (Change change : {Change::none, Change::stiffness, Change::damping, Change::friction})
+      all.push_back({name, change});
+  return all;
+}
+
+// The --set values that make the change: 10 % more of the parameter the scene resolves to. Friction
+// acts per collider, so every collider's kinetic and static coefficients go up by 10 %.
+std::vector<std::string> overrides(const scene::Scene& s, Change change) {
+  std::vector<std::string> sets;
+  auto more = [](double value) { return format_number(1.1 * value); };
+  if (change == Change::stiffness) sets.push_back("contact.stiffness=" + more(s.contact.stiffness));
+  if (change == Change::damping) sets.push_back("contact.damping=" + more(s.contact.damping));
+  if (change == Change::friction)
+    for (std::size_t k = 0; k < s.colliders.size(); ++k) {
+      const std::string key = "colliders." + std::to_string(k) + ".";
+      sets.push_back(key + "static_friction=" + more(s.colliders[k].static_friction));
+      sets.push_back(key + "friction=" + more(s.colliders[k].friction));
+    }
+  return sets;
+}
+
+const char* change_name(Change change) {
+  const char* names[] = {"unchanged", "stiffness", "damping", "friction"};
+  return names[static_cast<int>(change)];
+}
+
+// Names the case in gtest's messages (instead of the case's bytes).
+void PrintTo(const Case& c, std::ostream* out) { *out << c.scene << " " << change_name(c.change); }
+
+class GoldenSensitivity : public ::testing::TestWithParam<Case> {};
+
+TEST_P(GoldenSensitivity, CheckFailsOnATenPercentContactChangeAndPassesWithout) {
+  const Case& c = GetParam();
+  const fs::path scene_file = fs::path(DRAPELAB_SOURCE_DIR) / "scenes" / (c.scene + ".yaml");
+  const fs::path golden = fs::path(DRAPELAB_SOURCE_DIR) / "tests" / "golden" / (c.scene + ".json");
+  const auto loaded = scene::load_scene_file(scene_file);
+  ASSERT_TRUE(loaded.ok());
+  std::vector<std::string> arguments{"check", scene_file.string(), "--golden", golden.string()};
+  for (const auto& set : overrides(*loaded.scene, c.change)) {
+    arguments.push_back("--set");
+    arguments.push_back(set);
+  }
+  const auto result = run_drapelab(arguments);
+  if (c.change == Change::none) {
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+  } else {
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("values differ"), std::string::npos) << result.output;
+  }
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+  return info.param.scene + "_" + change_name(info.param.change);
+}
+
+INSTANTIATE_TEST_SUITE_P(ContactScenes, GoldenSensitivity, ::testing::ValuesIn(cases()), case_name);
+
+}  // namespace
+}  // namespace drapelab
