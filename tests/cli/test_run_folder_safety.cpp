@@ -105,6 +105,19 @@ TEST_F(RunFolderSafety, ForceKeepsEveryFileDrapelabDidNotWrite) {
   EXPECT_TRUE(staged_file(out, "metrics.csv").empty());
 }
 
+TEST_F(RunFolderSafety, AReportOfAReplacedRunGoesWithIt) {
+  const fs::path out = dir() / "out";
+  const fs::path file = scene("sheet.yaml", sheet_scene(0.05));
+  ASSERT_EQ(run_drapelab({"run", file.string(), "--out", out.string()}).exit_code, 0);
+  const auto report = run_drapelab({"report", out.string()});
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  ASSERT_TRUE(fs::is_regular_file(out / "report.html"));
+  EXPECT_NE(read_text(out / ".drapelab-manifest").find("report.html"), std::string::npos);
+  // The same run again keeps nothing stale either: its page describes the previous run.
+  ASSERT_EQ(run_drapelab({"run", file.string(), "--out", out.string()}).exit_code, 0);
+  EXPECT_FALSE(fs::exists(out / "report.html"));
+}
+
 TEST_F(RunFolderSafety, CtrlCOnARerunKeepsTheFinishedRun) {
   const fs::path out = dir() / "out";
   const fs::path short_run = scene("short.yaml", sheet_scene(0.5));

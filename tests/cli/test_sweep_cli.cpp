@@ -31,6 +31,7 @@ using drapelab::fixtures::kSweepSheet;
 using drapelab::fixtures::kSweepUnstableDt;
 using drapelab::fixtures::read_text;
 using drapelab::fixtures::run_drapelab;
+using drapelab::fixtures::staged_file;
 using drapelab::fixtures::write_text;
 
 // RFC 4180 CSV: quoted cells may hold commas and doubled quotes (sweep.csv's message and values).
@@ -262,8 +263,7 @@ TEST_F(SweepCli, CtrlCStopsTheRunsAndKeepsTheTableValid) {
     if (!fs::is_directory(out / "runs", ec)) return false;
     for (const auto& entry : fs::directory_iterator(out / "runs", ec)) {
       if (!entry.is_directory()) continue;
-      const fs::path metrics =
-          fixtures::staged_file(entry.path(), "metrics.csv");  // the run's, as it runs
+      const fs::path metrics = staged_file(entry.path(), "metrics.csv");  // the run's, as it runs
       std::error_code size_error;
       if (!metrics.empty() && fs::exists(metrics) && fs::file_size(metrics, size_error) > 2000)
         ++running;
@@ -324,13 +324,14 @@ TEST_F(SweepCli, ACrashedRunIsARowAndTheSweepGoesOn) {
             "--jobs", "1", "--out", out.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
-  const fs::path first_metrics = out / "runs" / "000_duration=600" / "metrics.csv";
+  const fs::path first_run = out / "runs" / "000_duration=600";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   std::vector<pid_t> runs;
   while (std::chrono::steady_clock::now() < deadline) {
     runs = children_of(sweep);
     std::error_code ec;
-    if (runs.size() == 1 && fs::exists(first_metrics, ec) &&
+    const fs::path first_metrics = staged_file(first_run, "metrics.csv");  // while it runs
+    if (runs.size() == 1 && !first_metrics.empty() && fs::exists(first_metrics, ec) &&
         fs::file_size(first_metrics, ec) > 2000)
       break;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));

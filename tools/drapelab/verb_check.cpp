@@ -17,6 +17,7 @@
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -100,6 +101,7 @@ std::optional<CheckRun> run_for_check(const CheckArguments& arguments,
   options.command_line = "drapelab check " + arguments.scene;
   options.interrupt = &interrupt;
   options.model = loaded.model;
+  const PollingSection polling;  // Ctrl-C stops the run after its current step
   run.result = runner::run_scene(*loaded.scene, options, std::cerr);
   if (run.result.folder.empty()) run.result.folder = folder;
   return run;

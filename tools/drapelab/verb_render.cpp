@@ -20,7 +20,9 @@
 #include "drapelab/render/texture.hpp"
 #include "drapelab/render/video.hpp"
 #include "drapelab/report/run_completeness.hpp"
+#include "drapelab/run_folder/run_transaction.hpp"
 #include "drapelab/runner/run_scene.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
@@ -91,6 +93,24 @@ std::optional<std::pair<int, int>> parse_size(const std::string& text) {
 
 // frame_0007.png: zero-padded to `digits`, so names sort in frame order (ffmpeg's glob sorts by
 // name).
+// Records a render inside the run folder in the folder's manifest, so that the next run into the
+// folder removes frames that no longer show it. A render elsewhere is the user's own.
+void record_render(const fs::path& run_dir, const fs::path& out) {
+  const fs::path inside =
+      fs::weakly_canonical(out).lexically_relative(fs::weakly_canonical(run_dir));
+  if (inside.empty() || *inside.begin() == "..") return;
+  static const std::regex frame_name(R"(frame_\d+\.png)");
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (std::regex_match(name, frame_name) || name == "video.mp4")
+      files.push_back((inside / name).generic_string());
+  }
+  if (const auto problem = run_folder::add_to_manifest(run_dir, files))
+    std::cerr << "warning: the render is not in the run folder's manifest: " << *problem << "\n";
+}
+
 std::string frame_file_name(int frame, int digits) {
   std::string number = std::to_string(frame);
   if (static_cast<int>(number.size()) < digits) number.insert(0, digits - number.size(), '0');
@@ -179,6 +199,7 @@ int render_run(const RenderArguments& arguments, const std::atomic<bool>& interr
   for (const auto& line : completeness.notices())
     std::cerr << (completeness.incomplete() ? "warning: " : "note: ") << line << "\n";
   remove_previous_render(out);
+  const PollingSection polling;  // Ctrl-C stops after the current frame
 
   try {
     render::OffscreenContext context(width * supersample, height * supersample);
@@ -196,6 +217,7 @@ int render_run(const RenderArguments& arguments, const std::atomic<bool>& interr
       if (interrupt.load(std::memory_order_relaxed)) {
         std::cerr << "interrupted after " << written << " frames; " << out.string()
                   << " holds them\n";
+        record_render(arguments.run_dir, out);
         return runner::kExitInterrupted;
       }
       const double time = frame / run.scene.frame_rate;  // s
@@ -241,6 +263,7 @@ int render_run(const RenderArguments& arguments, const std::atomic<bool>& interr
     std::cerr << "error: " << e.what() << "\n";
     return 1;
   }
+  record_render(arguments.run_dir, out);
   const int done = completeness.incomplete() ? 1 : 0;  // an incomplete run: drawn, but not whole
 
   // The video, at the rate the frames were recorded (every Nth frame: rate / N).
@@ -263,6 +286,7 @@ int render_run(const RenderArguments& arguments, const std::atomic<bool>& interr
     return 1;
   }
   std::cout << "video: " << video.string() << " (H.264, " << fps << " frames per second)\n";
+  record_render(arguments.run_dir, out);
   return done;
 }
 

@@ -15,6 +15,8 @@
 #include <thread>
 
 #include "drapelab/run_folder/files.hpp"
+#include "drapelab/run_folder/folder_lock.hpp"
+#include "drapelab/run_folder/run_transaction.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/runner/sweep_children.hpp"
 #include "drapelab/runner/sweep_files.hpp"
@@ -45,12 +47,27 @@ const std::vector<std::string>& sweep_output_names() {
   return names;
 }
 
-// Checks and prepares the sweep folder; returns an error message when it may not be used.
-std::optional<std::string> prepare_sweep_folder(const fs::path& out, bool force) {
+// Whether `folder` holds anything but drapelab's lock and bookkeeping files.
+bool holds_files(const fs::path& folder) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec))
+    if (!run_folder::is_bookkeeping_name(entry.path().filename().string())) return true;
+  return false;
+}
+
+// Checks and prepares the sweep folder, and locks it for the sweep (one sweep per folder at a
+// time); returns an error message when it may not be used.
+std::optional<std::string> prepare_sweep_folder(const fs::path& out, bool force,
+                                                std::unique_ptr<run_folder::FolderLock>& lock) {
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec))
     return out.string() + " exists and is not a folder; choose another --out";
-  if (fs::is_directory(out, ec) && !fs::is_empty(out, ec)) {
+  fs::create_directories(out, ec);
+  if (ec) return "cannot create the folder " + out.string() + ": " + ec.message();
+  auto locked = run_folder::FolderLock::acquire(out);
+  if (auto* refusal = std::get_if<std::string>(&locked)) return *refusal;
+  lock = std::move(std::get<std::unique_ptr<run_folder::FolderLock>>(locked));
+  if (holds_files(out)) {
     bool holds_sweep = false;
     for (const auto& name : sweep_output_names())
       holds_sweep = holds_sweep || fs::exists(out / name, ec);
@@ -230,7 +247,8 @@ int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
   }
   const PollingSection polling;  // Ctrl-C: the children stop, and sweep.csv keeps the finished runs
   const fs::path out = arguments.out;
-  if (const auto problem = prepare_sweep_folder(out, arguments.force)) {
+  std::unique_ptr<run_folder::FolderLock> lock;  // held until the sweep ends
+  if (const auto problem = prepare_sweep_folder(out, arguments.force, lock)) {
     std::cerr << "error: " << *problem << "\nnothing was run\n";
     return kExitBadInput;
   }

@@ -111,6 +111,23 @@ std::set<std::string> read_manifest(const fs::path& folder) {
   return files;
 }
 
+std::optional<std::string> add_to_manifest(const fs::path& folder,
+                                           const std::vector<std::string>& files) {
+  std::error_code error;
+  if (!fs::exists(folder / kManifestFile, error)) return std::nullopt;
+  auto lock = FolderLock::acquire(folder);
+  if (auto* refusal = std::get_if<std::string>(&lock)) return *refusal;
+  std::set<std::string> recorded = read_manifest(folder);
+  for (const auto& file : files)
+    if (is_safe_relative_path(file)) recorded.insert(file);
+  try {
+    write_manifest(folder, recorded);
+  } catch (const WriteError& failure) {
+    return std::string(failure.what());
+  }
+  return std::nullopt;
+}
+
 bool is_bookkeeping_name(const std::string& name) {
   return name == kLockFile || name == kManifestFile ||
          name == std::string(kManifestFile) + ".partial" || starts_with(name, kStagingPrefix);

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <variant>
@@ -25,6 +26,12 @@ inline constexpr const char* kInterruptedFolder = "interrupted_run";
 // The files drapelab wrote into `folder` (paths relative to it, '/'-separated); empty when the
 // folder has no manifest.
 std::set<std::string> read_manifest(const std::filesystem::path& folder);
+// Records files another verb wrote into a run folder (render/'s frames, report.html) in its
+// manifest, so that the next run into the folder, whose frames they no longer show, removes them.
+// Paths are relative to `folder`. Takes the folder's lock; returns why not when it cannot (a run is
+// writing there) or the manifest cannot be written. A folder without a manifest is left as it is.
+std::optional<std::string> add_to_manifest(const std::filesystem::path& folder,
+                                           const std::vector<std::string>& files);
 // True for the names drapelab keeps for itself in a run folder (lock, manifest, staging folders).
 bool is_bookkeeping_name(const std::string& name);
 
