@@ -179,6 +179,36 @@ TEST_F(RunFolderSafety, ASecondWriterIsRefusedWithTheHoldersPid) {
   EXPECT_EQ(summary["run"]["frames_done"].get<std::size_t>() + 1, whole_rows(out / "metrics.csv"));
 }
 
+TEST_F(RunFolderSafety, AReportTellsARunStillGoingFromAKilledOne) {
+  const fs::path out = dir() / "out";
+  const fs::path long_run = scene("long.yaml", sheet_scene(600.0));
+  CommandResult live;
+  fs::path staging;
+  const int exit_code = interrupt_drapelab_when(
+      {"run", long_run.string(), "--out", out.string()},
+      [&] {
+        if (count_lines(staged_file(out, "metrics.csv")) < 3) return false;
+        staging = staged_file(out, "metrics.csv").parent_path();
+        live = run_drapelab({"report", staging.string(), "--out", (dir() / "live.html").string()});
+        return true;
+      },
+      std::chrono::seconds(60), SIGKILL);
+  EXPECT_EQ(exit_code, -1);  // killed
+  EXPECT_EQ(live.exit_code, 1) << live.output;
+  EXPECT_NE(live.output.find("still running (pid "), std::string::npos) << live.output;
+
+  const auto killed =
+      run_drapelab({"report", staging.string(), "--out", (dir() / "killed.html").string()});
+  EXPECT_EQ(killed.exit_code, 1) << killed.output;
+  EXPECT_NE(killed.output.find("its writer was killed"), std::string::npos) << killed.output;
+  // The next run clears the killed run's staging folder, and says so.
+  const fs::path short_run = scene("short.yaml", sheet_scene(0.05));
+  const auto next = run_drapelab({"run", short_run.string(), "--out", out.string(), "--force"});
+  EXPECT_EQ(next.exit_code, 0) << next.output;
+  EXPECT_NE(next.output.find("left by a run that was killed"), std::string::npos) << next.output;
+  EXPECT_FALSE(fs::exists(staging));
+}
+
 TEST_F(RunFolderSafety, AWriteErrorStopsOnTheLastWholeFrame) {
   // 33 x 33 particles: a 13 KB point cache sample per frame reaches a 1 MB file limit near frame 80
   // of 120, while every other file stays small.

@@ -8,6 +8,8 @@
 
 #include "drapelab/run_folder/csv.hpp"
 #include "drapelab/run_folder/files.hpp"
+#include "drapelab/run_folder/folder_lock.hpp"
+#include "drapelab/run_folder/run_transaction.hpp"
 
 namespace drapelab::report {
 
@@ -38,14 +40,19 @@ bool RunCompleteness::incomplete() const { return state == "running" || !cut_fil
 std::vector<std::string> RunCompleteness::notices() const {
   std::vector<std::string> lines;
   if (state == "running")
-    lines.push_back(
-        "the run is incomplete: summary.json says state \"running\", so its writer was killed (or "
-        "is still writing this folder)");
+    lines.push_back(live_writer.empty()
+                        ? "the run is incomplete: summary.json says state \"running\" and no "
+                          "run writes the folder any more, so its writer was killed"
+                        : "the run is incomplete: it is still running (pid " + live_writer +
+                              "); this is its staging folder, and its files move into place when "
+                              "it ends");
   for (const auto& file : cut_files)
     lines.push_back(file +
                     " ends in the middle of a row (its writer was killed while writing); "
                     "the cut row is left out");
   if (interrupted()) lines.push_back("the run was interrupted (Ctrl-C) before its end");
+  if (state == "write_failed")
+    lines.push_back("the run stopped at a write error (disk full or permissions) before its end");
   if (lines.empty() && state != "finished" && !state.empty())
     lines.push_back("summary.json says state \"" + state + "\"");
   if (lines.empty()) return lines;
@@ -60,6 +67,22 @@ std::vector<std::string> RunCompleteness::notices() const {
   return lines;
 }
 
+namespace {
+
+// The pid of the run writing `folder` when it is a live run's staging folder (DIR/.drapelab-run-PID
+// while DIR's lock is held by PID); "" otherwise.
+std::string live_writer_of(const fs::path& folder) {
+  std::error_code error;
+  const fs::path staging = fs::weakly_canonical(folder, error);
+  const std::string name = staging.filename().string();
+  const std::string prefix = run_folder::kStagingPrefix;
+  if (error || name.rfind(prefix, 0) != 0) return "";
+  const auto holder = run_folder::lock_holder(staging.parent_path());
+  return holder && *holder == name.substr(prefix.size()) ? *holder : "";
+}
+
+}  // namespace
+
 RunCompleteness inspect_run(const fs::path& folder) {
   RunCompleteness run;
   std::vector<std::string> order;
@@ -70,6 +93,7 @@ RunCompleteness inspect_run(const fs::path& folder) {
       if (summary.contains("run") && summary["run"].is_object()) {
         const auto& r = summary["run"];
         if (r.contains("state") && r["state"].is_string()) run.state = r["state"];
+        if (run.state == "running") run.live_writer = live_writer_of(folder);
         if (r.contains("frames_planned") && r["frames_planned"].is_number_integer())
           run.frames_planned = r["frames_planned"];
       }

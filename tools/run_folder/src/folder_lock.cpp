@@ -26,6 +26,16 @@ std::string holder_pid(int descriptor) {
 
 }  // namespace
 
+std::optional<std::string> lock_holder(const std::filesystem::path& folder) {
+  const int fd = ::open((folder / kLockFile).c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  // A shared lock is refused while a writer holds its exclusive one; it is dropped at once.
+  std::optional<std::string> holder;
+  if (::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK) holder = holder_pid(fd);
+  ::close(fd);
+  return holder;
+}
+
 std::variant<std::unique_ptr<FolderLock>, std::string> FolderLock::acquire(
     const std::filesystem::path& folder) {
   const std::filesystem::path path = folder / kLockFile;

@@ -21,6 +21,9 @@ struct RunCompleteness {
   int frames_planned = -1;  // frames after frame 0; -1 when summary.json does not say
   std::vector<SolverFrameSpan> solvers;
   std::vector<std::string> cut_files;  // CSV files whose last row ends mid-line
+  // The pid of the run still writing the folder (a staging folder whose run holds its lock); empty
+  // when no live run writes it, so a "running" state means its writer was killed.
+  std::string live_writer;
 
   // The writer did not end the run: state "running" (killed, or still being written), or a CSV
   // cut mid-row.

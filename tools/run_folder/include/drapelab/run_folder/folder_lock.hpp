@@ -5,12 +5,16 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 
 namespace drapelab::run_folder {
 
 inline constexpr const char* kLockFile = ".drapelab.lock";
+
+// The pid of the live process holding `folder`'s lock; nullopt when no process holds it.
+std::optional<std::string> lock_holder(const std::filesystem::path& folder);
 
 class FolderLock {
  public:
