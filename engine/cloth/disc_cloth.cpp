@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "drapelab/cloth_limits.hpp"
 #include "drapelab/collider.hpp"
 
 namespace drapelab {
@@ -37,12 +38,37 @@ std::vector<double> disc_ring_radii(const DiscSpec& spec) {
   return radii;
 }
 
-int disc_ring_count(const DiscSpec& spec, int ring) {
-  const std::vector<double> radii = disc_ring_radii(spec);
+namespace {
+
+// Particles on ring k from the radii, as a double: a ring a hair outside the one before it would
+// hold more particles than an int counts.
+double ring_count(const std::vector<double>& radii, int ring) {
   const double outer = radii[static_cast<std::size_t>(ring - 1)];
   const double inner = ring >= 2 ? radii[static_cast<std::size_t>(ring - 2)] : 0.0;
-  return std::max(6,
-                  static_cast<int>(std::lround(2.0 * std::numbers::pi * outer / (outer - inner))));
+  return std::max(6.0, std::round(2.0 * std::numbers::pi * outer / (outer - inner)));
+}
+
+}  // namespace
+
+ClothSize disc_cloth_size(const DiscSpec& spec) {
+  const std::vector<double> radii = disc_ring_radii(spec);
+  double particles = 1.0, triangles = 0.0, inner = 1.0;
+  for (int k = 1; k <= spec.rings; ++k) {
+    const double count = ring_count(radii, k);
+    particles += count;
+    triangles += (k == 1 ? 0.0 : inner) + count;  // the zip of ring k - 1 to ring k
+    inner = count;
+  }
+  return mesh_cloth_size(particles, triangles);
+}
+
+int disc_ring_count(const DiscSpec& spec, int ring) {
+  const double count = ring_count(disc_ring_radii(spec), ring);
+  if (count > static_cast<double>(kMaxClothParticles))
+    throw std::invalid_argument("disc ring " + std::to_string(ring) + " would hold " +
+                                count_text(count) + " particles; at most " +
+                                std::to_string(kMaxClothParticles) + " are allowed in a cloth");
+  return static_cast<int>(count);
 }
 
 int disc_ring_start(const DiscSpec& spec, int ring) {
@@ -52,6 +78,8 @@ int disc_ring_start(const DiscSpec& spec, int ring) {
 }
 
 TriangleMesh make_disc_mesh(const DiscSpec& spec) {
+  if (const auto problem = cloth_size_problem(disc_cloth_size(spec)))
+    throw std::invalid_argument("the disc " + *problem);
   const std::vector<double> radii = disc_ring_radii(spec);
   const int rings = spec.rings;
   std::vector<int> counts(static_cast<std::size_t>(rings + 1), 1),

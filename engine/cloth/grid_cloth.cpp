@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cloth/cloth_building.hpp"
+#include "drapelab/cloth_limits.hpp"
 #include "drapelab/collider.hpp"
 
 namespace drapelab {
@@ -181,8 +182,10 @@ std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selec
 }
 
 ClothModel build_grid_cloth(const GridClothSpec& spec) {
-  if (spec.nx < 1 || spec.ny < 1 || spec.nx * spec.ny < 2)
+  if (spec.nx < 1 || spec.ny < 1 || static_cast<long long>(spec.nx) * spec.ny < 2)
     throw std::invalid_argument("grid cloth needs nx, ny >= 1 and at least 2 particles");
+  if (const auto problem = cloth_size_problem(grid_cloth_size(spec.nx, spec.ny)))
+    throw std::invalid_argument("the grid " + *problem);
   if (spec.mass.has_value() == spec.areal_density.has_value())
     throw std::invalid_argument("grid cloth needs exactly one of mass and areal_density");
 

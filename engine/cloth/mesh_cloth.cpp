@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "cloth/cloth_building.hpp"
+#include "drapelab/cloth_limits.hpp"
 
 namespace drapelab {
 namespace {
@@ -76,6 +77,13 @@ std::optional<std::string> mesh_problem(const TriangleMesh& mesh) {
   const Eigen::Index n = mesh.vertices.cols();
   if (n < 3) return "a mesh needs at least 3 vertices, got " + std::to_string(n);
   if (mesh.triangles.cols() == 0) return std::string("a mesh needs at least one triangle (face)");
+  // Before the edge map below, whose memory grows with the triangles.
+  if (const auto problem = cloth_size_problem(
+          mesh_cloth_size(static_cast<double>(n), static_cast<double>(mesh.triangles.cols()))))
+    return "the mesh " + *problem;
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (!mesh.vertices.col(v).allFinite())
+      return "vertex " + std::to_string(v) + " has a coordinate that is not a finite number";
   std::vector<char> used(static_cast<std::size_t>(n), 0);
   for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t) {
     for (int c = 0; c < 3; ++c) {

@@ -2,9 +2,11 @@
 #include "drapelab/obj_reader.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <vector>
+
+#include "drapelab/bounded_file.hpp"
+#include "drapelab/cloth_limits.hpp"
 
 namespace drapelab {
 namespace {
@@ -71,6 +73,10 @@ ObjReadResult read_obj(std::istream& in) {
         }
         if (!std::isfinite(value[c])) return fail(line, "'" + word + "' is not a finite number");
       }
+      if (vertices.size() + uvs.size() >= static_cast<std::size_t>(2 * kMaxClothParticles))
+        return fail(line, "more than " + std::to_string(2 * kMaxClothParticles) +
+                              " vertices and texture coordinates; a cloth has at most " +
+                              std::to_string(kMaxClothParticles) + " particles");
       if (tag == "v")
         vertices.emplace_back(value[0], value[1], value[2]);
       else
@@ -112,6 +118,9 @@ ObjReadResult read_obj(std::istream& in) {
     for (const Corner& c : corners)
       if (c.uv >= 0 && vertex_uv[static_cast<std::size_t>(c.vertex)] < 0)
         vertex_uv[static_cast<std::size_t>(c.vertex)] = c.uv;
+    if (triangles.size() + corners.size() - 2 > static_cast<std::size_t>(kMaxClothTriangles))
+      return fail(line, "the faces so far give more than " + std::to_string(kMaxClothTriangles) +
+                            " triangles, the most a cloth may have");
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
       triangles.emplace_back(corners[0].vertex, corners[k].vertex, corners[k + 1].vertex);
   }
@@ -139,13 +148,14 @@ ObjReadResult read_obj(std::istream& in) {
 }
 
 ObjReadResult read_obj_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) {
+  BoundedFile file = read_bounded_file(path, kMaxObjFileBytes);
+  if (!file.ok) {
     ObjReadResult result;
-    result.error = "cannot open the file";
+    result.error = file.error;
     return result;
   }
-  return read_obj(in);
+  std::istringstream stream(std::move(file.text));
+  return read_obj(stream);
 }
 
 }  // namespace drapelab

@@ -10,23 +10,46 @@
 namespace drapelab {
 namespace {
 
+// Cells along the longest side of the triangles' bounding box, at most: a surface of tiny triangles
+// spread far apart (an exploded cloth) gets larger cells rather than billions of them.
+constexpr double kMaxCellsPerSide = 1024.0;
+// A triangle whose bounding box covers more cells than this is kept apart and tested by every
+// query, so that one long sliver cannot fill millions of cells.
+constexpr long long kMaxCellsPerTriangle = 64;
+// A query point further than this many cells outside the bounding box goes straight to the loop
+// over every triangle (its cell indices stay far inside an int and the hash key's 21 bits).
+constexpr double kMaxReachCells = 65536.0;
+
 // Triangles bucketed by the grid cells their bounding boxes overlap.
 class TriangleGrid {
  public:
-  TriangleGrid(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xi& triangles)
-      : x_(x), triangles_(triangles) {
+  // `x` must be finite (hausdorff_distance checks it).
+  TriangleGrid(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xi& triangles,
+               SurfaceDistanceWork* work)
+      : x_(x), triangles_(triangles), work_(work) {
+    low_ = x.rowwise().minCoeff();
+    const Eigen::Vector3d high = x.rowwise().maxCoeff();
     double edges = 0.0;
     for (Eigen::Index t = 0; t < triangles.cols(); ++t)
       edges += (x.col(triangles(0, t)) - x.col(triangles(1, t))).norm();
-    cell_ = std::max(edges / static_cast<double>(std::max<Eigen::Index>(1, triangles.cols())),
-                     1e-9);  // m, one edge
+    const double mean_edge =
+        edges / static_cast<double>(std::max<Eigen::Index>(1, triangles.cols()));  // m
+    const double extent = (high - low_).maxCoeff();                                // m
+    cell_ = std::max(mean_edge, extent / kMaxCellsPerSide);
+    if (!(cell_ > 0.0)) cell_ = 1.0;  // every vertex at one point: any cell will do
+    last_cell_ = cell_index(high);
     for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-      Eigen::Vector3d low = x.col(triangles(0, t)), high = low;
+      Eigen::Vector3d lo = x.col(triangles(0, t)), hi = lo;
       for (int k = 1; k < 3; ++k) {
-        low = low.cwiseMin(x.col(triangles(k, t)));
-        high = high.cwiseMax(x.col(triangles(k, t)));
+        lo = lo.cwiseMin(x.col(triangles(k, t)));
+        hi = hi.cwiseMax(x.col(triangles(k, t)));
       }
-      const Eigen::Vector3i from = cell_of(low), to = cell_of(high);
+      const Eigen::Vector3i from = cell_index(lo), to = cell_index(hi);
+      const Eigen::Vector3i span = to - from + Eigen::Vector3i::Ones();
+      if (static_cast<long long>(span.x()) * span.y() * span.z() > kMaxCellsPerTriangle) {
+        large_.push_back(static_cast<int>(t));
+        continue;
+      }
       for (int i = from.x(); i <= to.x(); ++i)
         for (int j = from.y(); j <= to.y(); ++j)
           for (int k = from.z(); k <= to.z(); ++k)
@@ -35,40 +58,82 @@ class TriangleGrid {
   }
 
   // Distance from p to the nearest triangle: visits shells of cells around p until no unvisited
-  // cell can hold anything nearer than the best found. Stops early once the best is at most
-  // `enough` (the caller only needs to know it is no larger).
+  // cell can hold anything nearer than the best found, or every occupied cell has been visited.
+  // Stops early once the best is at most `enough` (the caller only needs to know it is no larger).
+  // A search that would visit more than cell_budget() cells tests every triangle instead, so a
+  // query costs at most cell_budget() cell visits and (kMaxCellsPerTriangle + 1) x T triangle
+  // tests, whatever the points.
   double distance(const Eigen::Vector3d& p, double enough) const {
-    const Eigen::Vector3i centre = cell_of(p);
+    if (work_) ++work_->queries;
+    const Eigen::Vector3d local = (p - low_) / cell_;
+    const double reach = kMaxReachCells;
+    if (!((local.array() >= -reach).all() &&
+          (local.array() <= last_cell_.cast<double>().array() + reach).all()))
+      return every_triangle(p);
+    const Eigen::Vector3i centre = cell_index(p);
     double best = std::numeric_limits<double>::infinity();
-    for (int ring = 0;; ++ring) {
-      for (int i = -ring; i <= ring; ++i)
-        for (int j = -ring; j <= ring; ++j)
-          for (int k = -ring; k <= ring; ++k) {
-            if (std::max({std::abs(i), std::abs(j), std::abs(k)}) != ring)
-              continue;  // the shell only
+    for (int t : large_) best = std::min(best, triangle_distance(p, t));
+    // Only cells inside the box of occupied cells are visited: offsets from the centre in [lo, hi].
+    const Eigen::Vector3i lo = -centre, hi = last_cell_ - centre;
+    const int first_ring = std::max({0, lo.maxCoeff(), (-hi).maxCoeff()});  // nearest box cell
+    const int last_ring = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    const long long budget = cell_budget();
+    long long visited = 0;
+    for (int ring = first_ring; ring <= last_ring; ++ring) {
+      for (int i = std::max(-ring, lo.x()); i <= std::min(ring, hi.x()); ++i)
+        for (int j = std::max(-ring, lo.y()); j <= std::min(ring, hi.y()); ++j) {
+          // The shell only: the whole k row on its sides, else its two faces along k.
+          const bool side = std::abs(i) == ring || std::abs(j) == ring;
+          for (int k = side ? std::max(-ring, lo.z()) : -ring; k <= std::min(ring, hi.z());
+               k += side ? 1 : 2 * ring) {
+            if (k < lo.z()) continue;
+            if (++visited > budget) return every_triangle(p);
+            if (work_) ++work_->cells;
             const auto found = cells_.find(key(centre.x() + i, centre.y() + j, centre.z() + k));
             if (found == cells_.end()) continue;
-            for (int t : found->second)
-              best = std::min(best, point_triangle_distance(p, x_.col(triangles_(0, t)),
-                                                            x_.col(triangles_(1, t)),
-                                                            x_.col(triangles_(2, t))));
+            for (int t : found->second) best = std::min(best, triangle_distance(p, t));
           }
-      if (best <= enough || best <= ring * cell_ || ring > 1000000) return best;
+        }
+      if (best <= enough || best <= ring * cell_) return best;
     }
+    return best;  // every occupied cell visited
   }
 
+  long long cell_budget() const { return 64 + 8 * static_cast<long long>(triangles_.cols()); }
+
  private:
-  Eigen::Vector3i cell_of(const Eigen::Vector3d& p) const {
-    return (p / cell_).array().floor().cast<int>();
+  double triangle_distance(const Eigen::Vector3d& p, int t) const {
+    if (work_) ++work_->triangle_tests;
+    return point_triangle_distance(p, x_.col(triangles_(0, t)), x_.col(triangles_(1, t)),
+                                   x_.col(triangles_(2, t)));
   }
+
+  double every_triangle(const Eigen::Vector3d& p) const {
+    if (work_) ++work_->full_scans;
+    double best = std::numeric_limits<double>::infinity();
+    for (Eigen::Index t = 0; t < triangles_.cols(); ++t)
+      best = std::min(best, triangle_distance(p, static_cast<int>(t)));
+    return best;
+  }
+
+  // The cell of a point within kMaxReachCells of the bounding box.
+  Eigen::Vector3i cell_index(const Eigen::Vector3d& p) const {
+    return ((p - low_) / cell_).array().floor().cast<int>();
+  }
+  // Cell indices lie in [-2^16 - 1, 2^10 + 2^16 + 1]: 21 bits each, offset to be non-negative.
   static long long key(int i, int j, int k) {
-    return (static_cast<long long>(i) * 73856093LL) ^ (static_cast<long long>(j) * 19349663LL) ^
-           (static_cast<long long>(k) * 83492791LL);
+    constexpr long long offset = 1LL << 20;
+    return ((static_cast<long long>(i) + offset) << 42) |
+           ((static_cast<long long>(j) + offset) << 21) | (static_cast<long long>(k) + offset);
   }
 
   const Eigen::Matrix3Xd& x_;
   const Eigen::Matrix3Xi& triangles_;
-  double cell_ = 1.0;  // m
+  SurfaceDistanceWork* work_;
+  Eigen::Vector3d low_ = Eigen::Vector3d::Zero();  // m, the vertices' bounding box's low corner
+  Eigen::Vector3i last_cell_ = Eigen::Vector3i::Zero();  // the cell of its high corner
+  double cell_ = 1.0;                                    // m
+  std::vector<int> large_;  // triangles over more than kMaxCellsPerTriangle cells
   std::unordered_map<long long, std::vector<int>> cells_;
 };
 
@@ -77,8 +142,8 @@ class TriangleGrid {
 // to the surface from above: samples whose bound cannot beat the largest distance found so far are
 // skipped, and the others are visited in decreasing order of their bound.
 double directed_distance(const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to,
-                         const Eigen::Matrix3Xi& triangles) {
-  const TriangleGrid grid(to, triangles);
+                         const Eigen::Matrix3Xi& triangles, SurfaceDistanceWork* work) {
+  const TriangleGrid grid(to, triangles, work);
   // Barycentric weights of the samples: vertices, edge third points, centroid.
   static const double kWeights[8][3] = {
       {1, 0, 0},           {2. / 3, 1. / 3, 0}, {1. / 3, 2. / 3, 0}, {0, 2. / 3, 1. / 3},
@@ -137,7 +202,9 @@ double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 }
 
 double hausdorff_distance(const Eigen::Matrix3Xd& xa, const Eigen::Matrix3Xd& xb,
-                          const Eigen::Matrix3Xi& triangles) {
+                          const Eigen::Matrix3Xi& triangles, SurfaceDistanceWork* work) {
+  // A non-finite coordinate has no distance; it would also break the sort of the samples below.
+  if (!xa.allFinite() || !xb.allFinite()) return std::numeric_limits<double>::quiet_NaN();
   if (triangles.cols() == 0) {  // vertex sets
     auto directed = [](const Eigen::Matrix3Xd& from, const Eigen::Matrix3Xd& to) {
       double worst = 0.0;
@@ -147,7 +214,8 @@ double hausdorff_distance(const Eigen::Matrix3Xd& xa, const Eigen::Matrix3Xd& xb
     };
     return std::max(directed(xa, xb), directed(xb, xa));
   }
-  return std::max(directed_distance(xa, xb, triangles), directed_distance(xb, xa, triangles));
+  return std::max(directed_distance(xa, xb, triangles, work),
+                  directed_distance(xb, xa, triangles, work));
 }
 
 }  // namespace drapelab

@@ -245,5 +245,18 @@ TEST(GridCloth, PerturbationIsReproducibleBoundedAlongTheNormalAndSkipsPins) {
   EXPECT_EQ(a.v.norm(), 0.0);
 }
 
+TEST(GridCloth, AGridPastTheParticleLimitIsRefusedBeforeItIsAllocated) {
+  // 50000 x 50000 particles would take hundreds of gigabytes; the builder refuses it from its
+  // counts.
+  try {
+    build_grid_cloth(grid(50000, 50000));
+    ADD_FAILURE() << "a 50000 x 50000 grid was built";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("2500000000 particles; at most 4000000"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace drapelab

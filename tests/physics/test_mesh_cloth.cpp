@@ -4,9 +4,12 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
+#include "drapelab/cloth_limits.hpp"
 #include "drapelab/disc_cloth.hpp"
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/mesh_cloth.hpp"
@@ -176,7 +179,8 @@ TEST(ObjReader, BadFilesAreRefusedWithTheLineAndTheReason) {
     EXPECT_EQ(result.error_line, c.line) << c.text;
     EXPECT_NE(result.error.find(c.says), std::string::npos) << result.error;
   }
-  EXPECT_NE(read_obj_file("/nonexistent/cloth.obj").error.find("cannot open"), std::string::npos);
+  EXPECT_NE(read_obj_file("/nonexistent/cloth.obj").error.find("cannot be read (no such file)"),
+            std::string::npos);
 }
 
 TEST(MeshCloth, MeshesThatAreNotAClothSurfaceAreRefused) {
@@ -200,6 +204,87 @@ TEST(MeshCloth, MeshesThatAreNotAClothSurfaceAreRefused) {
   spec.pinned = {0};
   spec.mass = 0.1;  // and areal_density: not both
   EXPECT_THROW(build_mesh_cloth(spec), std::invalid_argument);
+}
+
+// Limits (cloth_limits.hpp): sizes are checked from counts, before anything is allocated.
+TEST(ClothLimits, DiscSizeIsCountedWithoutBuildingIt) {
+  DiscSpec disc;
+  disc.rings = 10;
+  const TriangleMesh mesh = make_disc_mesh(disc);
+  const ClothSize size = disc_cloth_size(disc);
+  EXPECT_EQ(size.particles, static_cast<double>(mesh.vertices.cols()));
+  EXPECT_EQ(size.triangles, static_cast<double>(mesh.triangles.cols()));
+  EXPECT_GE(size.springs, static_cast<double>(build_mesh_cloth(cloth_of(mesh)).springs.size()));
+}
+
+TEST(ClothLimits, ADiscRingAHairInsideTheRimIsRefusedBeforeItIsBuilt) {
+  DiscSpec disc;
+  disc.radius = 0.1;
+  disc.rings = 4;
+  disc.ring_at = 0.1 * (1.0 - 1e-12);  // the last ring would hold about 6e12 particles
+  EXPECT_GT(disc_cloth_size(disc).particles, 1e12);
+  EXPECT_THROW(make_disc_mesh(disc), std::invalid_argument);
+  EXPECT_THROW(disc_ring_count(disc, 4), std::invalid_argument);
+  EXPECT_EQ(disc_ring_count(disc, 1), 6);
+}
+
+TEST(ClothLimits, ParticlesTrianglesAndMemoryEachHaveALimit) {
+  EXPECT_FALSE(cloth_size_problem(grid_cloth_size(2000, 2000)));  // the largest grid
+  const auto particles = cloth_size_problem(grid_cloth_size(2001, 2000));
+  ASSERT_TRUE(particles);
+  EXPECT_NE(particles->find("gives 4002000 particles; at most 4000000"), std::string::npos);
+  const auto triangles = cloth_size_problem(mesh_cloth_size(1000, 9e6));
+  ASSERT_TRUE(triangles);
+  EXPECT_NE(triangles->find("9000000 triangles; at most 8000000"), std::string::npos);
+  // Within both counts, but a mesh's edge map and springs would take about 2.3 GB.
+  const ClothSize heavy = mesh_cloth_size(4e6, 8e6);
+  EXPECT_GT(estimated_cloth_bytes(heavy), kMaxClothBytes);
+  const auto memory = cloth_size_problem(heavy);
+  ASSERT_TRUE(memory);
+  EXPECT_NE(memory->find("MB to build"), std::string::npos) << *memory;
+  EXPECT_NE(memory->find("at most 2000 MB"), std::string::npos) << *memory;
+}
+
+TEST(ClothLimits, AMeshProblemIsFoundBeforeItsEdgeMapIsBuilt) {
+  TriangleMesh mesh;
+  mesh.vertices = Eigen::Matrix3Xd::Zero(3, 3);
+  mesh.triangles = Eigen::Matrix3Xi::Zero(3, kMaxClothTriangles + 1);  // 96 MB of indices
+  const auto problem = mesh_problem(mesh);
+  ASSERT_TRUE(problem);
+  EXPECT_NE(problem->find("triangles; at most 8000000"), std::string::npos) << *problem;
+  mesh.triangles.resize(3, 1);
+  mesh.triangles.col(0) << 0, 1, 2;
+  mesh.vertices.col(1) << 1, 0, std::nan("");
+  mesh.vertices.col(2) << 0, 0, 1;
+  const auto nan = mesh_problem(mesh);
+  ASSERT_TRUE(nan);
+  EXPECT_NE(nan->find("vertex 1 has a coordinate that is not a finite number"), std::string::npos);
+}
+
+TEST(ObjReader, ReadsOnlyRegularFilesOfAtMostSixtyFourMegabytes) {
+  EXPECT_NE(read_obj_file("/dev/zero").error.find("is not a regular file"), std::string::npos);
+  const auto folder = std::filesystem::temp_directory_path() / "drapelab_obj_limits";
+  std::filesystem::create_directories(folder);
+  const auto big = folder / "big.obj";
+  std::ofstream(big) << "v 0 0 0\n";
+  std::filesystem::resize_file(big, kMaxObjFileBytes + 1);  // sparse: no disk space used
+  const ObjReadResult result = read_obj_file(big);
+  std::filesystem::remove_all(folder);
+  EXPECT_FALSE(result.mesh);
+  EXPECT_NE(result.error.find("is 67108865 bytes; at most 67108864 bytes (64 MB)"),
+            std::string::npos)
+      << result.error;
+}
+
+TEST(ObjReader, StopsReadingPastTheTriangleLimit) {
+  // One face of kMaxClothTriangles + 3 corners fans into one triangle too many.
+  std::string face = "f";
+  for (long long k = 0; k < kMaxClothTriangles + 3; ++k) face += k % 2 ? " 2" : " 1";
+  std::istringstream in("v 0 0 0\nv 1 0 0\n" + face + "\n");
+  const ObjReadResult result = read_obj(in);
+  EXPECT_FALSE(result.mesh);
+  EXPECT_EQ(result.error_line, 3);
+  EXPECT_NE(result.error.find("more than 8000000 triangles"), std::string::npos) << result.error;
 }
 
 }  // namespace

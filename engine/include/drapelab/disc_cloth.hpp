@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "drapelab/cloth_limits.hpp"
 #include "drapelab/mesh_cloth.hpp"
 
 namespace drapelab {
@@ -24,12 +25,14 @@ struct DiscSpec {
 
 // Ring radii r_1 .. r_rings (m), increasing, the last equal to the radius.
 std::vector<double> disc_ring_radii(const DiscSpec& spec);
-// Particles on ring k (k >= 1).
+// Particles on ring k (k >= 1). Throws std::invalid_argument when they exceed kMaxClothParticles.
 int disc_ring_count(const DiscSpec& spec, int ring);
+// The disc's particle, spring (an upper bound) and triangle counts, computed without building it.
+ClothSize disc_cloth_size(const DiscSpec& spec);
 
 // The disc's vertices (centre first, then ring by ring from angle 0 about +y), triangles wound
 // counter-clockwise about the (rotated) +y normal, and planar UVs. Throws std::invalid_argument on
-// rings < 1, radius <= 0 or ring_at outside (0, radius).
+// rings < 1, radius <= 0, ring_at outside (0, radius), or a size beyond cloth_limits.hpp.
 TriangleMesh make_disc_mesh(const DiscSpec& spec);
 
 // Index of the first particle of ring k (ring 0 is the centre particle).

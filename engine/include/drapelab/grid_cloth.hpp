@@ -73,8 +73,8 @@ Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j);
 
 // Builds the immutable model: particles, triangles (two per cell, split along one diagonal), UVs,
 // stretch/shear/bend springs with rest lengths, masses, vertex areas and pins. Preconditions
-// (checked by the scene loader): nx, ny >= 1, nx * ny >= 2, exactly one of mass and areal_density,
-// every pin selector valid. Throws std::invalid_argument otherwise.
+// (checked by the scene loader): nx, ny >= 1, nx * ny >= 2, a size within cloth_limits.hpp, exactly
+// one of mass and areal_density, every pin selector valid. Throws std::invalid_argument otherwise.
 ClothModel build_grid_cloth(const GridClothSpec& spec);
 
 // The initial state: rest positions, each free particle offset along the (rotated) sheet normal by

@@ -35,8 +35,9 @@ struct MeshClothSpec : ClothPhysicsSpec {
   std::vector<int> pinned;  // particle indices held fixed
 };
 
-// Checks the mesh: indices in range, no degenerate (zero-area) triangle, no edge shared by more
-// than two triangles, every vertex used. Returns the first problem, or nothing.
+// Checks the mesh: its size within cloth_limits.hpp, finite vertices, indices in range, no
+// degenerate (zero-area) triangle, no edge shared by more than two triangles, every vertex used.
+// Returns the first problem, or nothing.
 std::optional<std::string> mesh_problem(const TriangleMesh& mesh);
 
 // Builds the model. Throws std::invalid_argument on a mesh_problem, on a missing or doubled mass,

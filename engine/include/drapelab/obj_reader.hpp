@@ -2,17 +2,23 @@
 // texture coordinates, `f` faces (v, v/vt, v//vn or v/vt/vn corners, negative indices counted from
 // the end, polygons split into a fan of triangles). Normals, groups, objects, materials, smoothing
 // groups and lines are ignored. A vertex's UV is the first `vt` a face gives it (a seam keeps one
-// side's); without any `vt` the mesh has no UVs.
+// side's); without any `vt` the mesh has no UVs. A file is read only when it is a regular file of
+// at most kMaxObjFileBytes, and reading stops with an error past the cloth limits of
+// cloth_limits.hpp (vertices, triangles).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <istream>
 #include <optional>
 #include <string>
 
+#include "drapelab/bounded_file.hpp"
 #include "drapelab/mesh_cloth.hpp"
 
 namespace drapelab {
+
+inline constexpr std::uintmax_t kMaxObjFileBytes = kMaxInputFileBytes;  // bytes (64 MB)
 
 struct ObjReadResult {
   std::optional<TriangleMesh> mesh;
