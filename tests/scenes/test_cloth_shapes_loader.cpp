@@ -186,7 +186,7 @@ TEST_F(MeshScene, BadOrMissingObjIsAnErrorNamingBothFiles) {
                        {"not a usable cloth", "no area"}));
   fs::remove(folder_ / "meshes/square.obj");
   EXPECT_TRUE(HasError(load_scene_file(scene_file), at_line(scene_file.string(), 5),
-                       {"cloth.path", "cannot open"}));
+                       {"cloth.path", "cannot be read (no such file)"}));
 }
 
 }  // namespace

@@ -249,7 +249,7 @@ TEST(ColliderErrors, ErrorsInSeveralCollidersAreAllReported) {
       load(with_line(with_line(with_line(kScene, 14, "    radius: -1"), 27, "    type: cube"), 35,
                      "    normal: [0, 0, 0]"));
   ASSERT_FALSE(result.ok());
-  EXPECT_TRUE(HasError(result, at(14), {"colliders.0.radius must be > 0"}));
+  EXPECT_TRUE(HasError(result, at(14), {"colliders.0.radius must be >= 1e-06"}));
   EXPECT_TRUE(HasError(result, at(27), {"colliders.3.type must be one of"}));
   EXPECT_TRUE(HasError(result, at(35), {"colliders.4.normal must be a non-zero direction"}));
   EXPECT_EQ(result.errors.size(), 3u) << all_errors(result);

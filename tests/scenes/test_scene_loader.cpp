@@ -352,7 +352,7 @@ TEST(SceneLoader, SeveralErrorsAreAllReportedAtOnce) {
   ASSERT_FALSE(result.ok());
   EXPECT_TRUE(HasError(result, at(3), {"durration is not a known key"}));
   EXPECT_TRUE(HasError(result, at(11), {"cloth.plane"}));
-  EXPECT_TRUE(HasError(result, at(14), {"cloth.thickness must be > 0"}));
+  EXPECT_TRUE(HasError(result, at(14), {"cloth.thickness must be >= 1e-06"}));
   EXPECT_TRUE(HasError(result, at(18), {"cloth.springs.stretch.ks must be > 0"}));
   EXPECT_TRUE(HasError(result, at(28), {"contact.damping must be >= 0"}));
   EXPECT_TRUE(HasError(result, at(33), {"solvers.0.integrator must be one of", "rk4"}));

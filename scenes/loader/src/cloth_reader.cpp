@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "drapelab/cloth_limits.hpp"
+#include "drapelab/disc_cloth.hpp"
 #include "drapelab/obj_reader.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "materials.hpp"
+#include "value_ranges.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -23,6 +26,24 @@ std::vector<std::string> keys_for(const std::string& shape) {
   return keys;
 }
 
+// Why a mesh moved by `scale`, `rotation` and `center` is not a usable cloth: a coordinate beyond
+// kMaxCoordinate, a size outside the cloth's length range, or a triangle that lost its area (a
+// scale of 1e-150 collapses every triangle), or nothing.
+std::optional<std::string> placed_mesh_problem(const TriangleMesh& mesh) {
+  const double largest = mesh.vertices.cwiseAbs().maxCoeff();
+  if (!(largest <= kMaxCoordinate))
+    return "a vertex lies " + format_number(largest) +
+           " m from the origin along an axis; at most " + format_number(kMaxCoordinate) +
+           " m is allowed";
+  const double extent =
+      (mesh.vertices.rowwise().maxCoeff() - mesh.vertices.rowwise().minCoeff()).maxCoeff();  // m
+  const Range lengths = cloth_length_range();
+  if (!lengths.contains(extent))
+    return "its size (the longest side of its bounding box) is " + format_number(extent) +
+           " m; it must be " + lengths.describe() + " m";
+  return mesh_problem(mesh);
+}
+
 }  // namespace
 
 ClothReader::ClothReader(SceneReader& reader, Scene& scene, std::filesystem::path folder)
@@ -36,15 +57,16 @@ void ClothReader::read(const YAML::Node& node) {
       shape = *chosen;
   MapReader cloth(r_, node, "cloth", keys_for(shape));
   if (!cloth.valid()) return;
+  cloth_node_.reset(node);  // reset: `=` would overwrite the node it held
   ClothSpec& spec = scene_.cloth;
   spec.shape = shape;
   GridClothSpec& common = spec.grid;
   // A mesh keeps its file's coordinates unless moved; grids and discs default to 1 m up.
   const Eigen::Vector3d default_center =
       shape == "mesh" ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0, 1, 0);
-  if (const auto center = cloth.numbers("center", 3, Range::any(), default_center))
+  if (const auto center = cloth.numbers("center", 3, coordinate_range(), default_center))
     common.center = *center;
-  if (const auto rotation = cloth.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero()))
+  if (const auto rotation = cloth.numbers("rotation", 3, angle_range(), Eigen::Vector3d::Zero()))
     common.rotation = *rotation;
   if (shape == "grid") read_grid(cloth);
   if (shape == "disc") read_disc(cloth);
@@ -52,17 +74,17 @@ void ClothReader::read(const YAML::Node& node) {
   apply_material(cloth);
   read_mass(cloth);
   common.thickness =
-      cloth.number("thickness", Range::positive(), common.thickness).value_or(common.thickness);
-  spec.perturbation = cloth.number("perturbation", Range::non_negative(), 0.0).value_or(0.0);
-  spec.air_damping = cloth.number("air_damping", Range::non_negative(), spec.air_damping)
-                         .value_or(spec.air_damping);
+      cloth.number("thickness", thickness_range(), common.thickness).value_or(common.thickness);
+  spec.perturbation = cloth.number("perturbation", perturbation_range(), 0.0).value_or(0.0);
+  spec.air_damping =
+      cloth.number("air_damping", air_damping_range(), spec.air_damping).value_or(spec.air_damping);
   if (cloth.has("springs")) read_springs(cloth.get("springs"));
   if (cloth.has("pins")) read_pins(cloth.get("pins"));
 }
 
 void ClothReader::read_grid(MapReader& cloth) {
   GridClothSpec& grid = scene_.cloth.grid;
-  if (const auto size = cloth.numbers("size", 2, Range::positive(), Eigen::Vector2d(1.0, 1.0)))
+  if (const auto size = cloth.numbers("size", 2, cloth_length_range(), Eigen::Vector2d(1.0, 1.0)))
     grid.size = *size;
   if (const auto plane = cloth.choice("plane", {"xz", "xy"}, "xz"))
     grid.plane = *plane == "xz" ? GridPlane::xz : GridPlane::xy;
@@ -72,15 +94,15 @@ void ClothReader::read_grid(MapReader& cloth) {
     return;
   }
   const auto resolution =
-      r_.integers(cloth.get("resolution"), "cloth.resolution", 2, {1.0, true, 1e6, true});
+      r_.integers(cloth.get("resolution"), "cloth.resolution", 2, resolution_range());
   if (!resolution) return;
   grid.nx = static_cast<int>((*resolution)[0]);
   grid.ny = static_cast<int>((*resolution)[1]);
   if (grid.nx * static_cast<long long>(grid.ny) < 2)
     r_.error(cloth.get("resolution"), "cloth.resolution",
              "must give at least 2 particles in all, got [1, 1]");
-  else if (grid.nx * static_cast<long long>(grid.ny) > 4'000'000)
-    r_.error(cloth.get("resolution"), "cloth.resolution", "gives more than 4 million particles");
+  else if (const auto problem = cloth_size_problem(grid_cloth_size(grid.nx, grid.ny)))
+    r_.error(cloth.get("resolution"), "cloth.resolution", *problem);
   else
     geometry_ok_ = true;
 }
@@ -88,8 +110,9 @@ void ClothReader::read_grid(MapReader& cloth) {
 void ClothReader::read_disc(MapReader& cloth) {
   DiscSpec& disc = scene_.cloth.disc;
   const std::size_t errors = r_.error_count();
-  disc.radius = cloth.number("radius", Range::positive(), 0.15).value_or(disc.radius);
-  disc.rings = static_cast<int>(cloth.integer("rings", {1.0, true, 2000.0, true}, 20).value_or(20));
+  if (cloth.has("rings")) rings_node_.reset(cloth.get("rings"));
+  disc.radius = cloth.number("radius", cloth_length_range(), 0.15).value_or(disc.radius);
+  disc.rings = static_cast<int>(cloth.integer("rings", rings_range(), 20).value_or(20));
   disc.center = scene_.cloth.grid.center;
   disc.rotation = scene_.cloth.grid.rotation;
   geometry_ok_ = r_.error_count() == errors;
@@ -97,7 +120,7 @@ void ClothReader::read_disc(MapReader& cloth) {
 
 void ClothReader::read_mesh(MapReader& cloth) {
   ClothSpec& spec = scene_.cloth;
-  spec.mesh_scale = cloth.number("scale", Range::positive(), 1.0).value_or(1.0);
+  spec.mesh_scale = cloth.number("scale", mesh_scale_range(), 1.0).value_or(1.0);
   if (!cloth.has("path")) {
     cloth.missing(
         "path",
@@ -124,6 +147,12 @@ void ClothReader::read_mesh(MapReader& cloth) {
   const Eigen::Matrix3d turn = euler_rotation(spec.grid.rotation);
   for (Eigen::Index i = 0; i < mesh.vertices.cols(); ++i)
     mesh.vertices.col(i) = spec.grid.center + turn * (spec.mesh_scale * mesh.vertices.col(i));
+  if (const auto problem = placed_mesh_problem(mesh)) {
+    r_.error(cloth.get("path"), "cloth.path",
+             "'" + shown + "' scaled by " + format_number(spec.mesh_scale) +
+                 " and placed is not a usable cloth: " + *problem);
+    return;
+  }
   spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   geometry_ok_ = true;
 }
@@ -171,9 +200,9 @@ void ClothReader::read_mass(MapReader& cloth) {
              "cannot be given together with cloth.mass; give one of them");
   } else if (has_mass) {
     grid.areal_density.reset();  // an explicit mass replaces a material's density
-    if (const auto mass = cloth.number("mass", Range::positive(), std::nullopt)) grid.mass = *mass;
+    if (const auto mass = cloth.number("mass", mass_range(), std::nullopt)) grid.mass = *mass;
   } else if (has_density) {
-    if (const auto density = cloth.number("areal_density", Range::positive(), std::nullopt)) {
+    if (const auto density = cloth.number("areal_density", areal_density_range(), std::nullopt)) {
       grid.areal_density = *density;
       if (scene_.cloth.shape == "grid" && geometry_ok_ && (grid.nx == 1 || grid.ny == 1))
         r_.error(cloth.get("areal_density"), "cloth.areal_density",
@@ -191,9 +220,9 @@ void ClothReader::read_springs(const YAML::Node& node) {
   if (!springs.valid()) return;
   GridClothSpec& grid = scene_.cloth.grid;
   // Stretch springs hold the cloth together, so their ks must be > 0; shear and bend may be off.
-  read_spring_kind(springs, "stretch", Range::positive(), grid.stretch);
-  read_spring_kind(springs, "shear", Range::non_negative(), grid.shear);
-  read_spring_kind(springs, "bend", Range::non_negative(), grid.bend);
+  read_spring_kind(springs, "stretch", stretch_ks_range(), grid.stretch);
+  read_spring_kind(springs, "shear", spring_ks_range(), grid.shear);
+  read_spring_kind(springs, "bend", spring_ks_range(), grid.bend);
 }
 
 void ClothReader::read_spring_kind(MapReader& springs, const std::string& kind,
@@ -202,7 +231,7 @@ void ClothReader::read_spring_kind(MapReader& springs, const std::string& kind,
   MapReader params(r_, springs.get(kind), springs.path_of(kind), {"ks", "kd"});
   if (!params.valid()) return;
   out.ks = params.number("ks", ks_range, out.ks).value_or(out.ks);
-  out.kd = params.number("kd", Range::non_negative(), out.kd).value_or(out.kd);
+  out.kd = params.number("kd", spring_kd_range(), out.kd).value_or(out.kd);
 }
 
 void ClothReader::read_pins(const YAML::Node& node) {
@@ -222,7 +251,7 @@ void ClothReader::read_pins(const YAML::Node& node) {
       if (const auto name = r_.choice(item, path, pin_set_names(scene_.cloth)))
         selector = PinNamed{*name};
     } else if (item.IsSequence()) {
-      if (const auto ij = r_.integers(item, path, 2, Range::non_negative()))
+      if (const auto ij = r_.integers(item, path, 2, grid_coordinate_range()))
         selector = PinGridCoord{static_cast<int>((*ij)[0]), static_cast<int>((*ij)[1])};
     } else if (item.IsMap()) {
       selector = read_pin_map(item, path);
@@ -247,18 +276,39 @@ std::optional<PinSelector> ClothReader::read_pin_map(const YAML::Node& item,
     return std::nullopt;
   }
   if (pin.has("index")) {
-    const auto index = pin.integer("index", Range::non_negative(), std::nullopt);
+    const auto index = pin.integer("index", particle_index_range(), std::nullopt);
     if (!index) return std::nullopt;
     return PinIndex{static_cast<int>(*index)};
   }
   MapReader ball(r_, pin.get("within"), pin.path_of("within"), {"center", "radius"});
   if (!ball.valid()) return std::nullopt;
-  const auto center = ball.numbers("center", 3, Range::any(), std::nullopt);
-  const auto radius = ball.number("radius", Range::positive(), std::nullopt);
+  const auto center = ball.numbers("center", 3, coordinate_range(), std::nullopt);
+  const auto radius = ball.number("radius", pin_radius_range(), std::nullopt);
   if (!ball.has("center")) ball.missing("center", "the ball's centre [x, y, z] in m");
   if (!ball.has("radius")) ball.missing("radius", "the ball's radius in m, > 0");
   if (!center || !radius) return std::nullopt;
   return PinWithin{*center, *radius};
+}
+
+// The disc's particle count and memory, from its ring radii, before anything is allocated: a ring
+// at the drape support a hair inside the rim would otherwise hold billions of particles.
+void ClothReader::check_disc_size() {
+  const DiscSpec& disc = scene_.cloth.disc;
+  std::optional<std::string> problem;
+  try {
+    problem = cloth_size_problem(disc_cloth_size(disc));
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  if (!problem) return;
+  const std::string support = disc.ring_at ? " and a ring at the drape support's radius " +
+                                                 format_number(*disc.ring_at) + " m"
+                                           : "";
+  r_.error(rings_node_, "cloth.rings",
+           "of " + std::to_string(disc.rings) + " rings over a radius of " +
+               format_number(disc.radius) + " m" + support + ": the disc " + *problem,
+           cloth_node_);
+  geometry_ok_ = false;
 }
 
 void ClothReader::finish() {
@@ -268,15 +318,21 @@ void ClothReader::finish() {
     if (support > 0.0 && support < spec.disc.radius && spec.disc.rings >= 2)
       spec.disc.ring_at = support;
   }
+  if (spec.shape == "disc" && geometry_ok_) check_disc_size();
   if (!geometry_ok_) return;
   // Pins are checked only on a cloth that can be built (its selectors may be fine on a fixed one).
   std::vector<PinSelector> kept;
-  for (std::size_t k = 0; k < spec.grid.pins.size(); ++k) {
-    std::string why;
-    if (select_cloth_pins(spec, spec.grid.pins[k], &why).empty())
-      r_.error(pin_nodes_[k], pin_paths_[k], "selects no particle: " + why);
-    else
-      kept.push_back(spec.grid.pins[k]);
+  try {
+    for (std::size_t k = 0; k < spec.grid.pins.size(); ++k) {
+      std::string why;
+      if (select_cloth_pins(spec, spec.grid.pins[k], &why).empty())
+        r_.error(pin_nodes_[k], pin_paths_[k], "selects no particle: " + why);
+      else
+        kept.push_back(spec.grid.pins[k]);
+    }
+  } catch (const std::exception& e) {  // the shape's builder refused it
+    r_.error(cloth_node_, "cloth", "cannot be built: " + std::string(e.what()));
+    geometry_ok_ = false;
   }
   spec.grid.pins = kept;
 }

@@ -33,11 +33,14 @@ class ClothReader {
   void read_pins(const YAML::Node& node);
   std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path);
   double particle_spacing() const;  // m, for material presets
+  void check_disc_size();
 
   SceneReader& r_;
   Scene& scene_;
   std::filesystem::path folder_;
   bool geometry_ok_ = false;
+  YAML::Node cloth_node_;               // the cloth map, for errors about the whole cloth
+  YAML::Node rings_node_;               // a disc's rings (undefined when left out)
   std::vector<YAML::Node> pin_nodes_;   // one per selector in scene_.cloth.grid.pins, for messages
   std::vector<std::string> pin_paths_;  // ... and its key path (cloth.pins.K)
 };

@@ -2,10 +2,11 @@
 #include "collider_reader.hpp"
 
 #include <map>
-#include <regex>
 #include <set>
 
 #include "drapelab/scene/number_format.hpp"
+#include "text_checks.hpp"
+#include "value_ranges.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -46,9 +47,9 @@ Eigen::Vector3d stable_normalized(const Eigen::Vector3d& v) {
 std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map,
                                               const std::string& key,
                                               const Eigen::Vector3d& fallback) {
-  const auto value = map.numbers(key, 3, Range::any(), fallback);
+  const auto value = map.numbers(key, 3, direction_range(), fallback);
   if (!value) return std::nullopt;
-  if (value->norm() < 1e-12) {
+  if (value->norm() < kMinDirection) {
     r.error(map.get(key), map.path_of(key), "must be a non-zero direction, got [0, 0, 0]");
     return std::nullopt;
   }
@@ -59,9 +60,10 @@ void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path
                  ColliderMotion& motion) {
   MapReader map(r, node, path, {"velocity", "angular_velocity", "keyframes"});
   if (!map.valid()) return;
-  if (const auto v = map.numbers("velocity", 3, Range::any(), Eigen::Vector3d::Zero()))
+  if (const auto v = map.numbers("velocity", 3, velocity_range(), Eigen::Vector3d::Zero()))
     motion.velocity = *v;
-  if (const auto w = map.numbers("angular_velocity", 3, Range::any(), Eigen::Vector3d::Zero()))
+  if (const auto w =
+          map.numbers("angular_velocity", 3, angular_velocity_range(), Eigen::Vector3d::Zero()))
     motion.angular_velocity = *w;
   if (!map.has("keyframes")) return;
   if (map.has("velocity") || map.has("angular_velocity")) {
@@ -83,11 +85,11 @@ void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path
     MapReader key(r, list[k], key_path, {"t", "center", "rotation"});
     if (!key.valid()) continue;
     ColliderKeyframe frame;
-    const auto t = key.number("t", Range::non_negative(), std::nullopt);
+    const auto t = key.number("t", keyframe_time_range(), std::nullopt);
     if (!key.has("t")) key.missing("t", "the keyframe's time in s, >= 0");
-    const auto center = key.numbers("center", 3, Range::any(), std::nullopt);
+    const auto center = key.numbers("center", 3, coordinate_range(), std::nullopt);
     if (!key.has("center")) key.missing("center", "the collider's centre [x, y, z] in m at time t");
-    const auto rotation = key.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero());
+    const auto rotation = key.numbers("rotation", 3, angle_range(), Eigen::Vector3d::Zero());
     if (!t || !center || !rotation) continue;
     if (*t <= previous_t) {
       r.error(key.get("t"), key.path_of("t"),
@@ -142,36 +144,35 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
   Collider c;
   c.shape = shape_of(type);
   if (const auto name = map.text("name", std::nullopt)) {
-    static const std::regex pattern("[a-z0-9_-]+");
-    if (std::regex_match(*name, pattern))
-      c.name = *name;
+    if (const auto problem = name_problem(*name))
+      r.error(map.get("name"), map.path_of("name"), *problem);
     else
-      r.error(map.get("name"), map.path_of("name"),
-              "must use only a-z, 0-9, _ and -, got '" + *name + "'");
+      c.name = *name;
   } else if (!map.has("name")) {
-    map.missing("name", "a unique label such as ball or table ([a-z0-9_-]+)");
+    map.missing("name", "a unique label such as ball or table ([a-z0-9_-]+, at most " +
+                            std::to_string(kMaxNameLength) + " characters)");
   }
   auto required_vector = [&](const std::string& key,
                              const std::string& expected) -> Eigen::Vector3d {
     if (!map.has(key)) map.missing(key, expected);
-    return map.numbers(key, 3, Range::any(), Eigen::Vector3d::Zero())
+    return map.numbers(key, 3, coordinate_range(), Eigen::Vector3d::Zero())
         .value_or(Eigen::Vector3d::Zero());
   };
   auto required_length = [&](const std::string& key, const std::string& expected) -> double {
     if (!map.has(key)) map.missing(key, expected);
-    return map.number(key, Range::positive(), 1.0).value_or(1.0);
+    return map.number(key, collider_size_range(), 1.0).value_or(1.0);
   };
   // With keyframes the centre comes from them, so `center` may be left out.
   const bool keyframed =
       map.has("motion") && map.get("motion").IsMap() && map.get("motion")["keyframes"].IsDefined();
   const std::string center_key = c.shape == ColliderShape::plane ? "point" : "center";
   if (c.shape == ColliderShape::plane) {
-    c.center = map.numbers("point", 3, Range::any(), Eigen::Vector3d::Zero())
+    c.center = map.numbers("point", 3, coordinate_range(), Eigen::Vector3d::Zero())
                    .value_or(Eigen::Vector3d::Zero());
     c.normal = read_direction(r, map, "normal", Eigen::Vector3d::UnitY())
                    .value_or(Eigen::Vector3d::UnitY());
   } else if (keyframed) {
-    c.center = map.numbers("center", 3, Range::any(), Eigen::Vector3d::Zero())
+    c.center = map.numbers("center", 3, coordinate_range(), Eigen::Vector3d::Zero())
                    .value_or(Eigen::Vector3d::Zero());
   } else {
     c.center = required_vector("center", "the collider's centre [x, y, z] in m");
@@ -191,17 +192,17 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
     if (!map.has("half_extents"))
       map.missing("half_extents", "half the box's size along x, y, z in m, each > 0");
     c.half_extents =
-        map.numbers("half_extents", 3, Range::positive(), Eigen::Vector3d::Constant(0.5))
+        map.numbers("half_extents", 3, collider_size_range(), Eigen::Vector3d::Constant(0.5))
             .value_or(Eigen::Vector3d::Constant(0.5));
   }
-  c.rotation = map.numbers("rotation", 3, Range::any(), Eigen::Vector3d::Zero())
+  c.rotation = map.numbers("rotation", 3, angle_range(), Eigen::Vector3d::Zero())
                    .value_or(Eigen::Vector3d::Zero());
   c.friction =
-      map.number("friction", Range::non_negative(), contact.friction).value_or(contact.friction);
+      map.number("friction", friction_range(), contact.friction).value_or(contact.friction);
   // A collider that sets only its kinetic coefficient gets the same static one.
   const double static_default = map.has("friction") ? c.friction : contact.static_friction;
   c.static_friction =
-      map.number("static_friction", Range::non_negative(), static_default).value_or(static_default);
+      map.number("static_friction", friction_range(), static_default).value_or(static_default);
   if (c.static_friction < c.friction && r.error_count() == errors_before)
     r.error(map.has("static_friction") ? map.get("static_friction") : map.get("friction"),
             map.path_of("static_friction"),

@@ -5,28 +5,23 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <regex>
 #include <set>
-#include <sstream>
 
 #include "cloth_reader.hpp"
 #include "collider_reader.hpp"
+#include "drapelab/bounded_file.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
 #include "overrides.hpp"
 #include "run_limits.hpp"
 #include "solver_reader.hpp"
+#include "text_checks.hpp"
+#include "value_ranges.hpp"
 #include "yaml_reader.hpp"
 
 namespace drapelab::scene {
 namespace {
-
-bool valid_name(const std::string& name) {
-  static const std::regex pattern("[a-z0-9_-]+");
-  return std::regex_match(name, pattern);
-}
 
 class SceneBuilder {
  public:
@@ -39,23 +34,29 @@ class SceneBuilder {
                    "colliders", "contact", "solvers", "metrics", "output"});
     if (!top.valid()) return scene_;
     if (const auto name = top.text("name", std::nullopt)) {
-      if (valid_name(*name))
-        scene_.name = *name;
+      if (const auto problem = name_problem(*name))
+        r_.error(top.get("name"), "name", *problem);
       else
-        r_.error(top.get("name"), "name", "must use only a-z, 0-9, _ and -, got '" + *name + "'");
+        scene_.name = *name;
     } else if (!top.has("name")) {
-      top.missing("name", "a short identifier such as sphere_drape ([a-z0-9_-]+)");
+      top.missing("name", "a short identifier such as sphere_drape ([a-z0-9_-]+, at most " +
+                              std::to_string(kMaxNameLength) + " characters)");
     }
     scene_.description = top.text("description", "").value_or("");
-    if (const auto duration = top.number("duration", Range::positive(), std::nullopt))
+    if (const auto duration = top.number("duration", duration_range(), std::nullopt))
       scene_.duration = *duration;
     else if (!top.has("duration"))
       top.missing("duration", "simulated seconds, a number > 0");
-    scene_.frame_rate = top.number("frame_rate", Range::positive(), 60.0).value_or(60.0);
-    if (const auto g = top.numbers("gravity", 3, Range::any(), Eigen::Vector3d(0, -9.81, 0)))
-      scene_.gravity = *g;
-    scene_.seed =
-        static_cast<std::uint64_t>(top.integer("seed", Range::non_negative(), 0).value_or(0));
+    scene_.frame_rate = top.number("frame_rate", frame_rate_range(), 60.0).value_or(60.0);
+    if (const auto g = top.numbers("gravity", 3, gravity_range(), Eigen::Vector3d(0, -9.81, 0))) {
+      if (g->norm() <= kMaxGravity)
+        scene_.gravity = *g;
+      else
+        r_.error(top.get("gravity"), "gravity",
+                 "must have a magnitude of at most " + format_number(kMaxGravity) + " m/s^2, got " +
+                     format_number(g->norm()));
+    }
+    scene_.seed = static_cast<std::uint64_t>(top.integer("seed", seed_range(), 0).value_or(0));
 
     check_frame_count(top);
     if (top.has("cloth"))
@@ -99,11 +100,12 @@ class SceneBuilder {
     MapReader contact(r_, node, "contact", {"stiffness", "damping", "friction", "static_friction"});
     if (!contact.valid()) return;
     ContactSpec& c = scene_.contact;
-    c.stiffness = contact.number("stiffness", Range::positive(), c.stiffness).value_or(c.stiffness);
-    c.damping = contact.number("damping", Range::non_negative(), c.damping).value_or(c.damping);
-    c.friction = contact.number("friction", Range::non_negative(), c.friction).value_or(c.friction);
+    c.stiffness =
+        contact.number("stiffness", contact_stiffness_range(), c.stiffness).value_or(c.stiffness);
+    c.damping = contact.number("damping", contact_damping_range(), c.damping).value_or(c.damping);
+    c.friction = contact.number("friction", friction_range(), c.friction).value_or(c.friction);
     c.static_friction =
-        contact.number("static_friction", Range::non_negative(), c.friction).value_or(c.friction);
+        contact.number("static_friction", friction_range(), c.friction).value_or(c.friction);
     if (c.static_friction < c.friction)
       r_.error(contact.get("static_friction"), "contact.static_friction",
                "must be >= contact.friction (" + format_number(c.friction) + "), got " +
@@ -146,7 +148,7 @@ class SceneBuilder {
       spec.collider = *name;
       spec.disc = *disc;
     } else {
-      const auto radius = r_.number(support, "metrics.drape_support", Range::positive());
+      const auto radius = r_.number(support, "metrics.drape_support", drape_support_range());
       if (!radius) return;
       spec.disc = {scene_.cloth.grid.center, *radius};
     }
@@ -198,8 +200,9 @@ class SceneBuilder {
     if (cloth_reader_.geometry_ok() && r_.error_count() == 0) {
       try {
         model = std::make_shared<const ClothModel>(build_scene_cloth(scene_));
-      } catch (const std::invalid_argument&) {
-        model = nullptr;  // reported elsewhere (mass missing, bad pins)
+      } catch (const std::exception& e) {  // the builders' preconditions, and bad_alloc
+        model = nullptr;
+        r_.error(top.get("cloth"), "cloth", "cannot be built: " + std::string(e.what()));
       }
     }
     if (top.has("solvers")) {
@@ -216,22 +219,68 @@ class SceneBuilder {
   ClothReader cloth_reader_;
 };
 
+// The 1-based line of the "---" that starts the second document of `text`: the first marker when
+// content precedes it, else the second; 0 when there is none (a document after a "..." end marker).
+int second_document_line(const std::string& text) {
+  bool content = false;
+  int markers = 0, line = 0;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view row(text.data() + start, end - start);
+    ++line;
+    const bool marker = row.substr(0, 3) == "---" &&
+                        (row.size() == 3 || row[3] == ' ' || row[3] == '\t' || row[3] == '\r');
+    if (marker && (content || ++markers == 2)) return line;
+    const std::size_t first = row.find_first_not_of(" \t\r");
+    if (!marker && first != std::string_view::npos && row[first] != '#' && row[first] != '%')
+      content = true;
+    start = end + 1;
+  }
+  return 0;
+}
+
+// Where a text problem is: "scene.yaml:3" for the file, the override itself for a --set.
+std::string text_error(const std::string& where, const TextProblem& problem) {
+  return where + ": is not UTF-8 text: " + problem.what + " (byte " +
+         std::to_string(problem.offset + 1) + "); save the scene as UTF-8";
+}
+
 LoadResult load_from_text(const std::string& text, const std::string& display_name,
                           const std::vector<std::string>& overrides,
                           const std::filesystem::path& source) {
   LoadResult result;
   SceneReader reader(display_name, &result.errors);
-  YAML::Node root;
+  // Every string of a scene reaches summary.json, whose writer refuses anything but UTF-8.
+  if (const auto problem = text_problem(text)) {
+    result.errors.push_back(
+        text_error(display_name + ":" + std::to_string(problem->line), *problem));
+    return result;
+  }
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    result.errors.push_back(display_name + ":" + std::to_string(e.mark.line + 1) +
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    const int line = e.mark.is_null() ? 1 : e.mark.line + 1;
+    result.errors.push_back(display_name + ":" + std::to_string(line) +
                             ": not valid YAML: " + e.msg);
     return result;
   }
+  if (documents.size() > 1) {
+    // A second document would be silently ignored: point at the "---" that starts it.
+    const YAML::Mark mark = documents[1].Mark();
+    int line = second_document_line(text);
+    if (line == 0) line = mark.is_null() ? 1 : mark.line + 1;
+    result.errors.push_back(display_name + ":" + std::to_string(line) +
+                            ": starts a second YAML document; a scene file holds one (remove "
+                            "this '---' and what follows, or merge it into the first)");
+    return result;
+  }
+  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   if (!root.IsDefined() || root.IsNull()) {
     result.errors.push_back(
-        display_name + ": the scene is empty; it needs at least name, duration, cloth and solvers");
+        display_name +
+        ":1: the scene is empty; it needs at least name, duration, cloth and solvers");
     return result;
   }
   if (!apply_overrides(root, overrides, reader)) return result;
@@ -265,23 +314,14 @@ int Scene::frame_count() const { return static_cast<int>(std::lround(duration * 
 
 LoadResult load_scene_file(const std::filesystem::path& file,
                            const std::vector<std::string>& overrides) {
-  std::ifstream in(file, std::ios::binary);
-  if (std::filesystem::is_directory(file)) {
+  BoundedFile read = read_bounded_file(file, kMaxInputFileBytes);
+  if (!read.ok) {
     LoadResult result;
-    result.errors.push_back(file.string() +
-                            ": is a folder, not a file; give the path of a scene file (.yaml)");
+    result.errors.push_back(file.string() + ": " + read.error +
+                            "; give the path of a scene file (.yaml)");
     return result;
   }
-  if (!in) {
-    LoadResult result;
-    result.errors.push_back(
-        file.string() + ": cannot be read (" +
-        (std::filesystem::exists(file) ? "permission denied or not a file" : "no such file") + ")");
-    return result;
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return load_from_text(buffer.str(), file.string(), overrides, file);
+  return load_from_text(read.text, file.string(), overrides, file);
 }
 
 LoadResult load_scene_text(const std::string& text, const std::string& display_name,

@@ -2,13 +2,14 @@
 #include "solver_reader.hpp"
 
 #include <cmath>
-#include <regex>
 #include <set>
 
 #include "drapelab/bullet/parameter_mapping.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
 #include "run_limits.hpp"
+#include "text_checks.hpp"
+#include "value_ranges.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -49,10 +50,8 @@ class SolverReader {
     SolverSpec spec;
     spec.type = type;
     spec.name = solver.text("name", solver_type_name(type)).value_or(solver_type_name(type));
-    static const std::regex pattern("[a-z0-9_-]+");
-    if (!std::regex_match(spec.name, pattern))
-      r_.error(solver.get("name"), path + ".name",
-               "must use only a-z, 0-9, _ and -, got '" + spec.name + "'");
+    if (const auto problem = name_problem(spec.name))
+      r_.error(solver.get("name"), path + ".name", *problem);
     if (type == SolverType::spring_damper) {
       read_integrator(solver, path, spec);
       // A plugin in a Bullet world (default), or stepped bare, without Bullet.
@@ -69,9 +68,10 @@ class SolverReader {
     spec.round_dt = solver.boolean("round_dt", false).value_or(false);
     const double free_fall_speed = scene_.gravity.norm() * std::max(scene_.duration, 0.0);  // m/s
     const double default_max_speed = 100.0 + 2.0 * free_fall_speed;
-    spec.max_speed = solver.number("max_speed", Range::positive(), default_max_speed)
+    spec.max_speed = solver.number("max_speed", max_speed_range(), default_max_speed)
                          .value_or(default_max_speed);
-    spec.runaway_stretch = solver.number("runaway_stretch", Range::positive(), 10.0).value_or(10.0);
+    spec.runaway_stretch =
+        solver.number("runaway_stretch", runaway_stretch_range(), 10.0).value_or(10.0);
     if (r_.error_count() != errors_before) return std::nullopt;
     if (!whole_steps_per_frame(solver, path, spec)) return std::nullopt;
     return spec;
@@ -121,10 +121,11 @@ class SolverReader {
       spec.iterations =
           static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
     const double thickness = scene_.cloth.grid.thickness;  // every shape's thickness lives in grid
-    spec.margin = solver.number("margin", Range::positive(), thickness).value_or(thickness);
-    spec.collider_margin = solver.number("collider_margin", Range::positive(), 1e-3).value_or(1e-3);
+    spec.margin = solver.number("margin", bullet_length_range(), thickness).value_or(thickness);
+    spec.collider_margin =
+        solver.number("collider_margin", bullet_length_range(), 1e-3).value_or(1e-3);
     const double voxel = bullet::default_voxel_size(scene_.colliders, spec.margin);
-    spec.voxel_size = solver.number("voxel_size", Range::positive(), voxel).value_or(voxel);
+    spec.voxel_size = solver.number("voxel_size", bullet_length_range(), voxel).value_or(voxel);
     if (!solver.has("kLST")) return;
     MapReader raw(r_, solver.get("kLST"), solver.path_of("kLST"), {"stretch", "shear", "bend"});
     if (!raw.valid()) return;

@@ -24,6 +24,22 @@ std::string Range::describe() const {
   return text.empty() ? "a finite number" : text;
 }
 
+std::string Range::violated(double value) const {
+  Range side;
+  if (min && (min_inclusive ? value < *min : value <= *min)) {
+    side.min = min;
+    side.min_inclusive = min_inclusive;
+  } else {
+    side.max = max;
+    side.max_inclusive = max_inclusive;
+  }
+  return "must be " + side.describe();
+}
+
+std::string Range::whole_range() const {
+  return min && max ? " (the range is " + describe() + ")" : "";
+}
+
 std::string join_path(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;
 }
@@ -118,6 +134,14 @@ std::string SceneReader::where(const YAML::Node& node, const std::string& path,
     line = node.Mark().line;
   else if (parent.IsDefined() && !parent.Mark().is_null())
     line = parent.Mark().line;
+  // A map or list made by an override has no line of its own: use the line of the nearest key
+  // above it that has one.
+  for (std::string above = path; line < 0 && !above.empty();) {
+    const std::size_t dot = above.rfind('.');
+    above = dot == std::string::npos ? std::string() : above.substr(0, dot);
+    if (const auto found = key_lines_.find(above); !above.empty() && found != key_lines_.end())
+      line = found->second;
+  }
   return line >= 0 ? file_name_ + ":" + std::to_string(line + 1) : file_name_;
 }
 
@@ -145,7 +169,7 @@ std::optional<double> SceneReader::number(const YAML::Node& node, const std::str
     return std::nullopt;
   }
   if (!range.contains(value)) {
-    error(node, path, "must be " + range.describe() + ", got " + text);
+    error(node, path, range.violated(value) + ", got " + text + range.whole_range());
     return std::nullopt;
   }
   return value;
@@ -166,7 +190,8 @@ std::optional<long long> SceneReader::integer(const YAML::Node& node, const std:
     return std::nullopt;
   }
   if (!range.contains(static_cast<double>(value))) {
-    error(node, path, "must be " + range.describe() + ", got " + text);
+    error(node, path,
+          range.violated(static_cast<double>(value)) + ", got " + text + range.whole_range());
     return std::nullopt;
   }
   return value;

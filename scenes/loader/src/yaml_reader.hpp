@@ -24,6 +24,10 @@ struct Range {
   static Range non_negative() { return {0.0, true, std::nullopt, true}; }
   bool contains(double value) const;
   std::string describe() const;  // "> 0", ">= 0 and <= 1", ...
+  // For a value outside the range: the bound it breaks ("must be <= 10000"), and the whole range
+  // for messages (" (the range is > 0 and <= 10000)", empty for a one-sided range).
+  std::string violated(double value) const;
+  std::string whole_range() const;
 };
 
 class SceneReader {
