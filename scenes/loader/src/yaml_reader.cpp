@@ -233,7 +233,7 @@ std::optional<std::string> SceneReader::choice(const YAML::Node& node, const std
 
 std::optional<Eigen::VectorXd> SceneReader::numbers(const YAML::Node& node, const std::string& path,
                                                     int size, const Range& range) {
-  if (!node.IsSequence() || static_cast<int>(node.size()) != size) {
+  if (!node.IsSequence() || node.size() != static_cast<std::size_t>(size)) {
     error(node, path,
           "must be a list of " + std::to_string(size) + " numbers, got " +
               (node.IsSequence() ? "a list of " + std::to_string(node.size())
@@ -254,7 +254,7 @@ std::optional<Eigen::VectorXd> SceneReader::numbers(const YAML::Node& node, cons
 std::optional<std::vector<long long>> SceneReader::integers(const YAML::Node& node,
                                                             const std::string& path, int size,
                                                             const Range& range) {
-  if (!node.IsSequence() || static_cast<int>(node.size()) != size) {
+  if (!node.IsSequence() || node.size() != static_cast<std::size_t>(size)) {
     error(node, path,
           "must be a list of " + std::to_string(size) + " whole numbers, got " +
               (node.IsSequence() ? "a list of " + std::to_string(node.size())
