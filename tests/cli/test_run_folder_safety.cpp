@@ -249,6 +249,17 @@ TEST_F(RunFolderSafety, AnUnwritableOutputFolderIsAClearError) {
   EXPECT_NE(proc.output.find("cannot write into /proc"), std::string::npos) << proc.output;
 }
 
+TEST_F(RunFolderSafety, PathsThatAreNotUtf8AreRecordedNotRefused) {
+  // Linux file names are bytes; summary.json, which is JSON, shows the stray byte as U+FFFD.
+  const fs::path file = scene("sheet\xff.yaml", sheet_scene(0.05));
+  const fs::path out = dir() / "out\xfe";
+  const auto result = run_drapelab({"run", file.string(), "--out", out.string()});
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(summary["run"]["state"], "finished");
+  EXPECT_NE(summary["scene_file"].get<std::string>().find("\xef\xbf\xbd"), std::string::npos);
+}
+
 TEST_F(RunFolderSafety, SigtermStopsARunLikeCtrlC) {
   const fs::path out = dir() / "out";
   const fs::path long_run = scene("long.yaml", sheet_scene(600.0));

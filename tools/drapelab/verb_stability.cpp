@@ -250,7 +250,7 @@ int stability_verb(const StabilityArguments& arguments, const std::atomic<bool>&
     for (const auto& t : trials) list.push_back(trial_json(t));
     j["trials"] = list;
     std::ofstream out(arguments.json);
-    out << j.dump(2) << "\n";
+    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     if (!out) {
       std::cerr << "error: cannot write " << arguments.json << "\n";
       return kExitBadInput;

@@ -10,7 +10,10 @@
 namespace drapelab::scene {
 namespace {
 
-std::string quoted(const std::string& text) { return nlohmann::json(text).dump(); }  // JSON is YAML
+// JSON strings are YAML; a byte that is not UTF-8 (a file name's) is written as U+FFFD.
+std::string quoted(const std::string& text) {
+  return nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 std::string pin_text(const PinSelector& selector) {
   if (const auto* named = std::get_if<PinNamed>(&selector)) return named->name;

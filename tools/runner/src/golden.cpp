@@ -381,7 +381,8 @@ std::string golden_to_json(const Golden& golden) {
     windows[std::to_string(frame)] = frame_json;
   }
   j["windows"] = windows;
-  return j.dump(2) + "\n";
+  // A path or command line that is not UTF-8 is written with U+FFFD, not refused.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::optional<Golden> golden_from_json(const std::string& text, std::string* error) {

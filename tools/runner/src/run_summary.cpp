@@ -115,7 +115,8 @@ std::string summary_json(const scene::Scene& scene, const ClothModel& model,
   ordered_json solvers = ordered_json::object();
   for (const auto& run : runs) solvers[run.spec->name] = solver_json(run);
   j["solvers"] = solvers;
-  return j.dump(2) + "\n";
+  // A path or command line that is not UTF-8 is written with U+FFFD, not refused.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace drapelab::runner

@@ -92,7 +92,8 @@ std::string sweep_json(const SweepRecord& record, const SweepPlan& plan,
   j["combinations_finished"] = done;
   j["combinations_ok"] = ok;
   j["combinations"] = combinations;
-  return j.dump(2) + "\n";
+  // A path or command line that is not UTF-8 is written with U+FFFD, not refused.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace drapelab::runner
