@@ -19,6 +19,7 @@ packages=(
   chromium                                       # tests: open the HTML report headless
   libbenchmark-dev                               # micro-benchmarks (bench/)
   clang-format                                   # the format check of tools/test.sh (.clang-format)
+  clang libclang-rt-dev                          # tests: the fuzz targets (libFuzzer, tests/fuzz/)
 )
 
 if [[ "${1:-}" == "--print" ]]; then
