@@ -1,5 +1,5 @@
 // Writes the fuzz targets' seed inputs taken from the test suites' texts into OUT/scene/ and
-// OUT/obj/ (tests/fuzz/make_corpus.sh merges them, with scenes/*.yaml, into tests/fuzz/corpus/).
+// OUT/obj/, which docs/testing.md ("Seeds") merges with scenes/*.yaml into tests/fuzz/corpus/.
 // The scene seeds are the loader tests' scenes, some with --set overrides after NUL bytes
 // (fuzz_inputs.hpp), and scenes of every cloth shape; the OBJ seeds are the reader tests' files.
 #include <filesystem>
