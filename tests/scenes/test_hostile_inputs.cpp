@@ -309,6 +309,13 @@ TEST(HostileInputs, ASecondYamlDocumentIsRefusedAtItsLine) {
   EXPECT_TRUE(HasError(load(kBase + "---\nname: other\n"), at(35), {"second YAML document"}));
   EXPECT_TRUE(HasError(load("---\n" + kBase + "---\n"), at(36), {"second YAML document"}));
   EXPECT_LOADS(load("---\n" + kBase));
+  // Content after a "..." end marker is a second document too; the marker alone is not.
+  EXPECT_TRUE(HasError(load(kBase + "...\nname: other\n"), at(36), {"second YAML document"}));
+  EXPECT_LOADS(load(kBase + "...\n"));
 }
+
+// yaml-cpp's multi-document reader never returns on a lone comma (found by the fuzzer): the loader
+// reads one document and looks for a second by its markers.
+TEST(HostileInputs, ALoneCommaIsAnErrorNotAHang) { EXPECT_FALSE(load(",").ok()); }
 
 }  // namespace

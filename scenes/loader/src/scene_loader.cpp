@@ -219,22 +219,32 @@ class SceneBuilder {
   ClothReader cloth_reader_;
 };
 
-// The 1-based line of the "---" that starts the second document of `text`: the first marker when
-// content precedes it, else the second; 0 when there is none (a document after a "..." end marker).
+// The 1-based line where a second document of `text` starts: a "---" marker when content precedes
+// it (or the second marker), or content after a "..." end marker; 0 when there is none. A textual
+// scan, because yaml-cpp's LoadAll never returns on some malformed texts (a lone ",").
 int second_document_line(const std::string& text) {
-  bool content = false;
+  const auto is_marker = [](std::string_view row, std::string_view marker) {
+    return row.substr(0, 3) == marker &&
+           (row.size() == 3 || row[3] == ' ' || row[3] == '\t' || row[3] == '\r');
+  };
+  bool content = false, ended = false;
   int markers = 0, line = 0;
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t end = std::min(text.find('\n', start), text.size());
     const std::string_view row(text.data() + start, end - start);
     ++line;
-    const bool marker = row.substr(0, 3) == "---" &&
-                        (row.size() == 3 || row[3] == ' ' || row[3] == '\t' || row[3] == '\r');
-    if (marker && (content || ++markers == 2)) return line;
+    const bool starts = is_marker(row, "---");
+    if (starts && (content || ++markers == 2)) return line;
     const std::size_t first = row.find_first_not_of(" \t\r");
-    if (!marker && first != std::string_view::npos && row[first] != '#' && row[first] != '%')
+    const bool has_content =
+        !starts && first != std::string_view::npos && row[first] != '#' && row[first] != '%';
+    if (is_marker(row, "...")) {
+      ended = true;
+    } else if (has_content) {
+      if (ended) return line;
       content = true;
+    }
     start = end + 1;
   }
   return 0;
@@ -257,26 +267,22 @@ LoadResult load_from_text(const std::string& text, const std::string& display_na
         text_error(display_name + ":" + std::to_string(problem->line), *problem));
     return result;
   }
-  std::vector<YAML::Node> documents;
+  // A second document would be silently ignored: point at where it starts.
+  if (const int line = second_document_line(text)) {
+    result.errors.push_back(display_name + ":" + std::to_string(line) +
+                            ": starts a second YAML document; a scene file holds one (remove "
+                            "this line and what follows, or merge it into the first)");
+    return result;
+  }
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(text);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     const int line = e.mark.is_null() ? 1 : e.mark.line + 1;
     result.errors.push_back(display_name + ":" + std::to_string(line) +
                             ": not valid YAML: " + e.msg);
     return result;
   }
-  if (documents.size() > 1) {
-    // A second document would be silently ignored: point at the "---" that starts it.
-    const YAML::Mark mark = documents[1].Mark();
-    int line = second_document_line(text);
-    if (line == 0) line = mark.is_null() ? 1 : mark.line + 1;
-    result.errors.push_back(display_name + ":" + std::to_string(line) +
-                            ": starts a second YAML document; a scene file holds one (remove "
-                            "this '---' and what follows, or merge it into the first)");
-    return result;
-  }
-  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   if (!root.IsDefined() || root.IsNull()) {
     result.errors.push_back(
         display_name +
