@@ -19,7 +19,7 @@ packages=(
   chromium                                       # tests: open the HTML report headless
   libbenchmark-dev                               # micro-benchmarks (bench/)
   clang-format                                   # the format check of tools/test.sh (.clang-format)
-  clang libclang-rt-dev                          # tests: the fuzz targets (libFuzzer, tests/fuzz/)
+  clang libclang-rt-dev libomp-dev               # tests: the clang sanitizer build and its fuzz targets
 )
 
 if [[ "${1:-}" == "--print" ]]; then

@@ -11,7 +11,13 @@
 #include "fixtures/colliders.hpp"
 #include "fixtures/sheets.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
+// GCC says AddressSanitizer with __SANITIZE_ADDRESS__, clang with __has_feature.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define DRAPELAB_UNDER_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(DRAPELAB_UNDER_ASAN)
 #define DRAPELAB_COUNT_ALLOCATIONS 0  // AddressSanitizer owns malloc; the count cannot be taken
 #else
 #define DRAPELAB_COUNT_ALLOCATIONS 1

@@ -316,7 +316,9 @@ std::vector<GoldenDifference> compare_golden(const Golden& golden,
       for (const auto& [column, value] : columns) cells.insert({row, column});
     for (const auto& [row, columns] : actual_rows)
       for (const auto& [column, value] : columns) cells.insert({row, column});
-    for (const auto& [row, column] : cells) {
+    for (const auto& cell : cells) {
+      const std::string& row = cell.first;  // named, not bound: clang 14 cannot capture bindings
+      const std::string& column = cell.second;
       auto lookup = [&](const GoldenRows& rows) -> std::optional<std::optional<double>> {
         const auto r = rows.find(row);
         if (r == rows.end()) return std::nullopt;
