@@ -253,6 +253,27 @@ TEST_F(SweepCli, ForceReplacesAPreviousSweep) {
   EXPECT_EQ(read_table(out / "sweep.csv").rows.size(), 1u);
 }
 
+TEST_F(SweepCli, ForceKeepsFilesTheSweepDidNotWrite) {
+  const fs::path out = dir() / "sweep";
+  const std::vector<std::string> arguments{"sweep", scene().string(), "--vary", "duration=0.05,0.1",
+                                           "--out", out.string()};
+  ASSERT_EQ(run_drapelab(arguments).exit_code, 0);
+  const fs::path first_run = out / "runs" / "000_duration=0.05";
+  ASSERT_TRUE(fs::is_regular_file(first_run / "metrics.csv"));
+  write_text(out / "runs" / "notes.txt", "mine");
+  write_text(first_run / "plot.py", "mine too");
+  // A narrower sweep: the second run's folder goes, the user's files stay.
+  auto forced = std::vector<std::string>{"sweep", scene().string(), "--vary", "duration=0.05",
+                                         "--out", out.string(),     "--force"};
+  const auto again = run_drapelab(forced);
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(read_text(out / "runs" / "notes.txt"), "mine");
+  EXPECT_EQ(read_text(first_run / "plot.py"), "mine too");
+  EXPECT_TRUE(fs::is_regular_file(first_run / "metrics.csv"));
+  EXPECT_FALSE(fs::exists(out / "runs" / "001_duration=0.1"));
+  EXPECT_EQ(read_table(out / "sweep.csv").rows.size(), 1u);
+}
+
 TEST_F(SweepCli, CtrlCStopsTheRunsAndKeepsTheTableValid) {
   // Runs of 600 s, two at a time: Ctrl-C arrives while both run and the third waits.
   const fs::path out = dir() / "sweep";

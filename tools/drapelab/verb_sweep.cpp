@@ -40,11 +40,24 @@ constexpr std::chrono::milliseconds kStopGrace{10000};
 constexpr std::size_t kLongestShownMessage =
     200;  // characters of a failure shown on a progress line
 
-// The files of a sweep folder that --force replaces (and only these).
+// The files of a sweep folder that --force replaces (and only these), besides its runs.
 const std::vector<std::string>& sweep_output_names() {
   static const std::vector<std::string> names = {"runs", "sweep.csv", "sweep.json",
                                                  "sweep.csv.partial", "sweep.json.partial"};
   return names;
+}
+
+// --force: removes a previous sweep's tables and every run folder in runs/ that drapelab wrote (by
+// its manifest); anything else in the folder, runs/ included, stays.
+std::optional<std::string> remove_previous_sweep(const fs::path& out) {
+  std::error_code ec;
+  for (const auto& name : sweep_output_names())
+    if (name != "runs") fs::remove(out / name, ec);
+  if (!fs::is_directory(out / "runs", ec)) return std::nullopt;
+  for (const auto& entry : fs::directory_iterator(out / "runs", ec))
+    if (entry.is_directory(ec))
+      if (const auto problem = run_folder::remove_run_folder(entry.path())) return *problem;
+  return std::nullopt;
 }
 
 // Whether `folder` holds anything but drapelab's lock and bookkeeping files.
@@ -73,11 +86,12 @@ std::optional<std::string> prepare_sweep_folder(const fs::path& out, bool force,
       holds_sweep = holds_sweep || fs::exists(out / name, ec);
     if (!force)
       return out.string() + (holds_sweep
-                                 ? " holds a sweep already; add --force to replace it (its runs/, "
-                                   "sweep.csv and sweep.json are removed), or choose another --out"
+                                 ? " holds a sweep already; add --force to replace it (its "
+                                   "sweep.csv, sweep.json and the run folders drapelab wrote in "
+                                   "runs/ are removed), or choose another --out"
                                  : " is not empty and holds no sweep; choose a new or empty --out "
                                    "folder, or add --force to write the sweep beside its files");
-    for (const auto& name : sweep_output_names()) fs::remove_all(out / name, ec);
+    if (const auto problem = remove_previous_sweep(out)) return *problem;
   }
   fs::create_directories(out / "runs", ec);
   if (ec || !fs::is_directory(out / "runs"))
@@ -286,8 +300,10 @@ int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
   while ((next < queue.size() || !running.empty()) && !interrupt.load()) {
     while (static_cast<int>(running.size()) < jobs && next < queue.size() && !interrupt.load()) {
       const std::size_t index = queue[next++];
-      std::vector<std::string> child{"drapelab", "run", arguments.scene, "--out",
-                                     folder.run_dir(index).string()};
+      // --force: a run folder left in runs/ (files of someone else's, an older sweep's run) is
+      // written beside; a run replaces only drapelab's own files.
+      std::vector<std::string> child{
+          "drapelab", "run", arguments.scene, "--out", folder.run_dir(index).string(), "--force"};
       std::vector<std::string> overrides = arguments.overrides;
       const auto varied = plan.overrides(index);
       overrides.insert(overrides.end(), varied.begin(), varied.end());

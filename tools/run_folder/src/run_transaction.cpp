@@ -128,6 +128,22 @@ std::optional<std::string> add_to_manifest(const fs::path& folder,
   return std::nullopt;
 }
 
+std::optional<std::string> remove_run_folder(const fs::path& folder) {
+  std::error_code error;
+  if (!fs::exists(folder / kManifestFile, error)) return std::nullopt;
+  {
+    auto lock = FolderLock::acquire(folder);
+    if (auto* refusal = std::get_if<std::string>(&lock)) return *refusal;
+    for (const auto& file : read_manifest(folder)) remove_own_file(folder, file);
+    for (const auto& entry : fs::directory_iterator(folder, error))
+      if (starts_with(entry.path().filename().string(), kStagingPrefix))
+        fs::remove_all(entry.path(), error);
+    fs::remove(folder / kManifestFile, error);
+  }  // the lock file goes with the lock
+  if (fs::is_empty(folder, error)) fs::remove(folder, error);
+  return std::nullopt;
+}
+
 bool is_bookkeeping_name(const std::string& name) {
   return name == kLockFile || name == kManifestFile ||
          name == std::string(kManifestFile) + ".partial" || starts_with(name, kStagingPrefix);

@@ -32,6 +32,11 @@ std::set<std::string> read_manifest(const std::filesystem::path& folder);
 // writing there) or the manifest cannot be written. A folder without a manifest is left as it is.
 std::optional<std::string> add_to_manifest(const std::filesystem::path& folder,
                                            const std::vector<std::string>& files);
+// Removes a run folder drapelab wrote: the files its manifest lists, its bookkeeping, then the
+// folder itself and any folder left empty. Files someone else put there stay, and so does the
+// folder that holds them. Returns why not when a run holds its lock. A folder without a manifest is
+// left as it is.
+std::optional<std::string> remove_run_folder(const std::filesystem::path& folder);
 // True for the names drapelab keeps for itself in a run folder (lock, manifest, staging folders).
 bool is_bookkeeping_name(const std::string& name);
 
