@@ -81,13 +81,15 @@ TEST_F(RunTransactionTest, ACommitReplacesTheManifestsFilesAndKeepsTheRest) {
 TEST_F(RunTransactionTest, OtherVerbsFilesJoinTheManifest) {
   const fs::path out = dir() / "out";
   stage_and_commit(out, {{"resolved.yaml", "a"}}, true);
-  EXPECT_EQ(run_folder::add_to_manifest(out, {"render/frame_0000.png", "../outside.png"}),
-            std::nullopt);
+  EXPECT_EQ(
+      run_folder::add_to_manifest(out, {out / "render" / "frame_0000.png", dir() / "outside.png"}),
+      std::nullopt);
   EXPECT_EQ(run_folder::read_manifest(out),
             (std::set<std::string>{"render/frame_0000.png", "resolved.yaml"}));
   // A folder without a manifest (not a run folder) is left alone.
   fs::create_directories(dir() / "plain");
-  EXPECT_EQ(run_folder::add_to_manifest(dir() / "plain", {"x.png"}), std::nullopt);
+  EXPECT_EQ(run_folder::add_to_manifest(dir() / "plain", {dir() / "plain" / "x.png"}),
+            std::nullopt);
   EXPECT_FALSE(fs::exists(dir() / "plain" / ".drapelab-manifest"));
 }
 

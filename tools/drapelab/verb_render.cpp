@@ -93,19 +93,15 @@ std::optional<std::pair<int, int>> parse_size(const std::string& text) {
 
 // frame_0007.png: zero-padded to `digits`, so names sort in frame order (ffmpeg's glob sorts by
 // name).
-// Records a render inside the run folder in the folder's manifest, so that the next run into the
-// folder removes frames that no longer show it. A render elsewhere is the user's own.
+// Records the render's files in the run folder's manifest (when they are inside it), so that the
+// next run into the folder removes frames that show a different run.
 void record_render(const fs::path& run_dir, const fs::path& out) {
-  const fs::path inside =
-      fs::weakly_canonical(out).lexically_relative(fs::weakly_canonical(run_dir));
-  if (inside.empty() || *inside.begin() == "..") return;
   static const std::regex frame_name(R"(frame_\d+\.png)");
-  std::vector<std::string> files;
+  std::vector<fs::path> files;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
-    if (std::regex_match(name, frame_name) || name == "video.mp4")
-      files.push_back((inside / name).generic_string());
+    if (std::regex_match(name, frame_name) || name == "video.mp4") files.push_back(entry.path());
   }
   if (const auto problem = run_folder::add_to_manifest(run_dir, files))
     std::cerr << "warning: the render is not in the run folder's manifest: " << *problem << "\n";

@@ -77,11 +77,8 @@ int write_report(const ReportArguments& arguments) {
   std::cout << out.string() << "\n";
   if (*check.kind != report::FolderKind::run) return 0;
   // A page inside the run folder is recorded in its manifest: the next run there replaces it.
-  const fs::path inside =
-      fs::weakly_canonical(out).lexically_relative(fs::weakly_canonical(folder));
-  if (!inside.empty() && *inside.begin() != "..")
-    if (const auto problem = run_folder::add_to_manifest(folder, {inside.generic_string()}))
-      std::cerr << "warning: the report is not in the run folder's manifest: " << *problem << "\n";
+  if (const auto problem = run_folder::add_to_manifest(folder, {out}))
+    std::cerr << "warning: the report is not in the run folder's manifest: " << *problem << "\n";
   // A run that is not whole is said on stderr too, for whoever reads only the terminal.
   const report::RunCompleteness completeness = report::inspect_run(folder);
   for (const auto& line : completeness.notices())

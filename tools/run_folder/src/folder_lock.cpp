@@ -39,8 +39,8 @@ std::optional<std::string> lock_holder(const std::filesystem::path& folder) {
 std::variant<std::unique_ptr<FolderLock>, std::string> FolderLock::acquire(
     const std::filesystem::path& folder) {
   const std::filesystem::path path = folder / kLockFile;
-  // A holder removes the file just before it lets go, so a lock taken on a file that is no longer
-  // at `path` is stale: try again on the new file.
+  // A holder removes the file just before it lets go, so a lock taken on a file that `path` does
+  // not name any more is stale: try again on the file it names.
   for (int attempt = 0; attempt < 8; ++attempt) {
     const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) return "cannot write into " + folder.string() + ": " + os_error();

@@ -28,18 +28,13 @@ OutputFile::~OutputFile() {
 }
 
 void OutputFile::append(std::string_view bytes) {
-  while (!bytes.empty()) {
-    const ssize_t written = ::pwrite(descriptor_, bytes.data(), bytes.size(), size_);
-    if (written < 0 && errno == EINTR) continue;
-    if (written <= 0)
-      throw WriteError(
-          path_, written < 0 ? last_error() : std::make_error_code(std::errc::no_space_on_device));
-    size_ += written;
-    bytes.remove_prefix(static_cast<std::size_t>(written));
-  }
+  write_at(size_, bytes);
+  size_ += static_cast<std::int64_t>(bytes.size());
 }
 
-void OutputFile::overwrite(std::int64_t offset, std::string_view bytes) {
+void OutputFile::overwrite(std::int64_t offset, std::string_view bytes) { write_at(offset, bytes); }
+
+void OutputFile::write_at(std::int64_t offset, std::string_view bytes) {
   while (!bytes.empty()) {
     const ssize_t written = ::pwrite(descriptor_, bytes.data(), bytes.size(), offset);
     if (written < 0 && errno == EINTR) continue;

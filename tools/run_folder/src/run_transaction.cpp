@@ -112,14 +112,18 @@ std::set<std::string> read_manifest(const fs::path& folder) {
 }
 
 std::optional<std::string> add_to_manifest(const fs::path& folder,
-                                           const std::vector<std::string>& files) {
+                                           const std::vector<fs::path>& files) {
   std::error_code error;
   if (!fs::exists(folder / kManifestFile, error)) return std::nullopt;
   auto lock = FolderLock::acquire(folder);
   if (auto* refusal = std::get_if<std::string>(&lock)) return *refusal;
   std::set<std::string> recorded = read_manifest(folder);
-  for (const auto& file : files)
-    if (is_safe_relative_path(file)) recorded.insert(file);
+  const fs::path base = fs::weakly_canonical(folder, error);
+  for (const auto& file : files) {
+    const std::string inside =
+        fs::weakly_canonical(file, error).lexically_relative(base).generic_string();
+    if (!error && is_safe_relative_path(inside)) recorded.insert(inside);
+  }
   try {
     write_manifest(folder, recorded);
   } catch (const WriteError& failure) {

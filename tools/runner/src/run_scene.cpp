@@ -166,15 +166,15 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
     loop.interrupt = options.interrupt;
     end = run_frame_loop(scene, setup, runs, loop, *writer);
   } catch (const run_folder::WriteError& error) {
+    write_error = error;
+  } catch (const fs::filesystem_error& error) {  // creating meshes/
+    write_error = run_folder::WriteError(error.path1(), error.code());
+  }
+  if (write_error) {
     // Disk full or refused: free the reserve so the summary fits, and end on the last whole frame.
     transaction.release_reserve();
     if (writer && !writer->rollback())
       log << "warning: a table could not be cut back to its last whole frame\n";
-    write_error = error;
-  } catch (const fs::filesystem_error& error) {
-    transaction.release_reserve();
-    if (writer) writer->rollback();
-    write_error = run_folder::WriteError(error.path1(), error.code());
   }
 
   const bool interrupted = options.interrupt && options.interrupt->load(std::memory_order_relaxed);

@@ -44,6 +44,8 @@ class OutputFile {
   const std::filesystem::path& path() const { return path_; }
 
  private:
+  void write_at(std::int64_t offset, std::string_view bytes);  // whole, or WriteError
+
   std::filesystem::path path_;
   int descriptor_ = -1;
   std::int64_t size_ = 0;       // bytes

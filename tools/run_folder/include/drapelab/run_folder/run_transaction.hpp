@@ -26,12 +26,13 @@ inline constexpr const char* kInterruptedFolder = "interrupted_run";
 // The files drapelab wrote into `folder` (paths relative to it, '/'-separated); empty when the
 // folder has no manifest.
 std::set<std::string> read_manifest(const std::filesystem::path& folder);
-// Records files another verb wrote into a run folder (render/'s frames, report.html) in its
-// manifest, so that the next run into the folder, whose frames they no longer show, removes them.
-// Paths are relative to `folder`. Takes the folder's lock; returns why not when it cannot (a run is
-// writing there) or the manifest cannot be written. A folder without a manifest is left as it is.
+// Records files another verb wrote (render/'s frames, report.html) in the manifest of the run
+// folder they describe, so that the next run into the folder removes them with the run they show.
+// Files outside the folder are the user's own and are left out. Takes the folder's lock; returns
+// why not when it cannot (a run is writing there) or the manifest cannot be written. A folder
+// without a manifest is left as it is.
 std::optional<std::string> add_to_manifest(const std::filesystem::path& folder,
-                                           const std::vector<std::string>& files);
+                                           const std::vector<std::filesystem::path>& files);
 // Removes a run folder drapelab wrote: the files its manifest lists, its bookkeeping, then the
 // folder itself and any folder left empty. Files someone else put there stay, and so does the
 // folder that holds them. Returns why not when a run holds its lock. A folder without a manifest is
