@@ -16,7 +16,7 @@ namespace {
 
 const std::vector<std::string> kCommonKeys = {
     "shape",     "center",       "rotation", "material",    "mass", "areal_density",
-    "thickness", "perturbation", "springs",  "air_damping", "pins"};
+    "thickness", "perturbation", "springs",  "air_damping", "pins", "self_collision"};
 
 std::vector<std::string> keys_for(const std::string& shape) {
   std::vector<std::string> keys = kCommonKeys;
@@ -80,6 +80,31 @@ void ClothReader::read(const YAML::Node& node) {
       cloth.number("air_damping", air_damping_range(), spec.air_damping).value_or(spec.air_damping);
   if (cloth.has("springs")) read_springs(cloth.get("springs"));
   if (cloth.has("pins")) read_pins(cloth.get("pins"));
+  read_self_collision(cloth);
+}
+
+void ClothReader::read_self_collision(MapReader& cloth) {
+  SelfCollisionSettings& self = scene_.cloth.self_collision;
+  self.thickness = scene_.cloth.grid.thickness;  // the default: the cloth's own
+  self.static_friction = self.friction;
+  if (!cloth.has("self_collision")) return;
+  MapReader map(r_, cloth.get("self_collision"), "cloth.self_collision",
+                {"enabled", "thickness", "stiffness", "damping", "friction", "static_friction"});
+  if (!map.valid()) return;
+  self.enabled = map.boolean("enabled", true).value_or(true);
+  self.thickness =
+      map.number("thickness", thickness_range(), self.thickness).value_or(self.thickness);
+  self.stiffness =
+      map.number("stiffness", contact_stiffness_range(), self.stiffness).value_or(self.stiffness);
+  self.damping =
+      map.number("damping", contact_damping_range(), self.damping).value_or(self.damping);
+  self.friction = map.number("friction", friction_range(), self.friction).value_or(self.friction);
+  self.static_friction =
+      map.number("static_friction", friction_range(), self.friction).value_or(self.friction);
+  if (map.has("static_friction") && self.static_friction < self.friction)
+    r_.error(map.get("static_friction"), "cloth.self_collision.static_friction",
+             "must be >= cloth.self_collision.friction (" + format_number(self.friction) +
+                 "), got " + format_number(self.static_friction));
 }
 
 void ClothReader::read_grid(MapReader& cloth) {

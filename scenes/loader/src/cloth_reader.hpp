@@ -31,6 +31,8 @@ class ClothReader {
   void read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range,
                         SpringParams& out);
   void read_pins(const YAML::Node& node);
+  // cloth.self_collision, resolved: thickness defaults to the cloth's, static_friction to friction.
+  void read_self_collision(MapReader& cloth);
   std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path);
   double particle_spacing() const;  // m, for material presets
   void check_disc_size();

@@ -97,7 +97,8 @@ class SceneBuilder {
   }
 
   void read_contact(const YAML::Node& node) {
-    MapReader contact(r_, node, "contact", {"stiffness", "damping", "friction", "static_friction"});
+    MapReader contact(r_, node, "contact",
+                      {"stiffness", "damping", "friction", "static_friction", "triangles"});
     if (!contact.valid()) return;
     ContactSpec& c = scene_.contact;
     c.stiffness =
@@ -110,6 +111,7 @@ class SceneBuilder {
       r_.error(contact.get("static_friction"), "contact.static_friction",
                "must be >= contact.friction (" + format_number(c.friction) + "), got " +
                    format_number(c.static_friction));
+    c.triangles = contact.boolean("triangles", c.triangles).value_or(c.triangles);
   }
 
   // metrics.drape_support: a collider's name (a vertical cylinder or capsule, or a sphere: its

@@ -117,6 +117,15 @@ std::string resolved_scene_yaml(const Scene& s) {
     out << "  pins:\n";
     for (const auto& pin : g.pins) out << "    - " << pin_text(pin) << "\n";
   }
+  const SelfCollisionSettings& self = s.cloth.self_collision;
+  out << "  self_collision:\n"
+      << "    enabled: " << (self.enabled ? "true" : "false") << "\n"
+      << "    thickness: " << format_number(self.thickness) << "  # m, kept between layers\n"
+      << "    stiffness: " << format_number(self.stiffness) << "  # N/m per contact\n"
+      << "    damping: " << format_number(self.damping) << "  # N*s/m per contact\n"
+      << "    friction: " << format_number(self.friction) << "  # kinetic Coulomb coefficient\n"
+      << "    static_friction: " << format_number(self.static_friction)
+      << "  # static Coulomb coefficient\n";
   if (s.colliders.empty())
     out << "colliders: []\n";
   else
@@ -128,6 +137,8 @@ std::string resolved_scene_yaml(const Scene& s) {
       << "  friction: " << format_number(s.contact.friction) << "  # kinetic Coulomb coefficient\n"
       << "  static_friction: " << format_number(s.contact.static_friction)
       << "  # static Coulomb coefficient\n"
+      << "  triangles: " << (s.contact.triangles ? "true" : "false")
+      << "  # collider edges and corners against the cloth's edges and triangles\n"
       << "solvers:\n";
   for (const auto& solver : s.solvers) {
     out << "  - name: " << solver.name << "\n"

@@ -18,6 +18,7 @@
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/mesh_cloth.hpp"
+#include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/stability.hpp"
 
@@ -36,6 +37,8 @@ struct ClothSpec {
   std::string material;       // preset applied before the explicit keys (empty: none)
   double perturbation = 0.0;  // m, random initial offset along the sheet normal
   double air_damping = 0.0;   // 1/s
+  // cloth.self_collision, resolved (thickness and static_friction filled in).
+  SelfCollisionSettings self_collision;
 };
 
 // metrics.drape_support: the support disc of the drape coefficient.
@@ -49,6 +52,9 @@ struct ContactSpec {
   double damping = 5.0;          // N*s/m
   double friction = 0.3;         // kinetic Coulomb coefficient, the colliders' default
   double static_friction = 0.3;  // static Coulomb coefficient (default: friction), >= friction
+  // Our cloth only: the colliders' edges and corners also push on the cloth's edges and triangles,
+  // not only on its particles (docs/contact.md, "Contact on triangles").
+  bool triangles = true;
 };
 
 struct SolverSpec {
