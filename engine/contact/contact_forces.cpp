@@ -87,6 +87,13 @@ Eigen::Isometry3d ContactModel::pose(std::size_t c, double t) const {
   return poses_ ? poses_->at(c, t).pose : collider_pose(colliders_[c], t);
 }
 
+Eigen::Vector3d ContactModel::surface_velocity(std::size_t c, double t,
+                                               const Eigen::Vector3d& p) const {
+  if (poses_) return poses_->at(c, t).point_velocity(p);
+  return colliders_[c].motion.is_static() ? Eigen::Vector3d::Zero()
+                                          : collider_point_velocity(colliders_[c], t, p);
+}
+
 Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
   return pose(c, t) * fcl_colliders_[c].shape_in_collider;
 }

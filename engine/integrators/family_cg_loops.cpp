@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/coupling_product.hpp"
 #include "integrators/particle_loops.hpp"
 
 namespace drapelab::kernels {
@@ -143,7 +144,12 @@ double product(FamilySystem& s, int p_index, int y_index) {
     for (std::int64_t block = run.first_block; block < run.end_block; ++block)
       s.partials[2 * block] = dot(p, y, block_range(s, block));
   }
-  return sum_partials(s, 0);
+  const double springs_and_bodies = sum_partials(s, 0);
+  if (s.couplings.empty()) return springs_and_bodies;
+  return springs_and_bodies + add_coupling_products(
+                                  s.couplings, s.free.data(),
+                                  [&](std::int32_t j, int c) { return p.c[c][j]; },
+                                  [&](std::int32_t j, int c) -> double& { return y.c[c][j]; });
 }
 
 // z = inverse-block r for the particles of one range; returns r . z over them.

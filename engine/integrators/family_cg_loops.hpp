@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "forces/spring_family_loops.hpp"
+#include "integrators/coupling.hpp"
 
 namespace drapelab::kernels {
 
@@ -38,7 +39,8 @@ struct FamilySystem {
   // 6 rows: the inverse of A's diagonal block (1/kg), zero for a pinned particle (the
   // preconditioner).
   std::vector<double> inverse;
-  std::vector<double> free;  // per particle: 1 if it moves, 0 if pinned
+  std::vector<double> free;         // per particle: 1 if it moves, 0 if pinned
+  std::vector<Coupling> couplings;  // this step's contacts between particles
   // Scratch: per family 3 rows of padding + particles slot terms (zero padding first), the CG's
   // vectors (3 rows each of particles + padding, zero padding last) and per-block partial sums.
   std::vector<double> terms;

@@ -2,6 +2,8 @@
 // right-hand side, then the matrix-free conjugate gradient (family_implicit.hpp).
 #include "integrators/family_implicit.hpp"
 
+#include "integrators/weighted_couplings.hpp"
+
 namespace drapelab {
 
 FamilyImplicitSystem::FamilyImplicitSystem(const ClothModel& model, const SpringFamilies& families,
@@ -19,7 +21,9 @@ FamilyImplicitSystem::FamilyImplicitSystem(const ClothModel& model, const Spring
 void FamilyImplicitSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x,
                                  const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& force, double h,
                                  double air_damping, const ContactParameters& contact,
-                                 const std::vector<ActiveContact>& contacts, Eigen::Matrix3Xd& dv) {
+                                 const std::vector<ActiveContact>& contacts,
+                                 const std::vector<WeightedContact>& couplings,
+                                 Eigen::Matrix3Xd& dv) {
   kernels::assemble_family_system(x.data(), v.data(), model.mass.data(), free_.data(),
                                   families_.families(), h, air_damping, system_, spring_kv_.data());
   // rhs = h f0 + h^2 K v0: the springs' share came from the assembly, each pushing contact adds
@@ -36,6 +40,15 @@ void FamilyImplicitSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd
                                n.x() * n.y(), n.x() * n.z(), n.y() * n.z()};
     for (int e = 0; e < 6; ++e) system_.body_row(e)[i] += contact_block * entries[e];
   }
+  // Contacts between particles (self-collision, collider edges on cloth edges).
+  build_couplings(
+      couplings, v, h, [&](int i) { return free_[i] != 0.0; }, system_.couplings,
+      [&](int i, const Eigen::Matrix3d& block, const Eigen::Vector3d& rhs) {
+        rhs_.col(i) += rhs;
+        const double entries[6] = {block(0, 0), block(1, 1), block(2, 2),
+                                   block(0, 1), block(0, 2), block(1, 2)};
+        for (int e = 0; e < 6; ++e) system_.body_row(e)[i] += entries[e];
+      });
   for (int i = 0; i < model.particle_count(); ++i)
     if (free_[i] == 0.0) {
       rhs_.col(i).setZero();

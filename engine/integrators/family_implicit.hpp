@@ -14,6 +14,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/implicit_euler.hpp"
+#include "drapelab/weighted_contact.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/family_cg_loops.hpp"
 
@@ -29,7 +30,7 @@ class FamilyImplicitSystem {
   void solve(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
              const Eigen::Matrix3Xd& force, double h, double air_damping,
              const ContactParameters& contact, const std::vector<ActiveContact>& contacts,
-             Eigen::Matrix3Xd& dv);
+             const std::vector<WeightedContact>& couplings, Eigen::Matrix3Xd& dv);
 
   const ImplicitSolveStats& stats() const { return stats_; }
   // A p for the system of the last solve (kg times p's unit; pinned rows and columns act as zero),

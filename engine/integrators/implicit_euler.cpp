@@ -4,8 +4,17 @@
 #include <algorithm>
 
 #include "forces/spring_jacobian.hpp"
+#include "integrators/coupled_matrix.hpp"
+#include "integrators/weighted_couplings.hpp"
 
 namespace drapelab {
+
+struct CoupledConjugateGradient {
+  std::vector<kernels::Coupling> couplings;
+  Eigen::ConjugateGradient<CoupledMatrix, Eigen::Lower | Eigen::Upper, CoupledJacobiPreconditioner>
+      cg;
+};
+
 namespace {
 
 constexpr int kSlotsPerBlock = 9;
@@ -61,13 +70,16 @@ ImplicitEulerSystem::ImplicitEulerSystem(const ClothModel& model, ImplicitSolveS
     block_slots(s.v1[e], s.v0[e]);
   }
   free_.resize(n);
-  for (int i = 0; i < n; ++i) free_[i] = model.is_pinned(i) ? 0 : 1;
+  for (int i = 0; i < n; ++i) free_[i] = model.is_pinned(i) ? 0.0 : 1.0;
   rhs_ = Eigen::VectorXd::Zero(3 * n);
   solution_ = Eigen::VectorXd::Zero(3 * n);
   stiffness_times_velocity_ = Eigen::Matrix3Xd::Zero(3, n);
-  cg_.setTolerance(settings_.tolerance);
-  cg_.setMaxIterations(settings_.max_iterations);
+  cg_ = std::make_unique<CoupledConjugateGradient>();
+  cg_->cg.setTolerance(settings_.tolerance);
+  cg_->cg.setMaxIterations(settings_.max_iterations);
 }
+
+ImplicitEulerSystem::~ImplicitEulerSystem() = default;
 
 void ImplicitEulerSystem::add_block(std::size_t first, const Eigen::Matrix3d& block) {
   double* values = matrix_.valuePtr();
@@ -78,7 +90,9 @@ void ImplicitEulerSystem::add_block(std::size_t first, const Eigen::Matrix3d& bl
 void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x,
                                 const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& force, double h,
                                 double air_damping, const ContactParameters& contact,
-                                const std::vector<ActiveContact>& contacts, Eigen::Matrix3Xd& dv) {
+                                const std::vector<ActiveContact>& contacts,
+                                const std::vector<WeightedContact>& couplings,
+                                Eigen::Matrix3Xd& dv) {
   const int n = model.particle_count();
   std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
   stiffness_times_velocity_.setZero();
@@ -116,6 +130,15 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
         contact.stiffness * along * v.col(touch.particle);
   }
 
+  // Contacts between particles: their diagonal blocks into the matrix, their K v0 into the
+  // right-hand side, their off-diagonal blocks into the operator's products.
+  build_couplings(
+      couplings, v, h, [&](int i) { return free_[i] != 0.0; }, cg_->couplings,
+      [&](int i, const Eigen::Matrix3d& block, const Eigen::Vector3d& kv) {
+        add_block(static_cast<std::size_t>(kSlotsPerBlock) * i, block);
+        stiffness_times_velocity_.col(i) += kv / (h * h);
+      });
+
   for (int i = 0; i < n; ++i)
     rhs_.segment<3>(3 * i) =
         free_[i] ? Eigen::Vector3d(h * (force.col(i) + h * stiffness_times_velocity_.col(i)))
@@ -123,10 +146,11 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
   for (int i = 0; i < n; ++i)
     if (!free_[i]) solution_.segment<3>(3 * i).setZero();
 
-  cg_.compute(matrix_);
-  solution_ = cg_.solveWithGuess(rhs_, solution_);
-  record_solve(stats_, static_cast<int>(cg_.iterations()), cg_.error(),
-               cg_.info() == Eigen::Success);
+  const CoupledMatrix system(matrix_, cg_->couplings, free_);
+  cg_->cg.compute(system);
+  solution_ = cg_->cg.solveWithGuess(rhs_, solution_);
+  record_solve(stats_, static_cast<int>(cg_->cg.iterations()), cg_->cg.error(),
+               cg_->cg.info() == Eigen::Success);
   dv = Eigen::Map<const Eigen::Matrix3Xd>(solution_.data(), 3, n);
 }
 

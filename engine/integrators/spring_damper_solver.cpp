@@ -9,12 +9,14 @@
 #include <stdexcept>
 
 #include "contact/contact_pass.hpp"
+#include "contact/edge_contact.hpp"
 #include "drapelab/stability.hpp"
 #include "forces/forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/family_implicit.hpp"
 #include "integrators/particle_loops.hpp"
 #include "integrators/shape_bound.hpp"
+#include "self_collision/self_contact.hpp"
 
 namespace drapelab {
 namespace {
@@ -55,6 +57,8 @@ const char* step_phase_name(StepPhase phase) {
       return "health_check";
     case StepPhase::step_bound:
       return "step_bound";
+    case StepPhase::self_contacts:
+      return "self_contacts";
     case StepPhase::count:
       break;
   }
@@ -108,6 +112,16 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   }
   for (int i = 0; i < model_->particle_count(); ++i)
     if (model_->is_pinned(i)) state_.v.col(i).setZero();  // a pin holds its particle still
+  if (settings_.contacts && settings_.collider_edges && model_->triangles.cols() > 0) {
+    edge_contact_ = std::make_unique<EdgeContact>(*model_, *settings_.contacts);
+    if (!edge_contact_->active()) edge_contact_.reset();
+  }
+  if (settings_.self_collision.enabled && model_->triangles.cols() > 0) {
+    self_contact_ = std::make_unique<SelfContact>(*model_, settings_.self_collision);
+    step_start_x_.resize(3, n);
+    step_start_v_.resize(3, n);
+    piece_start_x_.resize(3, n);
+  }
   if (settings_.adaptive_substeps) {
     if (settings_.integrator != Integrator::symplectic_euler)
       throw std::invalid_argument(std::string("adaptive substeps need symplectic_euler, not ") +
@@ -120,9 +134,26 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
 const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3Xd& x,
                                                             const Eigen::Matrix3Xd& v, double t,
                                                             double h) {
+  active_couplings_.clear();
   set_body_and_spring_forces(x, v);
+  add_pair_contact_forces(x, v, t, h);
   if (settings_.contacts) add_contact_forces(x, v, t, h, nullptr);
   return force_;
+}
+
+void SpringDamperSolver::add_pair_contact_forces(const Eigen::Matrix3Xd& x,
+                                                 const Eigen::Matrix3Xd& v, double t, double h) {
+  // The implicit solve takes the couplings of its one (start-of-step) evaluation.
+  std::vector<WeightedContact>* couplings = implicit_stats() ? &active_couplings_ : nullptr;
+  if (self_contact_) {
+    PhaseTimer timer(stats_, StepPhase::self_contacts);
+    self_contact_->add_forces(x, v, h, model_->inverse_mass, force_, couplings);
+  }
+  if (edge_contact_) {
+    PhaseTimer timer(stats_, StepPhase::contacts);
+    edge_contact_->add_forces(*settings_.contacts, t, h, x, v, model_->inverse_mass, force_,
+                              couplings);
+  }
 }
 
 void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x,
@@ -152,9 +183,18 @@ std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x,
                                                     const Eigen::Matrix3Xd& v, double t, double h,
                                                     const ContactBlockFollowUp* follow_up) {
   PhaseTimer timer(stats_, StepPhase::contacts);
-  return settings_.contacts->add_contact_forces(
+  const std::int64_t flagged = settings_.contacts->add_contact_forces(
       *model_, t, h, x, v, force_, contact_totals_, implicit_stats() ? &active_contacts_ : nullptr,
       contact_workspace_.get(), contact_normal_scheme(), follow_up);
+  if (edge_contact_)  // the particle contacts' totals were just overwritten: add the edges'
+    for (std::size_t c = 0; c < contact_totals_.size(); ++c) {
+      const EdgeContactTotals& edges = edge_contact_->totals()[c];
+      contact_totals_[c].contact_count += edges.contact_count;
+      contact_totals_[c].normal_force += edges.normal_force;
+      contact_totals_[c].friction_force += edges.friction_force;
+      contact_totals_[c].max_depth = std::max(contact_totals_[c].max_depth, edges.max_depth);
+    }
+  return flagged;
 }
 
 ContactNormalScheme SpringDamperSolver::contact_normal_scheme() const {
@@ -171,9 +211,12 @@ std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
 
 std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() const {
   std::vector<std::pair<std::string, double>> phases;
-  for (int p = 0; p < static_cast<int>(StepPhase::count); ++p)
-    if (static_cast<StepPhase>(p) != StepPhase::step_bound || settings_.adaptive_substeps)
-      phases.emplace_back(step_phase_name(static_cast<StepPhase>(p)), stats_.seconds[p]);
+  for (int p = 0; p < static_cast<int>(StepPhase::count); ++p) {
+    const auto phase = static_cast<StepPhase>(p);
+    if (phase == StepPhase::step_bound && !settings_.adaptive_substeps) continue;
+    if (phase == StepPhase::self_contacts && !self_contact_) continue;
+    phases.emplace_back(step_phase_name(phase), stats_.seconds[p]);
+  }
   return phases;
 }
 
@@ -187,6 +230,26 @@ const ImplicitSolveStats* SpringDamperSolver::implicit_stats() const {
 }
 
 std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const {
+  std::vector<std::pair<std::string, double>> all = scheme_counters();
+  if (self_contact_) {
+    const SelfContactStats& self = self_contact_->stats();
+    all.insert(
+        all.end(),
+        {{"self_contacts_last", static_cast<double>(self.contacts_last)},
+         {"self_contacts_mean", self.evaluations > 0 ? static_cast<double>(self.contacts_total) /
+                                                           static_cast<double>(self.evaluations)
+                                                     : 0.0},
+         {"self_collision_searches", static_cast<double>(self.rebuilds)},
+         {"self_collision_candidates_last", static_cast<double>(self.candidates)},
+         {"self_collision_split_steps", static_cast<double>(stats_.split_steps)},
+         {"self_collision_split_pieces_max", static_cast<double>(stats_.split_pieces_max)},
+         {"self_collision_unresolved_fast_steps",
+          static_cast<double>(stats_.unresolved_fast_steps)}});
+  }
+  return all;
+}
+
+std::vector<std::pair<std::string, double>> SpringDamperSolver::scheme_counters() const {
   if (settings_.adaptive_substeps)
     return {{"substeps", static_cast<double>(stats_.steps)},
             {"substeps_per_step_mean",
@@ -212,7 +275,8 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const
 
 double SpringDamperSolver::force_phase_seconds() const {
   double total = 0.0;
-  for (StepPhase phase : {StepPhase::body_forces, StepPhase::springs, StepPhase::contacts})
+  for (StepPhase phase :
+       {StepPhase::body_forces, StepPhase::springs, StepPhase::self_contacts, StepPhase::contacts})
     total += stats_.seconds[static_cast<int>(phase)];
   return total;
 }
@@ -224,6 +288,64 @@ const Eigen::Matrix3Xd& SpringDamperSolver::acceleration_of_force(Eigen::Matrix3
 
 void SpringDamperSolver::step(double h) {
   if (status_ != SolverStatus::ok) return;
+  if (self_contact_)
+    step_without_tunnelling(h);
+  else
+    advance(h);
+}
+
+double SpringDamperSolver::largest_relative_motion(const Eigen::Matrix3Xd& from) const {
+  const Eigen::Vector3d mean_motion = (state_.x - from).rowwise().mean();  // m
+  double largest2 = 0.0;                                                   // m^2
+  for (int i = 0; i < state_.x.cols(); ++i)
+    largest2 = std::max(largest2, (state_.x.col(i) - from.col(i) - mean_motion).squaredNorm());
+  return std::sqrt(largest2);
+}
+
+void SpringDamperSolver::step_without_tunnelling(double h) {
+  // At most 2^10 pieces: beyond, the step goes on and is counted (the run warns).
+  constexpr int kMostPieces = 1024;
+  const double bound = 0.25 * self_contact_->thickness();  // m
+  const Eigen::Vector3d mean_velocity = state_.v.rowwise().mean();
+  const double fastest = (state_.v.colwise() - mean_velocity).colwise().norm().maxCoeff();  // m/s
+  int pieces = static_cast<int>(
+      std::clamp(std::ceil(fastest * h / bound), 1.0, static_cast<double>(kMostPieces)));
+  step_start_x_ = state_.x;
+  step_start_v_ = state_.v;
+  const double start_time = state_.time;
+  const std::int64_t start_count = state_.step_count;
+  for (;;) {
+    bool within = true;
+    const double piece = h / pieces;
+    for (int k = 0; k < pieces && status_ == SolverStatus::ok; ++k) {
+      piece_start_x_ = state_.x;
+      advance(piece);
+      if (largest_relative_motion(piece_start_x_) > bound) {
+        within = false;
+        break;
+      }
+    }
+    if (within || status_ != SolverStatus::ok) break;
+    if (pieces >= kMostPieces) {
+      ++stats_.unresolved_fast_steps;
+      break;
+    }
+    // Back to the step's start with twice the pieces; the two-level schemes start afresh.
+    state_.x = step_start_x_;
+    state_.v = step_start_v_;
+    state_.time = start_time;
+    state_.step_count = start_count;
+    two_level_step_ = 0.0;
+    split_state_is_current_ = false;
+    pieces *= 2;
+  }
+  if (pieces > 1) ++stats_.split_steps;
+  stats_.split_pieces_max = std::max(stats_.split_pieces_max, pieces);
+  if (status_ == SolverStatus::ok)
+    state_.time = start_time + h;  // the caller's clock, without the pieces' rounding
+}
+
+void SpringDamperSolver::advance(double h) {
   if (!settings_.adaptive_substeps) {
     single_step(h);
     return;
@@ -330,12 +452,13 @@ std::int64_t SpringDamperSolver::euler_step(double h) {
         return flagged;
       },
       &update};
-  if (spring_families_) {
+  if (spring_families_ && !has_pair_contacts()) {
     const std::int64_t flagged = spring_and_contact_forces_together(h, follow_up);
     split_state_is_current_ = true;  // every block was split as it was updated
     return flagged;
   }
   set_body_and_spring_forces(state_.x, state_.v);
+  add_pair_contact_forces(state_.x, state_.v, state_.time, h);
   const std::int64_t flagged = add_contact_forces(state_.x, state_.v, state_.time, h, &follow_up);
   split_state_is_current_ = false;
   return flagged;
@@ -383,10 +506,10 @@ void SpringDamperSolver::implicit_euler_step(double h) {
       settings_.contacts ? settings_.contacts->parameters() : ContactParameters{};
   if (family_implicit_)
     family_implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact,
-                            active_contacts_, stage_v_);
+                            active_contacts_, active_couplings_, stage_v_);
   else
     implicit_->solve(*model_, state_.x, state_.v, force_, h, settings_.air_damping, contact,
-                     active_contacts_, stage_v_);
+                     active_contacts_, active_couplings_, stage_v_);
   state_.v += stage_v_;                // v(n+1) = v(n) + dv
   state_.x.noalias() += h * state_.v;  // x(n+1) = x(n) + h v(n+1)
 }

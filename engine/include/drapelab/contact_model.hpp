@@ -67,6 +67,9 @@ class ContactModel {
   // Collider c's frame -> world at time t (s): from the pose table when there is one, else
   // collider_pose(t). The contact phase uses exactly this pose.
   Eigen::Isometry3d pose(std::size_t c, double t) const;
+  // Velocity (m/s) of collider c's material point at world position p at time t (s), moved like
+  // pose(): zero for a static collider.
+  Eigen::Vector3d surface_velocity(std::size_t c, double t, const Eigen::Vector3d& p) const;
   // FCL shape frame -> world at time t (s), posed like pose().
   Eigen::Isometry3d shape_pose(std::size_t c, double t) const;
 

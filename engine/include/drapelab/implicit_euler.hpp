@@ -19,10 +19,12 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/contact_model.hpp"
+#include "drapelab/weighted_contact.hpp"
 
 namespace drapelab {
 
@@ -45,16 +47,22 @@ struct ImplicitSolveStats {
 void record_solve(ImplicitSolveStats& stats, int iterations, double relative_residual,
                   bool converged);
 
+// The conjugate gradient on the matrix with the couplings of contacts between particles
+// (integrators/coupled_matrix.hpp).
+struct CoupledConjugateGradient;
+
 class ImplicitEulerSystem {
  public:
   ImplicitEulerSystem(const ClothModel& model, ImplicitSolveSettings settings);
+  ~ImplicitEulerSystem();
 
   // Computes dv (m/s, 3 x N) for a step of h (s) from (x, v) whose total force is `force` (N).
-  // `air_damping` in 1/s; `contacts` the pushing contacts of that force evaluation.
+  // `air_damping` in 1/s; `contacts` the pushing contacts of that force evaluation, `couplings`
+  // its pushing contacts between particles (weighted_contact.hpp).
   void solve(const ClothModel& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
              const Eigen::Matrix3Xd& force, double h, double air_damping,
              const ContactParameters& contact, const std::vector<ActiveContact>& contacts,
-             Eigen::Matrix3Xd& dv);
+             const std::vector<WeightedContact>& couplings, Eigen::Matrix3Xd& dv);
 
   const ImplicitSolveStats& stats() const { return stats_; }
   const ImplicitSolveSettings& settings() const { return settings_; }
@@ -71,13 +79,11 @@ class ImplicitEulerSystem {
   // Value indices of each 3x3 block, row-major within the block: per particle its diagonal block
   // (9 slots at 9 i), then per spring e the blocks (a,a), (b,b), (a,b), (b,a) (36 slots).
   std::vector<std::int32_t> slots_;
-  std::vector<std::uint8_t> free_;             // 1 for a particle that moves, 0 for a pinned one
+  std::vector<double> free_;                   // 1 for a particle that moves, 0 for a pinned one
   Eigen::VectorXd rhs_;                        // N*s: h (f0 + h K v0), zero on pinned rows
   Eigen::VectorXd solution_;                   // m/s: dv, kept as the next step's initial guess
   Eigen::Matrix3Xd stiffness_times_velocity_;  // K v0 (N/s)
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-                           Eigen::DiagonalPreconditioner<double>>
-      cg_;
+  std::unique_ptr<CoupledConjugateGradient> cg_;
   ImplicitSolveStats stats_;
 };
 

@@ -24,8 +24,10 @@
 #include "drapelab/contact_model.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
+#include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/stability.hpp"
+#include "drapelab/weighted_contact.hpp"
 
 namespace drapelab {
 
@@ -36,6 +38,8 @@ class FamilyImplicitSystem;
 struct ShapeBoundWorkspace;
 struct ContactWorkspace;
 struct ContactBlockFollowUp;
+class SelfContact;
+class EdgeContact;
 
 struct SpringDamperSettings {
   Integrator integrator = Integrator::symplectic_euler;
@@ -54,11 +58,28 @@ struct SpringDamperSettings {
   // constructor refuses the others.
   bool adaptive_substeps = false;
   double substep_safety = 0.9;
+  // The cloth against itself (self_collision.hpp). With it on, a step in which one particle would
+  // move more than half the thickness relative to another is split into smaller equal steps, so
+  // that no layer passes through another between two force evaluations (step_without_tunnelling).
+  SelfCollisionSettings self_collision;
+  // The colliders' sharp edges and corners also push on the cloth's edges and triangles
+  // (contact/edge_contact.hpp), not only on its particles.
+  bool collider_edges = false;
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
-// step_bound: the adaptive substeps' shape bound, once per step(h).
-enum class StepPhase { body_forces, springs, contacts, integrate, health_check, step_bound, count };
+// step_bound: the adaptive substeps' shape bound, once per step(h). self_contacts: the cloth
+// against itself, between the springs and the collider contacts.
+enum class StepPhase {
+  body_forces,
+  springs,
+  contacts,
+  integrate,
+  health_check,
+  step_bound,
+  self_contacts,
+  count
+};
 const char* step_phase_name(StepPhase phase);
 struct StepStats {
   std::array<double, static_cast<int>(StepPhase::count)> seconds{};
@@ -67,6 +88,12 @@ struct StepStats {
   std::int64_t outer_steps = 0;
   int substeps_min = 0;
   int substeps_max = 0;
+  // Self-collision: steps split so that no particle moves more than half the thickness relative
+  // to another, the most pieces one step needed, and steps still above that bound at the finest
+  // split allowed (each may let a layer through: the run warns).
+  std::int64_t split_steps = 0;
+  int split_pieces_max = 0;
+  std::int64_t unresolved_fast_steps = 0;
 };
 
 class SpringDamperSolver final : public Solver {
@@ -94,6 +121,8 @@ class SpringDamperSolver final : public Solver {
   // writes only the solver's own buffers.
   const Eigen::Matrix3Xd& evaluate_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                                           double t, double h);
+  // Self-collision's machinery and statistics (null when off).
+  const SelfContact* self_contact() const { return self_contact_.get(); }
   // What each collider did in the last force evaluation (empty without colliders).
   const std::vector<ColliderContactTotals>& contact_totals() const { return contact_totals_; }
   // The implicit solve: the assembled sparse system (a cloth without spring families, or
@@ -107,6 +136,15 @@ class SpringDamperSolver final : public Solver {
   bool uses_fast_springs() const { return spring_families_ != nullptr; }
 
  private:
+  // step(h) without self-collision: one integrator step, or the adaptive substeps.
+  void advance(double h);
+  // step(h) with self-collision: advance() in as many equal pieces as keep every particle's motion
+  // relative to the cloth's mean within a quarter of the thickness (so two particles close by at
+  // most half of it), predicted from the velocities and checked after each piece; a piece that
+  // breaks it sends the step back to its start with twice the pieces.
+  void step_without_tunnelling(double h);
+  // The largest |x_i - from_i - mean(x - from)| over particles (m).
+  double largest_relative_motion(const Eigen::Matrix3Xd& from) const;
   // One integrator step of h (s): the scheme's update, the step's bookkeeping and the health check.
   void single_step(double h);
   // How many substeps step(h) takes when adaptive: h over the shape's stable step times the safety.
@@ -122,6 +160,13 @@ class SpringDamperSolver final : public Solver {
   // The force phases on their own: gravity, air drag and springs overwrite force_; contacts add to
   // it (with `follow_up` run on each block of particles once its force is final; returns its flag).
   void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
+  // The contacts between particles: self-collision's forces, then the collider edges' (each a
+  // no-op when off), added to force_ before the particle contacts.
+  void add_pair_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
+                               double h);
+  // Whether forces act between the springs and the particle contacts (then the two cannot share
+  // one parallel region).
+  bool has_pair_contacts() const { return self_contact_ || edge_contact_; }
   std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
                                   double h, const ContactBlockFollowUp* follow_up);
   // How the integrator takes the penalty normal force: at the step's end for symplectic Euler.
@@ -132,6 +177,9 @@ class SpringDamperSolver final : public Solver {
   // a = f / m for the force just evaluated (zero on pinned particles).
   const Eigen::Matrix3Xd& acceleration_of_force(Eigen::Matrix3Xd& into) const;
   double force_phase_seconds() const;
+  // The integrator's own counters (adaptive substeps or the implicit solve), without
+  // self-collision.
+  std::vector<std::pair<std::string, double>> scheme_counters() const;
   // `scanned`: the step's own scan of the new state, if it made one.
   void check_health(double h, std::optional<std::int64_t> scanned);
 
@@ -160,6 +208,11 @@ class SpringDamperSolver final : public Solver {
   bool split_state_is_current_ = false;
   std::vector<ActiveContact>
       active_contacts_;  // implicit Euler: contacts of the start-of-step force
+  std::vector<WeightedContact> active_couplings_;  // implicit Euler: contacts between particles
+  std::unique_ptr<SelfContact> self_contact_;      // null when self-collision is off
+  std::unique_ptr<EdgeContact> edge_contact_;      // null without collider edges
+  // Self-collision: the state a step restarts from (m, m/s) and the start of its piece (m).
+  Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
   std::vector<ColliderContactTotals> contact_totals_;
   std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
   std::unique_ptr<ShapeBoundWorkspace>

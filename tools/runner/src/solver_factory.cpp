@@ -22,6 +22,8 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
   settings.max_speed = spec.max_speed;
   settings.implicit = spec.implicit;
   settings.adaptive_substeps = spec.adaptive_substeps;
+  settings.self_collision = scene.cloth.self_collision;
+  settings.collider_edges = scene.contact.triangles;
   if (!spec.bullet_host) {
     settings.contacts = std::move(contacts);
     return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);

@@ -1,0 +1,257 @@
+// Collider edges and corners against the cloth's edges and triangles (edge_contact.hpp).
+#include "contact/edge_contact.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "cloth/mesh_edges.hpp"
+#include "self_collision/pair_penalty.hpp"
+#include "self_collision/proximity.hpp"
+
+namespace drapelab {
+namespace {
+
+// Fewest and most chords per cylinder rim.
+constexpr int kFewestChords = 16;
+constexpr int kMostChords = 1024;
+
+ColliderFeatures box_features(const Eigen::Vector3d& half) {
+  ColliderFeatures features;
+  features.shape = ColliderShape::box;
+  features.half_extents = half;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d sign((corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0,
+                               (corner & 4) ? 1.0 : -1.0);
+    features.corners.push_back({sign.cwiseProduct(half), sign.normalized()});
+    // The edges from this corner towards +x, +y, +z, each found once (from its lower end).
+    for (int axis = 0; axis < 3; ++axis) {
+      if (sign[axis] > 0.0) continue;
+      Eigen::Vector3d other = sign;
+      other[axis] = 1.0;
+      Eigen::Vector3d outward = sign;
+      outward[axis] = 0.0;
+      features.edges.push_back(
+          {sign.cwiseProduct(half), other.cwiseProduct(half), outward.normalized()});
+    }
+  }
+  return features;
+}
+
+ColliderFeatures cylinder_features(const Eigen::Vector3d& axis, double radius, double height,
+                                   double thickness) {
+  ColliderFeatures features;
+  const Eigen::Vector3d a = axis.normalized();
+  const Eigen::Vector3d u = a.unitOrthogonal(), w = a.cross(u);
+  features.shape = ColliderShape::cylinder;
+  features.rim_frame << u, w, a;
+  features.radius = radius;
+  features.half_height = 0.5 * height;
+  // Chords of sag radius (1 - cos(pi / count)) <= thickness / 8.
+  const double half_angle = std::acos(std::max(-1.0, 1.0 - thickness / (8.0 * radius)));
+  const double wanted = half_angle > 0.0 ? std::ceil(std::numbers::pi / half_angle) : kMostChords;
+  const int count =
+      static_cast<int>(std::clamp(wanted, double{kFewestChords}, double{kMostChords}));
+  features.chords = count;
+  for (const double side : {-1.0, 1.0}) {
+    const Eigen::Vector3d rim_center = side * 0.5 * height * a;
+    for (int k = 0; k < count; ++k) {
+      const double from = 2.0 * std::numbers::pi * k / count;
+      const double to = 2.0 * std::numbers::pi * (k + 1) / count;
+      const double middle = 0.5 * (from + to);
+      const Eigen::Vector3d radial = std::cos(middle) * u + std::sin(middle) * w;
+      features.edges.push_back({rim_center + radius * (std::cos(from) * u + std::sin(from) * w),
+                                rim_center + radius * (std::cos(to) * u + std::sin(to) * w),
+                                (radial + side * a).normalized()});
+    }
+  }
+  return features;
+}
+
+Eigen::AlignedBox3d box_of(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  Eigen::AlignedBox3d box(a);
+  box.extend(b);
+  return box;
+}
+
+}  // namespace
+
+ColliderFeatures collider_features(const Collider& collider, double thickness) {
+  switch (collider.shape) {
+    case ColliderShape::box:
+      return box_features(collider.half_extents);
+    case ColliderShape::cylinder:
+      return cylinder_features(collider.axis, collider.radius, collider.height, thickness);
+    default:
+      return {};
+  }
+}
+
+EdgeContact::EdgeContact(const ClothModel& model, const ContactModel& contacts)
+    : model_(model), thickness_(model.thickness) {
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    features_.push_back(collider_features(contacts.collider(c), thickness_));
+    active_ = active_ || !features_.back().empty();
+  }
+  if (active_) edges_ = mesh_edges(model.triangles);
+  totals_.resize(contacts.size());
+}
+
+void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
+                             const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                             const Eigen::VectorXd& inverse_mass, Eigen::Matrix3Xd& force,
+                             std::vector<WeightedContact>* active) {
+  std::fill(totals_.begin(), totals_.end(), EdgeContactTotals{});
+  if (!active_) return;
+  found_.clear();
+  const double h2 = thickness_ * thickness_;
+  // Where a cloth point at `cloth` touches a collider feature at `feature` with outward `outward`:
+  // the push direction and depth, or nothing when farther than the thickness.
+  auto touch = [&](const Eigen::Vector3d& cloth, const Eigen::Vector3d& feature,
+                   const Eigen::Vector3d& outward, Found& into) {
+    const Eigen::Vector3d r = cloth - feature;
+    const double d2 = r.squaredNorm();
+    if (d2 >= h2) return false;
+    const double d = std::sqrt(d2);
+    const bool in_front = d > 0.0 && r.dot(outward) >= 0.0;
+    into.normal = in_front ? Eigen::Vector3d(r / d) : outward;
+    into.depth = in_front ? thickness_ - d : thickness_ + d;
+    return true;
+  };
+  for (std::size_t c = 0; c < features_.size(); ++c) {
+    const ColliderFeatures& local = features_[c];
+    if (local.empty()) continue;
+    const Eigen::Isometry3d pose = contacts.pose(c, t);
+    const Eigen::Isometry3d to_local = pose.inverse();
+    posed_edges_.clear();
+    Eigen::AlignedBox3d reach;
+    for (const auto& e : local.edges) {
+      posed_edges_.push_back({pose * e.from, pose * e.to, pose.linear() * e.outward});
+      reach.extend(posed_edges_.back().from);
+      reach.extend(posed_edges_.back().to);
+    }
+    posed_corners_.clear();
+    for (const auto& k : local.corners) {
+      posed_corners_.push_back({pose * k.at, pose.linear() * k.outward});
+      reach.extend(posed_corners_.back().at);
+    }
+    reach.min().array() -= thickness_;
+    reach.max().array() += thickness_;
+    // Collider edges against cloth edges: the nearest collider edge, if it is nearest to the
+    // inside of the cloth edge (at an end, the particle contact has it).
+    for (const auto& [a, b] : edges_) {
+      if (!box_of(x.col(a), x.col(b)).intersects(reach)) continue;
+      Found best;
+      double best_distance2 = h2;
+      local.candidate_edges(
+          to_local * x.col(a), to_local * x.col(b), thickness_, [&](std::size_t index) {
+            const auto& e = posed_edges_[index];
+            const SegmentProximity near =
+                closest_points_of_segments(x.col(a), x.col(b), e.from, e.to);
+            if (!(near.s > 0.0 && near.s < 1.0)) return;
+            const double d2 = (near.on_first - near.on_second).squaredNorm();
+            if (d2 >= best_distance2) return;
+            Found candidate;
+            if (!touch(near.on_first, near.on_second, e.outward, candidate)) return;
+            candidate.particle = {a, b, -1};
+            candidate.weight = {1.0 - near.s, near.s, 0.0};
+            candidate.surface_velocity = contacts.surface_velocity(c, t, near.on_second);
+            candidate.collider = static_cast<int>(c);
+            best = candidate;
+            best_distance2 = d2;
+          });
+      if (best.particle[0] >= 0) found_.push_back(best);
+    }
+    // Collider corners against the inside of cloth triangles.
+    if (posed_corners_.empty()) continue;
+    for (Eigen::Index tri = 0; tri < model_.triangles.cols(); ++tri) {
+      const int i = model_.triangles(0, tri), j = model_.triangles(1, tri),
+                k = model_.triangles(2, tri);
+      Eigen::AlignedBox3d span = box_of(x.col(i), x.col(j));
+      span.extend(x.col(k));
+      if (!span.intersects(reach)) continue;
+      Found best;
+      double best_distance2 = h2;
+      for (const auto& corner : posed_corners_) {
+        if (span.exteriorDistance(corner.at) >= thickness_) continue;
+        const PointTriangleProximity near =
+            closest_point_on_triangle(corner.at, x.col(i), x.col(j), x.col(k));
+        if (near.region != TriangleRegion::face) continue;
+        const double d2 = (near.closest - corner.at).squaredNorm();
+        if (d2 >= best_distance2) continue;
+        Found candidate;
+        if (!touch(near.closest, corner.at, corner.outward, candidate)) continue;
+        candidate.particle = {i, j, k};
+        candidate.weight = {near.weights[0], near.weights[1], near.weights[2]};
+        candidate.surface_velocity = contacts.surface_velocity(c, t, corner.at);
+        candidate.collider = static_cast<int>(c);
+        best = candidate;
+        best_distance2 = d2;
+      }
+      if (best.particle[0] >= 0) found_.push_back(best);
+    }
+  }
+
+  // Penalty pushes first, then friction from the forces with every push in.
+  const ContactParameters& p = contacts.parameters();
+  std::vector<double>& pushes = pushes_;
+  pushes.assign(found_.size(), 0.0);
+  for (std::size_t e = 0; e < found_.size(); ++e) {
+    Found& f = found_[e];
+    Eigen::Vector3d u = -f.surface_velocity;  // m/s, the cloth point relative to the surface
+    bool moves = false;
+    for (int s = 0; s < 3; ++s)
+      if (f.particle[s] >= 0) {
+        u += f.weight[s] * v.col(f.particle[s]);
+        moves = moves || inverse_mass[f.particle[s]] > 0.0;
+      }
+    if (!moves) continue;
+    const double fn = penalty_normal_force(f.depth, f.normal.dot(u), p.stiffness, p.damping);
+    if (fn <= 0.0) continue;
+    pushes[e] = fn;
+    for (int s = 0; s < 3; ++s)
+      if (f.particle[s] >= 0) force.col(f.particle[s]) += (f.weight[s] * fn) * f.normal;
+    EdgeContactTotals& total = totals_[static_cast<std::size_t>(f.collider)];
+    ++total.contact_count;
+    total.normal_force += fn;
+    total.max_depth = std::max(total.max_depth, f.depth);
+    if (active) {
+      WeightedContact w;
+      for (int s = 0; s < 3; ++s) {
+        w.particle[s] = f.particle[s];
+        w.weight[s] = f.weight[s];
+      }
+      w.normal = f.normal;
+      w.stiffness = p.stiffness;
+      w.damping = p.damping;
+      active->push_back(w);
+    }
+  }
+  std::vector<Eigen::Vector3d>& frictions = frictions_;
+  frictions.assign(found_.size(), Eigen::Vector3d::Zero());
+  for (std::size_t e = 0; e < found_.size(); ++e) {
+    if (pushes[e] <= 0.0 || h <= 0.0) continue;
+    const Found& f = found_[e];
+    const Collider& collider = contacts.collider(static_cast<std::size_t>(f.collider));
+    double inverse_effective_mass = 0.0;  // 1/kg
+    Eigen::Vector3d trial = -f.surface_velocity;
+    for (int s = 0; s < 3; ++s) {
+      const int j = f.particle[s];
+      if (j < 0) continue;
+      inverse_effective_mass += f.weight[s] * f.weight[s] * inverse_mass[j];
+      trial += f.weight[s] * (v.col(j) + h * inverse_mass[j] * force.col(j));
+    }
+    const FrictionForce friction =
+        weighted_contact_friction(trial, f.normal, inverse_effective_mass, h, pushes[e],
+                                  collider.static_friction, collider.friction);
+    frictions[e] = friction.force;
+    totals_[static_cast<std::size_t>(f.collider)].friction_force += friction.magnitude;
+  }
+  for (std::size_t e = 0; e < found_.size(); ++e)
+    for (int s = 0; s < 3; ++s)
+      if (pushes[e] > 0.0 && found_[e].particle[s] >= 0)
+        force.col(found_[e].particle[s]) += found_[e].weight[s] * frictions[e];
+}
+
+}  // namespace drapelab

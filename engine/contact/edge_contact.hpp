@@ -1,0 +1,159 @@
+// Contact on the cloth's triangles, not only at its particles: a collider's sharp edges and corners
+// (box edges and corners, cylinder rims) against the cloth's edges and triangles.
+//
+// The particle contact (contact_model.hpp) keeps every particle a thickness h from every collider.
+// A smooth collider (sphere, capsule, plane) then cannot reach far into a triangle between its
+// particles (at most the sag s^2 / 8R of a triangle of side s over a radius R), but a sharp edge
+// can cut through the triangles between two particles. So each collider edge (a box's twelve
+// edges; a cylinder's two rims, as chords whose sag is at most h / 8) pushes every cloth edge whose
+// closest point to it lies between the cloth edge's particles and nearer than h, and each box
+// corner pushes every triangle whose closest point to it lies inside the triangle. One contact
+// per cloth edge and collider: the nearest of the collider's edges. The push is the penalty
+// spring-damper of the particle contact (same k and c), along the line from the collider's point to
+// the cloth's, spread over the cloth edge's (or triangle's) particles by their barycentric
+// weights, with Coulomb friction relative to the collider's surface. A cloth point that has passed
+// behind a collider edge (the line points into the collider) is pushed along the edge's outward
+// direction (the mean of its faces' normals) instead, with depth h plus its distance.
+// docs/contact.md, "Contact on triangles", gives the cost.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/collider.hpp"
+#include "drapelab/contact_model.hpp"
+#include "drapelab/weighted_contact.hpp"
+
+namespace drapelab {
+
+// A collider's sharp features in its own frame (m).
+struct ColliderFeatures {
+  struct Edge {
+    Eigen::Vector3d from, to;  // m
+    Eigen::Vector3d outward;   // unit: the mean of the normals of the faces that meet there
+  };
+  struct Corner {
+    Eigen::Vector3d at;       // m
+    Eigen::Vector3d outward;  // unit
+  };
+  std::vector<Edge> edges;
+  std::vector<Corner> corners;
+  bool empty() const { return edges.empty() && corners.empty(); }
+
+  // What the shape is, so a cloth edge far from every feature is passed over in a few operations
+  // (candidate_edges).
+  ColliderShape shape = ColliderShape::sphere;
+  Eigen::Vector3d half_extents = Eigen::Vector3d::Zero();   // m, box
+  Eigen::Matrix3d rim_frame = Eigen::Matrix3d::Identity();  // cylinder: columns u, w, axis
+  double radius = 0.0;                                      // m, cylinder
+  double half_height = 0.0;                                 // m, cylinder
+  int chords = 0;  // per rim: rim s, chord k is edge s chords + k
+
+  // Calls visit(edge index) for every feature edge that may lie within `reach` (m) of the segment
+  // a-b (given in the collider's frame), and for no edge farther than that from every point of it.
+  template <typename Visit>
+  void candidate_edges(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double reach,
+                       Visit&& visit) const;
+};
+
+// Box: 12 edges, 8 corners. Cylinder: each rim as chords whose sag is at most `thickness` / 8
+// (at least 16 chords). Sphere, capsule, plane: none (smooth).
+ColliderFeatures collider_features(const Collider& collider, double thickness);
+
+// What the edge contacts did to one collider in one force evaluation.
+struct EdgeContactTotals {
+  int contact_count = 0;        // cloth edges and triangles pushed
+  double normal_force = 0.0;    // N
+  double friction_force = 0.0;  // N
+  double max_depth = 0.0;       // m
+};
+
+class EdgeContact {
+ public:
+  EdgeContact(const ClothModel& model, const ContactModel& contacts);
+
+  // Whether any collider has sharp features (otherwise add_forces does nothing).
+  bool active() const { return active_; }
+  // Adds the edge contacts' penalty and friction forces (N) at (x, v) and time t to `force`, which
+  // holds every force but the particle contacts (friction is sized for a step of h s from it).
+  // Overwrites totals(); pushing contacts are appended to `active` when given.
+  void add_forces(const ContactModel& contacts, double t, double h, const Eigen::Matrix3Xd& x,
+                  const Eigen::Matrix3Xd& v, const Eigen::VectorXd& inverse_mass,
+                  Eigen::Matrix3Xd& force, std::vector<WeightedContact>* active);
+  const std::vector<EdgeContactTotals>& totals() const { return totals_; }
+
+ private:
+  struct Found {
+    std::array<int, 3> particle{-1, -1, -1};
+    std::array<double, 3> weight{};
+    Eigen::Vector3d normal;            // unit
+    double depth = 0.0;                // m
+    Eigen::Vector3d surface_velocity;  // m/s
+    int collider = 0;
+  };
+
+  const ClothModel& model_;
+  double thickness_;  // m
+  bool active_ = false;
+  std::vector<ColliderFeatures> features_;  // per collider, in its frame
+  std::vector<std::array<std::int32_t, 2>> edges_;
+  std::vector<Found> found_;
+  std::vector<ColliderFeatures::Edge> posed_edges_;      // one collider's, in the world
+  std::vector<ColliderFeatures::Corner> posed_corners_;  // one collider's, in the world
+  std::vector<double> pushes_;                           // N, per found contact
+  std::vector<Eigen::Vector3d> frictions_;               // N, per found contact
+  std::vector<EdgeContactTotals> totals_;
+};
+
+template <typename Visit>
+void ColliderFeatures::candidate_edges(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       double reach, Visit&& visit) const {
+  const Eigen::Vector3d low = a.cwiseMin(b), high = a.cwiseMax(b);
+  if (shape == ColliderShape::box) {
+    // Near an edge of the box means near two of its face planes at once.
+    int near_faces = 0;
+    for (int axis = 0; axis < 3; ++axis)
+      if (high[axis] >= half_extents[axis] - reach || low[axis] <= -half_extents[axis] + reach)
+        ++near_faces;
+    if (near_faces < 2) return;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const Eigen::Vector3d edge_low = edges[e].from.cwiseMin(edges[e].to).array() - reach;
+      const Eigen::Vector3d edge_high = edges[e].from.cwiseMax(edges[e].to).array() + reach;
+      if ((high.array() >= edge_low.array()).all() && (low.array() <= edge_high.array()).all())
+        visit(e);
+    }
+    return;
+  }
+  if (shape != ColliderShape::cylinder || chords == 0) return;
+  // In the rim frame: the axial span must reach a rim's plane, the farther end the rim's circle
+  // (the distance from the axis is largest at an end of a segment), and only the chords that span
+  // the segment's angles, one more on each side, can be near it.
+  const Eigen::Vector3d pa = rim_frame.transpose() * a, pb = rim_frame.transpose() * b;
+  const double z_low = std::min(pa.z(), pb.z()), z_high = std::max(pa.z(), pb.z());
+  const double farthest = std::max(pa.head<2>().norm(), pb.head<2>().norm());
+  if (farthest < radius - reach) return;
+  const double step = 2.0 * 3.14159265358979323846 / chords;  // rad per chord
+  auto chord_of = [&](const Eigen::Vector3d& p) {
+    const double angle = std::atan2(p.y(), p.x());  // rad, (-pi, pi]
+    return static_cast<int>(
+        std::floor((angle < 0.0 ? angle + 2.0 * 3.14159265358979323846 : angle) / step));
+  };
+  int from = chord_of(pa), to = chord_of(pb);
+  if (to < from) std::swap(from, to);
+  int span = to - from;
+  if (span > chords / 2) {  // the short way round passes through chord 0
+    std::swap(from, to);
+    span = chords - span;
+  }
+  for (int side = 0; side < 2; ++side) {
+    const double rim = side == 0 ? -half_height : half_height;
+    if (z_high < rim - reach || z_low > rim + reach) continue;
+    for (int k = from - 1; k <= from + span + 1; ++k)
+      visit(static_cast<std::size_t>(side * chords + ((k % chords) + chords) % chords));
+  }
+}
+
+}  // namespace drapelab

@@ -1,0 +1,21 @@
+// A contact whose point on the cloth is a weighted sum of up to four particles: a particle against
+// a triangle (weights 1, -a, -b, -c), two edges, or a collider's edge against a cloth edge. The
+// penalty force f n at the contact acts on particle j as w_j f n; for the implicit solve its
+// Jacobians are K = -k (w w^T) (x) n n^T and D = -c (w w^T) (x) n n^T (the normal held fixed, as
+// for the particle contacts of contact_model.hpp), which couple the contact's particles.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+
+namespace drapelab {
+
+struct WeightedContact {
+  std::array<int, 4> particle{-1, -1, -1, -1};        // -1: unused slot
+  std::array<double, 4> weight{};                     // dimensionless
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit: the direction the force pushes
+  double stiffness = 0.0;                             // N/m
+  double damping = 0.0;                               // N*s/m
+};
+
+}  // namespace drapelab

@@ -1,0 +1,249 @@
+// Self-collision's broad phase, narrow phase and forces (self_contact.hpp).
+#include "self_collision/self_contact.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "cloth/mesh_edges.hpp"
+#include "self_collision/pair_penalty.hpp"
+#include "self_collision/proximity.hpp"
+
+namespace drapelab {
+namespace {
+
+Box box_of(std::initializer_list<Eigen::Vector3d> points, double inflate) {
+  Box box{*points.begin(), *points.begin()};
+  for (const Eigen::Vector3d& p : points) {
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  box.min.array() -= inflate;
+  box.max.array() += inflate;
+  return box;
+}
+
+// The grid's cell: the boxes' mean size, so a box covers a few cells (m).
+double cell_size_for(const std::vector<Box>& boxes, double at_least) {
+  double sum = 0.0;
+  for (const Box& box : boxes) sum += (box.max - box.min).maxCoeff();
+  return std::max(at_least, boxes.empty() ? at_least : sum / static_cast<double>(boxes.size()));
+}
+
+Eigen::Vector3d unit_or_up(const Eigen::Vector3d& v) {
+  const double length = v.norm();
+  return length > 0.0 ? Eigen::Vector3d(v / length) : Eigen::Vector3d::UnitY();
+}
+
+}  // namespace
+
+SelfContact::SelfContact(const ClothModel& model, const SelfCollisionSettings& settings)
+    : model_(model),
+      settings_(settings),
+      thickness_(settings.thickness_or(model.thickness)),
+      margin_(2.0 * thickness_) {
+  const int n = model.particle_count();
+  edges_ = mesh_edges(model.triangles);
+  neighbour_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (const auto& e : edges_) {
+    ++neighbour_start_[static_cast<std::size_t>(e[0]) + 1];
+    ++neighbour_start_[static_cast<std::size_t>(e[1]) + 1];
+  }
+  for (int i = 0; i < n; ++i) neighbour_start_[i + 1] += neighbour_start_[i];
+  neighbours_.resize(static_cast<std::size_t>(neighbour_start_[n]));
+  std::vector<std::int32_t> filled(neighbour_start_.begin(), neighbour_start_.end() - 1);
+  for (const auto& e : edges_) {
+    neighbours_[static_cast<std::size_t>(filled[e[0]]++)] = e[1];
+    neighbours_[static_cast<std::size_t>(filled[e[1]]++)] = e[0];
+  }
+  for (int i = 0; i < n; ++i)
+    std::sort(neighbours_.begin() + neighbour_start_[i],
+              neighbours_.begin() + neighbour_start_[i + 1]);
+}
+
+bool SelfContact::adjacent(int a, int b) const {
+  return std::binary_search(neighbours_.begin() + neighbour_start_[a],
+                            neighbours_.begin() + neighbour_start_[a + 1], b);
+}
+
+bool SelfContact::needs_search(const Eigen::Matrix3Xd& x) const {
+  if (!searched_) return true;
+  const Eigen::Vector3d mean_motion = (x - searched_x_).rowwise().mean();  // m
+  const double limit = 0.25 * margin_ * margin_;                           // (margin / 2)^2
+  for (int i = 0; i < x.cols(); ++i)
+    if ((x.col(i) - searched_x_.col(i) - mean_motion).squaredNorm() > limit) return true;
+  return false;
+}
+
+void SelfContact::search(const Eigen::Matrix3Xd& x) {
+  const double reach = thickness_ + margin_;  // m
+  const double reach2 = reach * reach;
+  const auto& tri = model_.triangles;
+  point_triangle_.clear();
+  edge_edge_.clear();
+
+  boxes_.resize(static_cast<std::size_t>(tri.cols()));
+  for (int t = 0; t < tri.cols(); ++t)
+    boxes_[t] = box_of({x.col(tri(0, t)), x.col(tri(1, t)), x.col(tri(2, t))}, reach);
+  grid_.build(boxes_, cell_size_for(boxes_, reach));
+  for (int p = 0; p < x.cols(); ++p) {
+    const Eigen::Vector3d point = x.col(p);
+    for (const std::int32_t t : grid_.items_near(point)) {
+      if (tri(0, t) == p || tri(1, t) == p || tri(2, t) == p) continue;
+      if (!boxes_[t].contains(point)) continue;
+      const PointTriangleProximity near =
+          closest_point_on_triangle(point, x.col(tri(0, t)), x.col(tri(1, t)), x.col(tri(2, t)));
+      if ((point - near.closest).squaredNorm() < reach2) point_triangle_.push_back({p, t});
+    }
+  }
+
+  boxes_.resize(edges_.size());
+  for (std::size_t e = 0; e < edges_.size(); ++e)
+    boxes_[e] = box_of({x.col(edges_[e][0]), x.col(edges_[e][1])}, 0.5 * reach);
+  grid_.build(boxes_, cell_size_for(boxes_, reach));
+  grid_.for_each_overlapping_pair(boxes_, [&](std::int32_t a, std::int32_t b) {
+    const auto& ea = edges_[a];
+    const auto& eb = edges_[b];
+    if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return;
+    const SegmentProximity near =
+        closest_points_of_segments(x.col(ea[0]), x.col(ea[1]), x.col(eb[0]), x.col(eb[1]));
+    if ((near.on_first - near.on_second).squaredNorm() < reach2) edge_edge_.push_back({a, b});
+  });
+  searched_x_ = x;
+  searched_ = true;
+  ++stats_.rebuilds;
+  stats_.candidates = static_cast<std::int64_t>(point_triangle_.size() + edge_edge_.size());
+}
+
+void SelfContact::find_contacts(const Eigen::Matrix3Xd& x) {
+  const double thickness2 = thickness_ * thickness_;
+  const auto& tri = model_.triangles;
+  contacts_.clear();
+  shared_.clear();
+  for (const auto& [p, t] : point_triangle_) {
+    const int corner[3] = {tri(0, t), tri(1, t), tri(2, t)};
+    const Eigen::Vector3d a = x.col(corner[0]), b = x.col(corner[1]), c = x.col(corner[2]);
+    const PointTriangleProximity near = closest_point_on_triangle(x.col(p), a, b, c);
+    if ((x.col(p) - near.closest).squaredNorm() >= thickness2) continue;
+    if (near.region == TriangleRegion::face) {
+      Contact contact;
+      contact.particle = {p, corner[0], corner[1], corner[2]};
+      contact.weight = {1.0, -near.weights[0], -near.weights[1], -near.weights[2]};
+      contact.fallback_normal = unit_or_up((b - a).cross(c - a));
+      contacts_.push_back(contact);
+    } else if (near.region == TriangleRegion::edge) {
+      const int i = corner[(near.feature + 1) % 3], j = corner[(near.feature + 2) % 3];
+      shared_.push_back({p, std::min(i, j), std::max(i, j)});
+    } else {
+      const int q = corner[near.feature];
+      if (!adjacent(p, q)) shared_.push_back({std::min(p, q), std::max(p, q), -1});
+    }
+  }
+  for (const auto& [ea, eb] : edge_edge_) {
+    const auto& e = edges_[ea];
+    const auto& f = edges_[eb];
+    const SegmentProximity near =
+        closest_points_of_segments(x.col(e[0]), x.col(e[1]), x.col(f[0]), x.col(f[1]));
+    // Nearest at an end: that end's particle-triangle test has the contact already.
+    if (!(near.s > 0.0 && near.s < 1.0 && near.t > 0.0 && near.t < 1.0)) continue;
+    if ((near.on_first - near.on_second).squaredNorm() >= thickness2) continue;
+    Contact contact;
+    contact.particle = {e[0], e[1], f[0], f[1]};
+    contact.weight = {1.0 - near.s, near.s, -(1.0 - near.t), -near.t};
+    contact.fallback_normal =
+        unit_or_up((x.col(e[1]) - x.col(e[0])).cross(x.col(f[1]) - x.col(f[0])));
+    contacts_.push_back(contact);
+  }
+  std::sort(shared_.begin(), shared_.end());
+  shared_.erase(std::unique(shared_.begin(), shared_.end()), shared_.end());
+  for (const SharedFeature& s : shared_) {
+    Contact contact;
+    if (s.c < 0) {
+      contact.particle = {s.a, s.b, -1, -1};
+      contact.weight = {1.0, -1.0, 0.0, 0.0};
+    } else {
+      const Eigen::Vector3d from = x.col(s.b), along = x.col(s.c) - from;
+      const double length2 = along.squaredNorm();
+      const double t =
+          length2 > 0.0 ? std::clamp((x.col(s.a) - from).dot(along) / length2, 0.0, 1.0) : 0.0;
+      contact.particle = {s.a, s.b, s.c, -1};
+      contact.weight = {1.0, -(1.0 - t), -t, 0.0};
+    }
+    contacts_.push_back(contact);
+  }
+}
+
+void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double h,
+                             const Eigen::VectorXd& inverse_mass, Eigen::Matrix3Xd& force,
+                             std::vector<WeightedContact>* active) {
+  ++stats_.evaluations;
+  if (needs_search(x)) search(x);
+  find_contacts(x);
+  const double k = settings_.stiffness, c = settings_.damping;
+  normal_force_.assign(contacts_.size(), 0.0);
+  normal_.resize(contacts_.size());
+  // Penalty: every contact's push at once, so friction below sees all of them.
+  double normal_total = 0.0;
+  std::int64_t pushing = 0;
+  for (std::size_t e = 0; e < contacts_.size(); ++e) {
+    const Contact& contact = contacts_[e];
+    Eigen::Vector3d r = Eigen::Vector3d::Zero(), u = Eigen::Vector3d::Zero();
+    for (int s = 0; s < 4; ++s)
+      if (contact.particle[s] >= 0) {
+        r += contact.weight[s] * x.col(contact.particle[s]);
+        u += contact.weight[s] * v.col(contact.particle[s]);
+      }
+    const PairPenalty push = pair_penalty(r, u, contact.fallback_normal, thickness_, k, c);
+    normal_[e] = push.normal;
+    if (push.force <= 0.0) continue;
+    normal_force_[e] = push.force;
+    for (int s = 0; s < 4; ++s)
+      if (contact.particle[s] >= 0)
+        force.col(contact.particle[s]) += (contact.weight[s] * push.force) * push.normal;
+    normal_total += push.force;
+    ++pushing;
+    if (active) {
+      WeightedContact w;
+      w.particle = contact.particle;
+      w.weight = contact.weight;
+      w.normal = push.normal;
+      w.stiffness = k;
+      w.damping = c;
+      active->push_back(w);
+    }
+  }
+  // Coulomb friction between the layers, from the forces with every push in.
+  double friction_total = 0.0;
+  friction_.assign(contacts_.size(), Eigen::Vector3d::Zero());
+  const double kinetic = settings_.friction, fixed = settings_.static_friction_or_kinetic();
+  if (fixed > 0.0 && h > 0.0)
+    for (std::size_t e = 0; e < contacts_.size(); ++e) {
+      if (normal_force_[e] <= 0.0) continue;
+      const Contact& contact = contacts_[e];
+      double inverse_effective_mass = 0.0;  // 1/kg
+      Eigen::Vector3d trial = Eigen::Vector3d::Zero();
+      for (int s = 0; s < 4; ++s) {
+        const int j = contact.particle[s];
+        if (j < 0) continue;
+        const double w = contact.weight[s];
+        inverse_effective_mass += w * w * inverse_mass[j];
+        trial += w * (v.col(j) + h * inverse_mass[j] * force.col(j));
+      }
+      if (inverse_effective_mass <= 0.0) continue;
+      const FrictionForce f = weighted_contact_friction(trial, normal_[e], inverse_effective_mass,
+                                                        h, normal_force_[e], fixed, kinetic);
+      friction_[e] = f.force;
+      friction_total += f.magnitude;
+    }
+  for (std::size_t e = 0; e < contacts_.size(); ++e)
+    if (normal_force_[e] > 0.0)
+      for (int s = 0; s < 4; ++s)
+        if (contacts_[e].particle[s] >= 0)
+          force.col(contacts_[e].particle[s]) += contacts_[e].weight[s] * friction_[e];
+  stats_.contacts_last = pushing;
+  stats_.contacts_total += pushing;
+  stats_.normal_force_last = normal_total;
+  stats_.friction_force_last = friction_total;
+}
+
+}  // namespace drapelab

@@ -1,0 +1,93 @@
+// Self-collision of our cloth as a force phase (self_collision.hpp gives the model).
+//
+// Broad phase: candidate pairs (a particle and a triangle it is not a corner of, two edges without
+// a shared particle) within the thickness plus a margin, found by a uniform grid (spatial_hash.hpp)
+// and kept while no particle has moved more than half the margin relative to the cloth's mean
+// motion since they were found: two parts can then not have closed the margin between them, so
+// no pair within the thickness is missed. Narrow phase, every force evaluation: the closest points
+// of each candidate. A particle nearest a triangle's inside and two edges nearest in their insides
+// are contacts as found; a particle nearest a triangle's edge or corner is a particle-edge or
+// particle-particle contact, counted once however many triangles share that edge or corner.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/self_collision.hpp"
+#include "drapelab/weighted_contact.hpp"
+#include "self_collision/spatial_hash.hpp"
+
+namespace drapelab {
+
+// What self-collision did, summed over force evaluations.
+struct SelfContactStats {
+  std::int64_t evaluations = 0;
+  std::int64_t rebuilds = 0;         // broad-phase searches
+  std::int64_t candidates = 0;       // candidate pairs of the last search
+  std::int64_t contacts_last = 0;    // pushing contacts of the last evaluation
+  std::int64_t contacts_total = 0;   // summed over evaluations
+  double normal_force_last = 0.0;    // N, sum of |fn| of the last evaluation
+  double friction_force_last = 0.0;  // N, sum of |friction| of the last evaluation
+};
+
+class SelfContact {
+ public:
+  SelfContact(const ClothModel& model, const SelfCollisionSettings& settings);
+
+  // Adds the self-contact penalty and friction forces (N) for the state (x, v) to `force`, which
+  // must already hold every other force but the collider contacts (friction is sized for a step of
+  // h s from it). `inverse_mass` 1/kg per particle. Pushing contacts are appended to `active` when
+  // given.
+  void add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double h,
+                  const Eigen::VectorXd& inverse_mass, Eigen::Matrix3Xd& force,
+                  std::vector<WeightedContact>* active);
+
+  double thickness() const { return thickness_; }  // m
+  double margin() const { return margin_; }        // m
+  const SelfContactStats& stats() const { return stats_; }
+  const std::vector<std::array<std::int32_t, 2>>& edges() const { return edges_; }
+
+ private:
+  struct Contact {
+    std::array<int, 4> particle{-1, -1, -1, -1};
+    std::array<double, 4> weight{};
+    Eigen::Vector3d fallback_normal = Eigen::Vector3d::UnitY();
+  };
+  // A particle nearest a triangle's edge (c >= 0: particle a, edge b-c) or corner (c < 0: a, b).
+  struct SharedFeature {
+    int a = 0, b = 0, c = -1;
+    auto operator<=>(const SharedFeature&) const = default;
+  };
+
+  bool needs_search(const Eigen::Matrix3Xd& x) const;
+  void search(const Eigen::Matrix3Xd& x);
+  void find_contacts(const Eigen::Matrix3Xd& x);
+  bool adjacent(int a, int b) const;
+
+  const ClothModel& model_;
+  SelfCollisionSettings settings_;
+  double thickness_ = 0.0;                          // m
+  double margin_ = 0.0;                             // m
+  std::vector<std::array<std::int32_t, 2>> edges_;  // unique mesh edges, lower index first
+  std::vector<std::int32_t> neighbour_start_;       // CSR: particle i's neighbours by an edge
+  std::vector<std::int32_t> neighbours_;
+  // Broad phase.
+  SpatialGrid grid_;
+  std::vector<Box> boxes_;
+  Eigen::Matrix3Xd searched_x_;  // m, the positions of the last search
+  bool searched_ = false;
+  std::vector<std::array<std::int32_t, 2>> point_triangle_;  // (particle, triangle)
+  std::vector<std::array<std::int32_t, 2>> edge_edge_;       // (edge, edge)
+  // Narrow phase, per evaluation.
+  std::vector<Contact> contacts_;
+  std::vector<SharedFeature> shared_;
+  std::vector<double> normal_force_;       // N, per contact
+  std::vector<Eigen::Vector3d> normal_;    // per contact
+  std::vector<Eigen::Vector3d> friction_;  // N, per contact
+  SelfContactStats stats_;
+};
+
+}  // namespace drapelab

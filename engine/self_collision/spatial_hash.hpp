@@ -1,0 +1,85 @@
+// The broad phase of self-collision: a spatial hash (Teschner et al., "Optimized Spatial Hashing
+// for Collision Detection of Deformable Objects", 2003). Each box is entered in every grid cell it
+// overlaps; the entries are counting-sorted by the hash of their cell into a table twice their
+// number, so a rebuild is linear in the entries and a lookup is one bucket. Cells that share a
+// bucket only cost extra box tests.
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace drapelab {
+
+struct Box {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();  // m
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();  // m
+
+  bool overlaps(const Box& other) const {
+    return (min.array() <= other.max.array()).all() && (other.min.array() <= max.array()).all();
+  }
+  bool contains(const Eigen::Vector3d& p) const {
+    return (min.array() <= p.array()).all() && (p.array() <= max.array()).all();
+  }
+};
+
+// Integer cell coordinates packed into one key. Coordinates beyond +-2^20 cells are clamped: far
+// cells then share keys, which costs only extra narrow-phase tests, never a missed pair.
+std::uint64_t cell_key(const Eigen::Vector3d& p, double inverse_cell_size);
+
+class SpatialGrid {
+ public:
+  // Enters every box in each cell of `cell_size` m it overlaps. Allocates only to grow.
+  void build(std::span<const Box> boxes, double cell_size);
+  // The items entered in the bucket of the cell holding p: every item whose box overlaps that
+  // cell, and perhaps others (test their boxes).
+  std::span<const std::int32_t> items_near(const Eigen::Vector3d& p) const;
+  // Calls visit(a, b) once for every pair of items a != b whose boxes overlap (in the one cell
+  // that holds the lowest corner of the boxes' overlap).
+  template <typename Visit>
+  void for_each_overlapping_pair(std::span<const Box> boxes, Visit&& visit) const;
+
+  std::size_t entries() const { return items_.size(); }
+
+ private:
+  std::size_t bucket_of(std::uint64_t cell) const;
+
+  double inverse_cell_size_ = 1.0;  // 1/m
+  int bucket_shift_ = 58;           // 64 - log2(table size): the hash keeps the product's top bits
+  std::vector<std::uint32_t> bucket_start_;    // per bucket, its first entry; one extra at the end
+  std::vector<std::uint64_t> cells_;           // per entry (bucket order), its cell's key
+  std::vector<std::int32_t> items_;            // per entry (bucket order), its item
+  std::vector<std::uint64_t> unsorted_cells_;  // scratch: entries in box order
+  std::vector<std::int32_t> unsorted_items_;
+  std::vector<std::array<std::uint64_t, 3>> lowest_cell_;  // per item, its box's lowest cell
+  std::vector<std::uint32_t> fill_position_;  // scratch: per bucket, where its next entry goes
+};
+
+template <typename Visit>
+void SpatialGrid::for_each_overlapping_pair(std::span<const Box> boxes, Visit&& visit) const {
+  for (std::size_t bucket = 0; bucket + 1 < bucket_start_.size(); ++bucket) {
+    const std::uint32_t begin = bucket_start_[bucket], end = bucket_start_[bucket + 1];
+    for (std::uint32_t i = begin; i < end; ++i)
+      for (std::uint32_t j = i + 1; j < end; ++j) {
+        if (cells_[i] != cells_[j]) continue;  // two cells sharing the bucket
+        const std::int32_t a = items_[i], b = items_[j];
+        const Box& box_a = boxes[static_cast<std::size_t>(a)];
+        const Box& box_b = boxes[static_cast<std::size_t>(b)];
+        if (!box_a.overlaps(box_b)) continue;
+        // The overlap's lowest corner lies in the cell of the larger of the two lowest cells, axis
+        // by axis (the cell index is monotonic in the coordinate).
+        const auto& low_a = lowest_cell_[static_cast<std::size_t>(a)];
+        const auto& low_b = lowest_cell_[static_cast<std::size_t>(b)];
+        const std::uint64_t lowest = (std::max(low_a[0], low_b[0]) << 42) |
+                                     (std::max(low_a[1], low_b[1]) << 21) |
+                                     std::max(low_a[2], low_b[2]);
+        if (lowest != cells_[i]) continue;
+        visit(a, b);
+      }
+  }
+}
+
+}  // namespace drapelab
