@@ -244,7 +244,7 @@ std::string plots_section(const RunData& run) {
   }
   auto crossings = metric_series(run, "self_intersections", 1.0);
   if (any_finite(crossings))
-    add("Self-intersections", "crossing edges", std::move(crossings),
+    add("Self-intersections", "crossing edges (1)", std::move(crossings),
         "metrics.csv self_intersections: cloth edges that cross a non-adjacent cloth triangle "
         "(exact predicates)");
   auto forces = contact_force_series(run);
