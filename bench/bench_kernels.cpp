@@ -1,21 +1,25 @@
 // Google Benchmark micro-benchmarks of the step's kernels: the spring phase (plain edge list and
 // the spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, the
 // contact phase alone (per contact), the adaptive substeps' shape bound (per particle), and a step
-// of implicit Euler with the assembled or the matrix-free solve (with its CG iterations). They
-// measure; nothing here asserts a time. Run: build/bench/bench_kernels [--benchmark_filter=Springs]
+// of implicit Euler with the assembled or the matrix-free solve (with its CG iterations), and the
+// per-frame mesh audits (self-intersections, triangle penetration). They measure; nothing here
+// asserts a time. Run: build/bench/bench_kernels [--benchmark_filter=Springs]
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "contact/contact_pass.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
+#include "drapelab/self_intersections.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
+#include "drapelab/triangle_penetration.hpp"
 #include "forces/forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/shape_bound.hpp"
@@ -216,6 +220,86 @@ BENCHMARK(ImplicitStep)
     ->Args({129, 1, 0})
     ->Args({129, 1, 1})
     ->Args({129, 2, 1});
+
+// A heap-like crumpled sheet for the self-intersection audit: the n x n sheet of 1 m squeezed to
+// 0.3 m along x and z, folded by two crossed waves of 5 cm and jittered by up to 2 mm per particle
+// (fixed seed), so that its folds lie on, touch and pass through each other.
+Eigen::Matrix3Xd crumpled(const ClothModel& model) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> jitter(-0.002, 0.002);
+  Eigen::Matrix3Xd x = model.rest_positions;
+  for (int i = 0; i < model.particle_count(); ++i) {
+    const double u = x(0, i), w = x(2, i);
+    x(0, i) = 0.3 * u + jitter(random);
+    x(2, i) = 0.3 * w + jitter(random);
+    x(1, i) = 0.05 * std::sin(23.0 * u + 7.0 * w) * std::cos(17.0 * w - 5.0 * u) + jitter(random);
+  }
+  return x;
+}
+
+// The self-intersection audit of one frame: edge list kept, both trees rebuilt, every candidate
+// pair decided exactly. Reports the crossing edges found and the time per frame in ms.
+void SelfIntersections(benchmark::State& bench) {
+  const int n = static_cast<int>(bench.range(0));
+  const ClothModel model = build_grid_cloth(square_sheet(n));
+  const Eigen::Matrix3Xd x = crumpled(model);
+  const SelfIntersectionCounter counter(model.triangles);
+  int crossings = 0;
+  for (auto _ : bench) {
+    crossings = counter.count(x);
+    benchmark::DoNotOptimize(crossings);
+  }
+  bench.counters["crossing_edges"] = crossings;
+  bench.counters["edges"] = static_cast<double>(counter.edge_count());
+}
+BENCHMARK(SelfIntersections)->Arg(65)->Arg(129)->Unit(benchmark::kMillisecond);
+
+// Triangle penetration near its worst case: the n x n sheet of 1 m lying one thickness above a
+// collider's top, so that the triangles over it pass the broad phase. Arg 1: the collider, 0 a box
+// (0.6 m square top, about a third of the triangles; FCL's GJK and EPA), 1 an upright cylinder
+// (radius 0.6 m, every triangle; GJK and EPA), 2 a sphere of radius 0.6 m (closed form; the
+// triangles near its top), 3 a floor plane (closed form, every triangle).
+void TrianglePenetration(benchmark::State& bench) {
+  const int n = static_cast<int>(bench.range(0));
+  const ClothModel model = build_grid_cloth(square_sheet(n));
+  Collider collider;
+  collider.name = "under";
+  switch (bench.range(1)) {
+    case 0:
+      collider.shape = ColliderShape::box;
+      collider.half_extents = Eigen::Vector3d(0.3, 0.3, 0.3);
+      break;
+    case 1:
+      collider.shape = ColliderShape::cylinder;
+      collider.radius = 0.6;
+      collider.height = 0.6;
+      break;
+    case 2:
+      collider.shape = ColliderShape::sphere;
+      collider.radius = 0.6;
+      collider.center = Eigen::Vector3d(0.0, -0.3, 0.0);
+      break;
+    default:
+      collider.shape = ColliderShape::plane;
+      collider.center = Eigen::Vector3d(0.0, 0.3, 0.0);
+      break;
+  }
+  const ContactModel contacts({collider}, ContactParameters{}, model.thickness);
+  Eigen::Matrix3Xd x = model.rest_positions;
+  x.row(1).setConstant(0.3 + model.thickness);
+  double reach = 0.0;
+  for (auto _ : bench) {
+    reach = triangle_penetration(model, x, contacts, 0.0);
+    benchmark::DoNotOptimize(reach);
+  }
+  bench.counters["reach_mm"] = 1e3 * reach;
+}
+BENCHMARK(TrianglePenetration)
+    ->Args({65, 0})
+    ->Args({65, 1})
+    ->Args({65, 2})
+    ->Args({65, 3})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace drapelab

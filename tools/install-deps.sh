@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config   # compiler and build tools
   libeigen3-dev                                  # vectors and matrices (engine)
   libfcl-dev                                     # exact particle-collider contact (engine)
+  libgmp-dev                                     # exact orient3d for the self-intersection audit (engine)
   libbullet-dev                                  # Bullet 3.24, double build bullet-float64 (bullet_bridge)
   libyaml-cpp-dev                                # scene files
   libcli11-dev                                   # command line

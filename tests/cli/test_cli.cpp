@@ -81,15 +81,18 @@ const std::vector<std::string> kMetricsColumns = {"solver",
                                                   "lowest_y",
                                                   "projected_area",
                                                   "drape_coefficient",
-                                                  "drape_nodes"};
+                                                  "drape_nodes",
+                                                  "self_intersections",
+                                                  "triangle_penetration"};
 const std::vector<std::string> kCompareColumns = {
     "solver_a", "solver_b", "frame", "time", "rms_distance", "max_distance", "hausdorff_distance"};
 const std::vector<std::string> kContactsColumns = {
     "solver",        "frame",        "time",           "collider",
     "contact_count", "normal_force", "friction_force", "max_penetration"};
 // Empty while the scene has no colliders and no drape support.
-const std::vector<std::string> kEmptyMetricsColumns = {
-    "min_clearance", "max_penetration", "contact_count", "drape_coefficient", "drape_nodes"};
+const std::vector<std::string> kEmptyMetricsColumns = {"min_clearance", "max_penetration",
+                                                       "contact_count", "drape_coefficient",
+                                                       "drape_nodes",   "triangle_penetration"};
 
 // A parsed CSV file: header and rows, each row a map from column name to cell.
 struct Csv {
@@ -268,11 +271,58 @@ TEST_F(Cli, MetricsCsvHasEveryColumnAndOneRowPerFrame) {
       EXPECT_TRUE(is_number(csv.cell(r, column))) << column << " = [" << csv.cell(r, column) << "]";
     }
   }
+  // A sheet hanging from its corners does not pass through itself.
+  for (std::size_t r = 0; r < csv.rows.size(); ++r)
+    EXPECT_EQ(csv.cell(r, "self_intersections"), "0");
   // Frame 0 is the initial state: at rest, springs unstretched (the 1 mm perturbation aside).
   EXPECT_EQ(std::stod(csv.cell(0, "kinetic_energy")), 0.0);
   EXPECT_EQ(std::stod(csv.cell(0, "time")), 0.0);
   // The cloth falls: its centroid is lower at the last frame than at frame 0.
   EXPECT_LT(std::stod(csv.cell(kFrames, "centroid_y")), std::stod(csv.cell(0, "centroid_y")));
+}
+
+// The mesh audits for every solver: the sheet of kSmall, free, on a sphere 5 mm (its thickness)
+// below it, under our cloth and both of Bullet's.
+TEST_F(Cli, MeshAuditColumnsAreWrittenForEverySolver) {
+  const std::string text =
+      "name: cli_audit\n"
+      "duration: 0.1\n"
+      "cloth: {size: [0.4, 0.4], resolution: [9, 9], mass: 0.1, center: [0, 0.5, 0], plane: xz,\n"
+      "        perturbation: 0, thickness: 0.005,\n"
+      "        springs: {stretch: {ks: 200, kd: 0.01}, shear: {ks: 20, kd: 0.005},\n"
+      "                  bend: {ks: 2, kd: 0.001}}}\n"
+      "colliders:\n"
+      "  - {name: ball, type: sphere, center: [0, 0.3, 0], radius: 0.195}\n"
+      "contact: {stiffness: 500, damping: 0.05}\n"
+      "solvers:\n"
+      "  - {name: ours, type: spring_damper}\n"
+      "  - {name: classic, type: bullet_softbody}\n"
+      "  - {name: deformable, type: bullet_deformable}\n";
+  const fs::path out = dir() / "out";
+  const auto result = run(scene("audit.yaml", text), out);
+  ASSERT_EQ(result.exit_code, 0) << all_output(result);
+  const Csv csv = read_csv(out / "metrics.csv");
+  std::map<std::string, int> rows_per_solver;
+  for (std::size_t r = 0; r < csv.rows.size(); ++r) {
+    const std::string solver = csv.cell(r, "solver");
+    SCOPED_TRACE(solver + " frame " + csv.cell(r, "frame"));
+    ++rows_per_solver[solver];
+    const std::string crossings = csv.cell(r, "self_intersections");
+    ASSERT_FALSE(crossings.empty());
+    EXPECT_EQ(crossings.find_first_not_of("0123456789"), std::string::npos) << crossings;
+    ASSERT_TRUE(is_number(csv.cell(r, "triangle_penetration")));
+    const double reach = std::stod(csv.cell(r, "triangle_penetration"));
+    EXPECT_GE(reach, 0.0);
+    // A triangle holds its corners: it reaches at least as deep as any particle does.
+    EXPECT_GE(reach, std::stod(csv.cell(r, "max_penetration")) - 1e-9);
+    // A cloth this close to the sphere is never more than its thickness plus 5 mm into it.
+    EXPECT_LT(reach, 0.01);
+  }
+  EXPECT_EQ(rows_per_solver,
+            (std::map<std::string, int>{
+                {"ours", kFrames + 1}, {"classic", kFrames + 1}, {"deformable", kFrames + 1}}));
+  // Frame 0: the sheet lies 5 mm (one thickness) above the sphere's top, plus a rounding.
+  EXPECT_NEAR(std::stod(csv.cell(0, "triangle_penetration")), 0.0, 1e-9);
 }
 
 TEST_F(Cli, CompareAndContactsCsvHaveTheirHeaders) {
@@ -318,7 +368,7 @@ TEST_F(Cli, SummaryJsonHasStatusStepsAndFinalMetrics) {
     ASSERT_TRUE(final_metrics.at(key).is_number()) << key;
     EXPECT_EQ(final_metrics.at(key).get<double>(), std::stod(csv.cell(last, key))) << key;
   }
-  for (const char* key : {"max_penetration", "drape_coefficient"}) {
+  for (const char* key : {"max_penetration", "drape_coefficient", "triangle_penetration"}) {
     ASSERT_TRUE(final_metrics.contains(key)) << key;
     EXPECT_TRUE(final_metrics.at(key).is_null()) << key << " has no collider or support to measure";
   }

@@ -64,8 +64,9 @@ const std::string kTinyDrape =
 const std::vector<std::string> kSolvers{"ours", "bullet_classic"};
 // The plots a run with colliders, two solvers and no drape support must have, by title.
 const std::vector<std::string> kRunPlots{
-    "Kinetic energy", "Spring energy",           "Max stretch", "Min clearance", "Max penetration",
-    "Contact force",  "Distance between solvers"};
+    "Kinetic energy",     "Spring energy",   "Max stretch",
+    "Min clearance",      "Max penetration", "Triangle penetration",
+    "Self-intersections", "Contact force",   "Distance between solvers"};
 
 // ---- a parsed page -------------------------------------------------------------------------
 

@@ -25,6 +25,10 @@ struct ClothMetrics {
   std::optional<int> contact_count;
   std::optional<double> drape_coefficient;
   std::optional<int> drape_nodes;
+  // The mesh audits of the run's frame loop (self_intersections.hpp, triangle_penetration.hpp);
+  // empty until it measures them, triangle_penetration also when the scene has no colliders.
+  std::optional<int> self_intersections;       // edges crossing a non-adjacent triangle
+  std::optional<double> triangle_penetration;  // m, deepest collider reach into a triangle
 };
 
 ClothMetrics compute_cloth_metrics(const ClothModel& model, const ClothState& state,

@@ -234,10 +234,19 @@ std::string plots_section(const RunData& run) {
         "inside the shell");
     add("Max penetration", "max penetration (mm)", metric_series(run, "max_penetration", 1e3),
         "metrics.csv max_penetration: max(0, \u2212min_clearance)");
+    add("Triangle penetration", "triangle penetration (mm)",
+        metric_series(run, "triangle_penetration", 1e3),
+        "metrics.csv triangle_penetration: deepest reach of a collider into a triangle, "
+        "thickness included: max(0, h \u2212 d) over triangles and colliders");
   } else {
     notes +=
         "<p class=\"note\">No clearance or penetration plots: the scene has no colliders.</p>\n";
   }
+  auto crossings = metric_series(run, "self_intersections", 1.0);
+  if (any_finite(crossings))
+    add("Self-intersections", "crossing edges (1)", std::move(crossings),
+        "metrics.csv self_intersections: cloth edges that cross a non-adjacent cloth triangle "
+        "(exact predicates)");
   auto forces = contact_force_series(run);
   if (any_finite(forces))
     add("Contact force", "normal force, all colliders (N)", std::move(forces),

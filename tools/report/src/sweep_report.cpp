@@ -67,9 +67,11 @@ bool is_result_column(const std::string& name) {
 // A final metric's name (sweep.json may list the columns it wrote: they are not varied keys).
 bool is_metric(const std::string& name) {
   static const std::set<std::string> kMetrics{
-      "kinetic_energy", "gravity_energy",  "spring_energy",  "max_stretch",       "mean_stretch",
-      "min_clearance",  "max_penetration", "contact_count",  "centroid_x",        "centroid_y",
-      "centroid_z",     "lowest_y",        "projected_area", "drape_coefficient", "drape_nodes"};
+      "kinetic_energy",      "gravity_energy",    "spring_energy",   "max_stretch",
+      "mean_stretch",        "min_clearance",     "max_penetration", "contact_count",
+      "centroid_x",          "centroid_y",        "centroid_z",      "lowest_y",
+      "projected_area",      "drape_coefficient", "drape_nodes",     "self_intersections",
+      "triangle_penetration"};
   if (kMetrics.count(name)) return true;
   for (const std::string prefix : {"final.", "final_"})
     if (name.rfind(prefix, 0) == 0) return true;

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "drapelab/scene/number_format.hpp"
+#include "drapelab/triangle_penetration.hpp"
 
 namespace drapelab::runner {
 namespace {
@@ -30,19 +31,22 @@ void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* inter
   run.stopped_at_frame = frame;
 }
 
-// The metrics of one state: cloth metrics, plus clearance from FCL when there are colliders (the
-// same queries for every solver).
+// The metrics of one state: cloth metrics and the self-intersection audit, plus clearance and
+// triangle penetration when there are colliders (the same queries for every solver).
 FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup,
                            const ClothState& state, int frame, double time) {
   FrameMeasure measure;
   measure.frame = frame;
   measure.time = time;
   measure.metrics = frame_metrics(setup, scene, state);
+  measure.metrics.self_intersections = setup.self_intersections->count(state.x);
   if (setup.contacts) {
     measure.collisions = compute_collision_metrics(*setup.model, state, *setup.contacts, time);
     measure.metrics.min_clearance = measure.collisions->min_clearance;
     measure.metrics.max_penetration = measure.collisions->max_penetration;
     measure.metrics.contact_count = measure.collisions->contact_count;
+    measure.metrics.triangle_penetration =
+        triangle_penetration(*setup.model, state.x, *setup.contacts, time);
   }
   return measure;
 }

@@ -53,16 +53,18 @@ void read_table(const fs::path& path, const std::vector<std::string>& key_column
 // The smallest scale of each kind, in the column's unit: below it a value is rounding noise, not
 // physics (a strain of 1e-14 on a cloth at rest, a centroid_z of 1e-19 m on a symmetric drape).
 double kind_floor(const std::string& kind) {
-  if (kind == "position") return 1e-4;     // m: a tenth of a millimetre
-  if (kind == "energy") return 1e-9;       // J
-  if (kind == "strain") return 1e-4;       // 0.01 %
-  if (kind == "penetration") return 1e-7;  // m
-  if (kind == "clearance") return 1e-7;    // m
-  if (kind == "force") return 1e-6;        // N
-  if (kind == "count") return 1.0;         // one particle or node
-  if (kind == "area") return 1e-6;         // m^2
-  if (kind == "distance") return 1e-6;     // m
-  if (kind == "drape") return 1.0;         // the drape coefficient is a fraction of 1
+  if (kind == "position") return 1e-4;              // m: a tenth of a millimetre
+  if (kind == "energy") return 1e-9;                // J
+  if (kind == "strain") return 1e-4;                // 0.01 %
+  if (kind == "penetration") return 1e-7;           // m
+  if (kind == "clearance") return 1e-7;             // m
+  if (kind == "force") return 1e-6;                 // N
+  if (kind == "count") return 1.0;                  // one particle or node
+  if (kind == "area") return 1e-6;                  // m^2
+  if (kind == "distance") return 1e-6;              // m
+  if (kind == "drape") return 1.0;                  // the drape coefficient is a fraction of 1
+  if (kind == "intersections") return 1.0;          // one crossing edge
+  if (kind == "triangle_penetration") return 1e-7;  // m
   return 1e-12;
 }
 
@@ -250,6 +252,10 @@ std::string golden_kind(const std::string& column) {
   if (column == "rms_distance" || column == "max_distance" || column == "hausdorff_distance")
     return "distance";
   if (column == "drape_coefficient") return "drape";
+  // Kinds of their own, scaled by their own largest value: a fold's crossings or a collider's reach
+  // between particles must not widen the tolerances of the contact columns they would pool with.
+  if (column == "self_intersections") return "intersections";
+  if (column == "triangle_penetration") return "triangle_penetration";
   return "other";
 }
 

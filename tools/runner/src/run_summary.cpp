@@ -33,6 +33,10 @@ ordered_json metrics_json(const ClothMetrics& m) {
   j["drape_coefficient"] =
       m.drape_coefficient ? ordered_json(*m.drape_coefficient) : ordered_json();
   j["drape_nodes"] = m.drape_nodes ? ordered_json(*m.drape_nodes) : ordered_json();
+  j["self_intersections"] =
+      m.self_intersections ? ordered_json(*m.self_intersections) : ordered_json();
+  j["triangle_penetration"] =
+      m.triangle_penetration ? ordered_json(*m.triangle_penetration) : ordered_json();
   return j;
 }
 

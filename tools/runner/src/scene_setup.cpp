@@ -22,6 +22,8 @@ SceneSetup build_scene_setup(const scene::Scene& scene, std::shared_ptr<const Cl
     setup.contacts = std::make_shared<const ContactModel>(
         scene.colliders, ContactParameters{scene.contact.stiffness, scene.contact.damping},
         setup.model->thickness);
+  setup.self_intersections =
+      std::make_shared<const SelfIntersectionCounter>(setup.model->triangles);
   if (scene.drape_support)
     setup.drape =
         std::make_shared<const DrapeMeter>(*setup.model, scene.drape_support->disc, up_of(scene));

@@ -12,6 +12,7 @@
 #include "drapelab/contact_model.hpp"
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/scene/scene.hpp"
+#include "drapelab/self_intersections.hpp"
 
 namespace drapelab::runner {
 
@@ -20,6 +21,7 @@ struct SceneSetup {
   ClothState initial;                            // rest positions plus the seeded perturbation
   std::shared_ptr<const ContactModel> contacts;  // null when the scene has no colliders
   std::shared_ptr<const DrapeMeter> drape;       // null without metrics.drape_support
+  std::shared_ptr<const SelfIntersectionCounter> self_intersections;  // the model's edges, once
 };
 
 // Builds the cloth (any shape) unless `model` is given (the loader's, scene::LoadResult::model,

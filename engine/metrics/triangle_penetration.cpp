@@ -1,0 +1,144 @@
+// Triangle penetration (see drapelab/triangle_penetration.hpp).
+#include "drapelab/triangle_penetration.hpp"
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/detail/convexity_based_algorithm/gjk_libccd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace drapelab {
+namespace {
+
+// GJK and EPA iterations before giving up; a triangle against one of our shapes needs a few tens.
+constexpr unsigned kGjkMaxIterations = 1000;
+
+// The point of triangle a-b-c closest to p (Ericson, "Real-Time Collision Detection", 5.1.5): by
+// the Voronoi region of p among the corners, sides and face.
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                          const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denominator = va + vb + vc;
+  if (!(denominator > 0.0)) {
+    // A degenerate (zero-area) triangle: the nearest of its three sides.
+    Eigen::Vector3d best = a;
+    for (const auto& [s, e] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+      const Eigen::Vector3d d = e - s;
+      const double length_squared = d.squaredNorm();
+      const double u =
+          length_squared > 0.0 ? std::clamp((p - s).dot(d) / length_squared, 0.0, 1.0) : 0.0;
+      const Eigen::Vector3d point = s + u * d;
+      if ((point - p).squaredNorm() < (best - p).squaredNorm()) best = point;
+    }
+    return best;
+  }
+  return a + (vb / denominator) * ab + (vc / denominator) * ac;
+}
+
+// FCL's signed distance between a convex shape posed by shape_pose and a world-space triangle.
+template <typename Shape>
+double gjk_signed_distance(const Shape& shape, const Eigen::Isometry3d& shape_pose,
+                           const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& c) {
+  using Initializer = fcl::detail::GJKInitializer<double, Shape>;
+  const fcl::Transform3d pose(shape_pose.matrix());
+  void* solid = Initializer::createGJKObject(shape, pose);
+  void* triangle = fcl::detail::triCreateGJKObject<double>(a, b, c);
+  double distance = 0.0;
+  fcl::Vector3d on_solid, on_triangle;
+  try {
+    fcl::detail::GJKSignedDistance<double>(
+        solid, Initializer::getSupportFunction(), triangle, fcl::detail::triGetSupportFunction(),
+        kGjkMaxIterations, kTriangleDistanceTolerance, &distance, &on_solid, &on_triangle);
+  } catch (...) {
+    Initializer::deleteGJKObject(solid);
+    fcl::detail::triDeleteGJKObject(triangle);
+    throw;
+  }
+  Initializer::deleteGJKObject(solid);
+  fcl::detail::triDeleteGJKObject(triangle);
+  return distance;
+}
+
+}  // namespace
+
+double collider_triangle_signed_distance(const FclCollider& collider,
+                                         const Eigen::Isometry3d& shape_pose,
+                                         const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                         const Eigen::Vector3d& c) {
+  const fcl::CollisionGeometry<double>& shape = *collider.geometry;
+  switch (shape.getNodeType()) {
+    case fcl::GEOM_HALFSPACE: {
+      // The half-space's signed distance is linear: the triangle's deepest point is a vertex.
+      const auto& halfspace = static_cast<const fcl::Halfspace<double>&>(shape);
+      const Eigen::Isometry3d to_shape = shape_pose.inverse();
+      return std::min({halfspace.signedDistance(to_shape * a),
+                       halfspace.signedDistance(to_shape * b),
+                       halfspace.signedDistance(to_shape * c)});
+    }
+    case fcl::GEOM_SPHERE: {
+      // A ball of radius r about o and a convex set meet iff their distance is below r, and the
+      // shortest separating move is r less that distance.
+      const double radius = static_cast<const fcl::Sphere<double>&>(shape).radius;
+      const Eigen::Vector3d centre = shape_pose.translation();
+      return (closest_point_on_triangle(centre, a, b, c) - centre).norm() - radius;
+    }
+    case fcl::GEOM_BOX:
+      return gjk_signed_distance(static_cast<const fcl::Box<double>&>(shape), shape_pose, a, b, c);
+    case fcl::GEOM_CAPSULE:
+      return gjk_signed_distance(static_cast<const fcl::Capsule<double>&>(shape), shape_pose, a, b,
+                                 c);
+    case fcl::GEOM_CYLINDER:
+      return gjk_signed_distance(static_cast<const fcl::Cylinder<double>&>(shape), shape_pose, a, b,
+                                 c);
+    default:
+      throw std::logic_error(
+          "collider_triangle_signed_distance: a shape make_fcl_collider never "
+          "makes");
+  }
+}
+
+double triangle_penetration(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                            const ContactModel& contacts, double t) {
+  const double h = model.thickness;  // m
+  double deepest = 0.0;              // m, max(0, h - d) so far
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const FclCollider& collider = contacts.fcl_collider(k);
+    const Eigen::Isometry3d pose = contacts.shape_pose(k, t);
+    const Eigen::AlignedBox3d reach = collider_bounds(collider, pose, h);
+    for (Eigen::Index f = 0; f < model.triangles.cols(); ++f) {
+      const Eigen::Vector3d a = x.col(model.triangles(0, f));
+      const Eigen::Vector3d b = x.col(model.triangles(1, f));
+      const Eigen::Vector3d c = x.col(model.triangles(2, f));
+      if (!a.allFinite() || !b.allFinite() || !c.allFinite()) continue;
+      // Broad phase: a triangle whose box stays h away from the collider's box cannot be nearer
+      // than h to the collider.
+      if (!reach.intersects(Eigen::AlignedBox3d(a).extend(b).extend(c))) continue;
+      deepest = std::max(deepest, h - collider_triangle_signed_distance(collider, pose, a, b, c));
+    }
+  }
+  return deepest;
+}
+
+}  // namespace drapelab
