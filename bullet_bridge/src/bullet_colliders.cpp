@@ -56,12 +56,12 @@ BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
 }
 
 KinematicColliders::KinematicColliders(const std::vector<Collider>& colliders, double edge_margin,
-                                       btDynamicsWorld& world)
+                                       btDynamicsWorld& world, double friction_divisor)
     : world_(world), colliders_(colliders) {
   for (const auto& collider : colliders_) {
     shapes_.push_back(make_bullet_shape(collider, edge_margin));
     btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, shapes_.back().shape.get());
-    info.m_friction = collider.friction;
+    info.m_friction = collider.friction / friction_divisor;
     info.m_startWorldTransform =
         to_bullet(collider_pose(collider, 0.0) * shapes_.back().shape_in_collider);
     auto body = std::make_unique<btRigidBody>(info);

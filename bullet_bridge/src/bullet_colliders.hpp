@@ -25,11 +25,13 @@ struct BulletShape {
 BulletShape make_bullet_shape(const Collider& collider, double edge_margin);
 
 // Kinematic bodies for every collider in one world; move_to(t0, t1) poses them at t1 with the
-// velocities of the motion over [t0, t1], as a substep needs.
+// velocities of the motion over [t0, t1], as a substep needs. Each body's friction is the
+// collider's divided by `friction_divisor`, for a soft body whose kDF (which Bullet multiplies into
+// every collider's friction) is not 1.
 class KinematicColliders {
  public:
   KinematicColliders(const std::vector<Collider>& colliders, double edge_margin,
-                     btDynamicsWorld& world);
+                     btDynamicsWorld& world, double friction_divisor = 1.0);
   ~KinematicColliders();
   KinematicColliders(const KinematicColliders&) = delete;
   KinematicColliders& operator=(const KinematicColliders&) = delete;

@@ -14,6 +14,7 @@
 #include "bullet_colliders.hpp"
 #include "bullet_math.hpp"
 #include "deformable_contact_forces.hpp"
+#include "deformable_self_collision.hpp"
 #include "per_link_spring_force.hpp"
 #include "soft_body_cloth.hpp"
 
@@ -41,7 +42,13 @@ class BulletDeformableSolver final : public BulletClothSolver {
     info.m_sparsesdf.Initialize();
     info.m_sparsesdf.setDefaultVoxelsz(options_.voxel_size);
     info.m_sparsesdf.Reset();
-    colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_);
+    // Self-collision scales the cloth's kDF; the colliders' friction is divided by it to keep
+    // kDF x friction at the scene's (deformable_self_collision.hpp).
+    const bool self_collision = options_.self_collision.enabled;
+    const double friction_factor =
+        self_collision ? deformable_self_friction_factor(options_.self_collision) : 1.0;
+    colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_,
+                                                      friction_factor);
 
     cloth_ = make_soft_body(info, *model_, initial,
                             [](std::size_t) { return 1.0; });  // kLST unused here
@@ -52,6 +59,8 @@ class BulletDeformableSolver final : public BulletClothSolver {
     cfg.kCHR = cfg.kKHR = 1.0;
     cfg.drag = 1.0 - std::exp(-options_.air_damping * options_.dt);
     cloth_->getCollisionShape()->setMargin(options_.margin);
+    if (self_collision)
+      enable_deformable_self_collision(*cloth_, options_.self_collision, options_.dt);
     world_->addSoftBody(cloth_.get());
     springs_ = std::make_unique<PerLinkSpringForce>(model_->springs.ks, model_->springs.kd);
     gravity_ = std::make_unique<btDeformableGravityForce>(to_bullet(options_.gravity));

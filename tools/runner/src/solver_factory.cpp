@@ -54,6 +54,7 @@ std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scen
   options.gravity = scene.gravity;
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
+  options.self_collision = scene.cloth.self_collision;  // no effect in Bullet 3.24's classic cloth
   return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders,
                                              options);
 }
@@ -71,6 +72,7 @@ std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
   options.gravity = scene.gravity;
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
+  options.self_collision = scene.cloth.self_collision;
   return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial,
                                                scene.colliders, options);
 }

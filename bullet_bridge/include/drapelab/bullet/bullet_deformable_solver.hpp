@@ -12,6 +12,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/collider.hpp"
+#include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 
 namespace drapelab::bullet {
@@ -24,6 +25,9 @@ struct BulletDeformableOptions {
   double air_damping = 0.0;                  // 1/s, mapped to drag = 1 - exp(-air_damping h)
   double dt = 0.0;                           // s, the substep (for the drag mapping)
   double max_speed = 1000.0;                 // m/s
+  // cloth.self_collision: when enabled, Bullet's face-node repulsion between the cloth's layers,
+  // which keep 2 x margin apart (docs/bullet.md, "Self-collision").
+  SelfCollisionSettings self_collision;
 };
 
 std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name,

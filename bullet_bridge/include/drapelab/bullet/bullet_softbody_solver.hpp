@@ -15,6 +15,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/collider.hpp"
+#include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 
 namespace drapelab::bullet {
@@ -32,6 +33,10 @@ struct BulletSoftBodyOptions {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   double air_damping = 0.0;                  // 1/s, mapped to kDP = 1 - exp(-air_damping h)
   double max_speed = 1000.0;                 // m/s: a faster node stops the solver as unstable
+  // cloth.self_collision: accepted and without effect. Bullet 3.24's classic cloth has no
+  // self-collision that runs: VF_SS skips a body against itself and CL_SELF is unreachable
+  // (docs/bullet.md, "Self-collision").
+  SelfCollisionSettings self_collision;
 };
 
 std::unique_ptr<Solver> make_bullet_softbody_solver(std::string name,
