@@ -228,8 +228,7 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
       active->push_back(w);
     }
   }
-  std::vector<Eigen::Vector3d>& frictions = frictions_;
-  frictions.assign(found_.size(), Eigen::Vector3d::Zero());
+  // Friction one contact after another, each seeing the friction before it (self_contact.cpp).
   for (std::size_t e = 0; e < found_.size(); ++e) {
     if (pushes[e] <= 0.0 || h <= 0.0) continue;
     const Found& f = found_[e];
@@ -245,13 +244,10 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
     const FrictionForce friction =
         weighted_contact_friction(trial, f.normal, inverse_effective_mass, h, pushes[e],
                                   collider.static_friction, collider.friction);
-    frictions[e] = friction.force;
+    for (int s = 0; s < 3; ++s)
+      if (f.particle[s] >= 0) force.col(f.particle[s]) += f.weight[s] * friction.force;
     totals_[static_cast<std::size_t>(f.collider)].friction_force += friction.magnitude;
   }
-  for (std::size_t e = 0; e < found_.size(); ++e)
-    for (int s = 0; s < 3; ++s)
-      if (pushes[e] > 0.0 && found_[e].particle[s] >= 0)
-        force.col(found_[e].particle[s]) += found_[e].weight[s] * frictions[e];
 }
 
 }  // namespace drapelab

@@ -104,7 +104,6 @@ class EdgeContact {
   std::vector<ColliderFeatures::Edge> posed_edges_;      // one collider's, in the world
   std::vector<ColliderFeatures::Corner> posed_corners_;  // one collider's, in the world
   std::vector<double> pushes_;                           // N, per found contact
-  std::vector<Eigen::Vector3d> frictions_;               // N, per found contact
   std::vector<EdgeContactTotals> totals_;
 };
 

@@ -56,9 +56,51 @@ SelfContact::SelfContact(const ClothModel& model, const SelfCollisionSettings& s
     neighbours_[static_cast<std::size_t>(filled[e[0]]++)] = e[1];
     neighbours_[static_cast<std::size_t>(filled[e[1]]++)] = e[0];
   }
+  // Each edge's triangles and each particle's triangles.
+  edge_triangles_.assign(edges_.size(), {-1, -1});
+  corner_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  const auto& tri = model.triangles;
+  for (int t = 0; t < tri.cols(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      ++corner_start_[static_cast<std::size_t>(tri(k, t)) + 1];
+      const std::array<std::int32_t, 2> edge{std::min(tri(k, t), tri((k + 1) % 3, t)),
+                                             std::max(tri(k, t), tri((k + 1) % 3, t))};
+      auto& slots = edge_triangles_[static_cast<std::size_t>(
+          std::lower_bound(edges_.begin(), edges_.end(), edge) - edges_.begin())];
+      (slots[0] < 0 ? slots[0] : slots[1]) = t;
+    }
+  for (int i = 0; i < n; ++i) corner_start_[i + 1] += corner_start_[i];
+  corner_triangles_.resize(static_cast<std::size_t>(corner_start_[n]));
+  std::vector<std::int32_t> next(corner_start_.begin(), corner_start_.end() - 1);
+  for (int t = 0; t < tri.cols(); ++t)
+    for (int k = 0; k < 3; ++k) corner_triangles_[static_cast<std::size_t>(next[tri(k, t)]++)] = t;
   for (int i = 0; i < n; ++i)
     std::sort(neighbours_.begin() + neighbour_start_[i],
               neighbours_.begin() + neighbour_start_[i + 1]);
+}
+
+bool SelfContact::nearest_edge_everywhere(const Eigen::Matrix3Xd& x, int p, int a, int b) const {
+  const auto found =
+      std::lower_bound(edges_.begin(), edges_.end(), std::array<std::int32_t, 2>{a, b});
+  const auto& tri = model_.triangles;
+  for (const std::int32_t t : edge_triangles_[static_cast<std::size_t>(found - edges_.begin())]) {
+    if (t < 0) continue;
+    const PointTriangleProximity near =
+        closest_point_on_triangle(x.col(p), x.col(tri(0, t)), x.col(tri(1, t)), x.col(tri(2, t)));
+    if (near.region == TriangleRegion::face) return false;
+  }
+  return true;
+}
+
+bool SelfContact::nearest_corner_everywhere(const Eigen::Matrix3Xd& x, int p, int q) const {
+  const auto& tri = model_.triangles;
+  for (std::int32_t k = corner_start_[q]; k < corner_start_[q + 1]; ++k) {
+    const std::int32_t t = corner_triangles_[static_cast<std::size_t>(k)];
+    const PointTriangleProximity near =
+        closest_point_on_triangle(x.col(p), x.col(tri(0, t)), x.col(tri(1, t)), x.col(tri(2, t)));
+    if (near.region != TriangleRegion::corner) return false;
+  }
+  return true;
 }
 
 bool SelfContact::adjacent(int a, int b) const {
@@ -133,10 +175,12 @@ void SelfContact::find_contacts(const Eigen::Matrix3Xd& x) {
       contacts_.push_back(contact);
     } else if (near.region == TriangleRegion::edge) {
       const int i = corner[(near.feature + 1) % 3], j = corner[(near.feature + 2) % 3];
-      shared_.push_back({p, std::min(i, j), std::max(i, j)});
+      if (nearest_edge_everywhere(x, p, std::min(i, j), std::max(i, j)))
+        shared_.push_back({p, std::min(i, j), std::max(i, j)});
     } else {
       const int q = corner[near.feature];
-      if (!adjacent(p, q)) shared_.push_back({std::min(p, q), std::max(p, q), -1});
+      if (!adjacent(p, q) && nearest_corner_everywhere(x, p, q))
+        shared_.push_back({std::min(p, q), std::max(p, q), -1});
     }
   }
   for (const auto& [ea, eb] : edge_edge_) {
@@ -212,9 +256,11 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
       active->push_back(w);
     }
   }
-  // Coulomb friction between the layers, from the forces with every push in.
+  // Coulomb friction between the layers, from the forces with every push in, one contact after
+  // another (a Gauss-Seidel sweep): each sees the friction of those before it, so a particle
+  // held by several contacts is not stopped several times over (which would reverse it, and
+  // grow). Each contact's friction sums to zero over its particles, as its push does.
   double friction_total = 0.0;
-  friction_.assign(contacts_.size(), Eigen::Vector3d::Zero());
   const double kinetic = settings_.friction, fixed = settings_.static_friction_or_kinetic();
   if (fixed > 0.0 && h > 0.0)
     for (std::size_t e = 0; e < contacts_.size(); ++e) {
@@ -232,14 +278,10 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
       if (inverse_effective_mass <= 0.0) continue;
       const FrictionForce f = weighted_contact_friction(trial, normal_[e], inverse_effective_mass,
                                                         h, normal_force_[e], fixed, kinetic);
-      friction_[e] = f.force;
+      for (int s = 0; s < 4; ++s)
+        if (contact.particle[s] >= 0) force.col(contact.particle[s]) += contact.weight[s] * f.force;
       friction_total += f.magnitude;
     }
-  for (std::size_t e = 0; e < contacts_.size(); ++e)
-    if (normal_force_[e] > 0.0)
-      for (int s = 0; s < 4; ++s)
-        if (contacts_[e].particle[s] >= 0)
-          force.col(contacts_[e].particle[s]) += contacts_[e].weight[s] * friction_[e];
   stats_.contacts_last = pushing;
   stats_.contacts_total += pushing;
   stats_.normal_force_last = normal_total;

@@ -7,7 +7,9 @@
 // no pair within the thickness is missed. Narrow phase, every force evaluation: the closest points
 // of each candidate. A particle nearest a triangle's inside and two edges nearest in their insides
 // are contacts as found; a particle nearest a triangle's edge or corner is a particle-edge or
-// particle-particle contact, counted once however many triangles share that edge or corner.
+// particle-particle contact, counted once however many triangles share that edge or corner, and
+// only when that edge or corner is the nearest part of every triangle that has it (else a face
+// next to it is nearer and holds the contact).
 #pragma once
 
 #include <Eigen/Core>
@@ -66,6 +68,11 @@ class SelfContact {
   void search(const Eigen::Matrix3Xd& x);
   void find_contacts(const Eigen::Matrix3Xd& x);
   bool adjacent(int a, int b) const;
+  // Whether p at position `point` is nearest edge a-b (a < b) on every triangle that has that edge,
+  // or nearest corner q on every triangle at q: otherwise a face (or edge) of one of them is nearer
+  // and holds the contact, and this one would push along a slanted line beside it.
+  bool nearest_edge_everywhere(const Eigen::Matrix3Xd& x, int p, int a, int b) const;
+  bool nearest_corner_everywhere(const Eigen::Matrix3Xd& x, int p, int q) const;
 
   const ClothModel& model_;
   SelfCollisionSettings settings_;
@@ -74,6 +81,9 @@ class SelfContact {
   std::vector<std::array<std::int32_t, 2>> edges_;  // unique mesh edges, lower index first
   std::vector<std::int32_t> neighbour_start_;       // CSR: particle i's neighbours by an edge
   std::vector<std::int32_t> neighbours_;
+  std::vector<std::array<std::int32_t, 2>> edge_triangles_;  // per edge, its triangles (-1: none)
+  std::vector<std::int32_t> corner_start_;                   // CSR: particle i's triangles
+  std::vector<std::int32_t> corner_triangles_;
   // Broad phase.
   SpatialGrid grid_;
   std::vector<Box> boxes_;

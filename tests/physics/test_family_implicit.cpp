@@ -79,9 +79,9 @@ struct SolvedBoth {
     dv_assembled.resize(3, n);
     dv_free.resize(3, n);
     assembled.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
-                    both.contact, both.contacts, dv_assembled);
+                    both.contact, both.contacts, {}, dv_assembled);
     matrix_free.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
-                      both.contact, both.contacts, dv_free);
+                      both.contact, both.contacts, {}, dv_free);
   }
   void expect_same_system(unsigned seed) {
     const int n = both.model->particle_count();
@@ -140,7 +140,7 @@ TEST(FamilyImplicit, StopsAtItsToleranceAndCountsLikeEigen) {
     FamilyImplicitSystem system(*both.model, *both.families, {tolerance, 1000});
     Eigen::Matrix3Xd dv(3, n);
     system.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
-                 both.contact, both.contacts, dv);
+                 both.contact, both.contacts, {}, dv);
     const double residual =
         (system.apply(dv) - system.right_hand_side()).norm() / system.right_hand_side().norm();
     EXPECT_LE(residual, tolerance * 1.0001);
@@ -149,7 +149,7 @@ TEST(FamilyImplicit, StopsAtItsToleranceAndCountsLikeEigen) {
     EXPECT_GT(system.stats().iterations_last, 0);
     // Started from the last solution, a second solve of the same system is already converged.
     system.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air,
-                 both.contact, both.contacts, dv);
+                 both.contact, both.contacts, {}, dv);
     EXPECT_EQ(system.stats().iterations_last, 0);
     EXPECT_EQ(system.stats().solves, 2);
   }
@@ -157,7 +157,7 @@ TEST(FamilyImplicit, StopsAtItsToleranceAndCountsLikeEigen) {
   FamilyImplicitSystem capped(*both.model, *both.families, {1e-12, 2});
   Eigen::Matrix3Xd dv(3, n);
   capped.solve(*both.model, both.state.x, both.state.v, both.force, both.h, both.air, both.contact,
-               both.contacts, dv);
+               both.contacts, {}, dv);
   EXPECT_EQ(capped.stats().unconverged, 1);
   EXPECT_EQ(capped.stats().iterations_last, 2);
   EXPECT_GT(capped.stats().residual_last, 1e-12);
