@@ -17,43 +17,10 @@
 #include "drapelab/runner/scene_setup.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/drape_scenes.hpp"
 
 namespace drapelab {
 namespace {
-
-// 1.2 s at 10 frames/s. The disc puts a ring exactly at the support radius (metrics.drape_support).
-const std::string kCusick = R"(name: cusick_v10
-duration: 1.2
-frame_rate: 10
-seed: 1
-cloth:
-  shape: disc
-  radius: 0.15
-  rings: 8
-  center: [0, 0.502, 0]
-  areal_density: 0.13
-  thickness: 0.001
-  perturbation: 0.0005
-  springs:
-    stretch: {ks: 1000, kd: 0.05}
-    shear:   {ks: 55,   kd: 0.003}
-    bend:    {ks: 10,   kd: 0}
-  air_damping: 8
-colliders:
-  - name: support
-    type: cylinder
-    center: [0, 0.25, 0]
-    radius: 0.09
-    height: 0.5
-contact:
-  stiffness: 200
-  damping: 0.02
-metrics:
-  drape_support: support
-solvers:
-  - name: ours
-    type: spring_damper
-)";
 
 struct DrapeResult {
   double coefficient = -1.0;
@@ -62,7 +29,8 @@ struct DrapeResult {
 };
 
 DrapeResult run_cusick(const std::vector<std::string>& overrides) {
-  const auto loaded = scene::load_scene_text(kCusick, "cusick_v10.yaml", overrides);
+  const auto loaded =
+      scene::load_scene_text(fixtures::cusick_v10_scene(), "cusick_v10.yaml", overrides);
   if (!loaded.ok()) {
     ADD_FAILURE() << "the V10 scene does not load: "
                   << (loaded.errors.empty() ? "" : loaded.errors.front());

@@ -9,6 +9,7 @@
 #include "drapelab/runner/scene_setup.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/drape_scenes.hpp"
 
 namespace drapelab {
 namespace {
@@ -119,39 +120,17 @@ solvers:
   EXPECT_LT(audit.final_lowest, 0.5 - 0.2);  // the halves hang well below the rod
 }
 
-// The Cusick drape of docs/validation.md V10 (tests/physics/test_drape_validation.cpp) with
-// contact on triangles: at rest the support's rim stays out of the cloth's triangles (their
-// thickness included); without it the rim cuts between the particles.
-const std::string kCusick = R"(name: cusick_rim
-duration: 1.2
-frame_rate: 10
-seed: 1
-cloth:
-  shape: disc
-  radius: 0.15
-  rings: 8
-  center: [0, 0.502, 0]
-  areal_density: 0.13
-  thickness: 0.001
-  perturbation: 0.0005
-  springs:
-    stretch: {ks: 1000, kd: 0.05}
-    shear:   {ks: 55,   kd: 0.003}
-    bend:    {ks: 10,   kd: 0}
-  air_damping: 8
-colliders:
-  - {name: support, type: cylinder, center: [0, 0.25, 0], radius: 0.09, height: 0.5}
-contact: {stiffness: 200, damping: 0.02}
-solvers:
-  - {name: ours, type: spring_damper}
-)";
-
+// The Cusick drape of docs/validation.md V10 (fixtures/drape_scenes.hpp) with contact on triangles:
+// at rest the support's rim stays out of the cloth's triangles (their thickness included); without
+// it the rim cuts between the particles.
 TEST(TriangleContact, TheCusickRimStaysOutOfTheClothsTriangles) {
-  const Audit on = run_audited(kCusick, "cusick_rim.yaml", {"contact.triangles=true"});
+  const Audit on =
+      run_audited(fixtures::cusick_v10_scene(), "cusick_rim.yaml", {"contact.triangles=true"});
   ASSERT_EQ(on.result.status, SolverStatus::ok) << on.result.message;
   EXPECT_LE(on.final_penetration, 0.001);
   EXPECT_GE(on.final_penetration, 0.0);
-  const Audit off = run_audited(kCusick, "cusick_rim.yaml", {"contact.triangles=false"});
+  const Audit off =
+      run_audited(fixtures::cusick_v10_scene(), "cusick_rim.yaml", {"contact.triangles=false"});
   ASSERT_EQ(off.result.status, SolverStatus::ok) << off.result.message;
   EXPECT_GT(off.final_penetration, 0.001);
 }

@@ -1,6 +1,8 @@
 // Warnings about a valid scene (scene_warnings.hpp).
 #include "scene_warnings.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <sstream>
 
 #include "drapelab/spring_damper_solver.hpp"
@@ -8,8 +10,10 @@
 
 namespace drapelab::cli {
 
-std::vector<std::string> stability_warnings(const scene::Scene& scene, const ClothModel& model) {
-  std::vector<std::string> warnings;
+namespace {
+
+void add_stability_warnings(const scene::Scene& scene, const ClothModel& model,
+                            std::vector<std::string>& warnings) {
   for (const auto& solver : scene.solvers) {
     // Adaptive substeps follow the shape's bound, so the fixed-step warning does not apply.
     if (solver.type != SolverType::spring_damper || solver.adaptive_substeps) continue;
@@ -31,6 +35,43 @@ std::vector<std::string> stability_warnings(const scene::Scene& scene, const Clo
       continue;
     warnings.push_back(line.str());
   }
+}
+
+// Self-collision that cannot work as asked: a solver without it, or a thickness that makes a flat
+// sheet's neighbouring parts push apart at rest (a particle lies d / sqrt(2) from the far edge of
+// a neighbouring triangle on a square grid of spacing d).
+void add_self_collision_warnings(const scene::Scene& scene, const ClothModel& model,
+                                 std::vector<std::string>& warnings) {
+  const SelfCollisionSettings& self = scene.cloth.self_collision;
+  if (!self.enabled) return;
+  for (const auto& solver : scene.solvers)
+    if (solver.type == SolverType::bullet_softbody)
+      warnings.push_back("solver " + solver.name +
+                         ": cloth.self_collision has no effect on bullet_softbody (Bullet 3.24's "
+                         "classic cloth has no self-collision that runs; docs/bullet.md, "
+                         "\"Self-collision\")");
+  double shortest = std::numeric_limits<double>::infinity();  // m
+  for (std::size_t e = 0; e < model.springs.size(); ++e)
+    if (model.springs.kind[e] == SpringKind::stretch)
+      shortest = std::min(shortest, model.springs.rest_length[e]);
+  if (self.thickness >= 0.7 * shortest) {
+    std::ostringstream line;
+    line.precision(6);
+    line << "cloth.self_collision.thickness " << self.thickness
+         << " m is not below 0.7 of the shortest rest edge (" << shortest
+         << " m): neighbouring parts of the cloth push each other apart at rest; use a thickness "
+            "below "
+         << 0.7 * shortest << " m";
+    warnings.push_back(line.str());
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> scene_warnings(const scene::Scene& scene, const ClothModel& model) {
+  std::vector<std::string> warnings;
+  add_stability_warnings(scene, model, warnings);
+  add_self_collision_warnings(scene, model, warnings);
   return warnings;
 }
 

@@ -1,5 +1,6 @@
 // Warnings about a valid scene that may still go wrong: a solver's dt above its integrator's stable
-// step estimate, or no stable step at all. validate and run print the same ones.
+// step estimate, or no stable step at all; self-collision asked of a solver without it, or with a
+// thickness the cloth's own spacing breaks. validate and run print the same ones.
 #pragma once
 
 #include <string>
@@ -11,6 +12,6 @@
 namespace drapelab::cli {
 
 // One line per warning, without the "warning: " prefix.
-std::vector<std::string> stability_warnings(const scene::Scene& scene, const ClothModel& model);
+std::vector<std::string> scene_warnings(const scene::Scene& scene, const ClothModel& model);
 
 }  // namespace drapelab::cli

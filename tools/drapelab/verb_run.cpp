@@ -70,7 +70,7 @@ int run_verb(const RunArguments& arguments, const std::string& command_line,
     return kExitBadInput;
   }
   for (const auto& note : loaded.notes) std::cerr << "note: " << note << "\n";
-  for (const auto& warning : stability_warnings(*loaded.scene, *loaded.model))
+  for (const auto& warning : scene_warnings(*loaded.scene, *loaded.model))
     std::cerr << "warning: " << warning << "\n";
   runner::RunOptions options;
   options.out_dir = arguments.out;

@@ -70,8 +70,7 @@ int validate_verb(const ValidateArguments& arguments) {
               << " s at the start (" << std::ceil(solver.dt / (safety * shape_step))
               << " substeps per dt), re-evaluated at every dt\n";
   }
-  for (const auto& warning : stability_warnings(s, model))
-    std::cerr << "warning: " << warning << "\n";
+  for (const auto& warning : scene_warnings(s, model)) std::cerr << "warning: " << warning << "\n";
   return 0;
 }
 
