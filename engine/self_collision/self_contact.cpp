@@ -132,7 +132,6 @@ void SelfContact::search(const Eigen::Matrix3Xd& x) {
     const Eigen::Vector3d point = x.col(p);
     for (const std::int32_t t : grid_.items_near(point)) {
       if (tri(0, t) == p || tri(1, t) == p || tri(2, t) == p) continue;
-      if (adjacent(p, tri(0, t)) || adjacent(p, tri(1, t)) || adjacent(p, tri(2, t))) continue;
       if (!boxes_[t].contains(point)) continue;
       const PointTriangleProximity near =
           closest_point_on_triangle(point, x.col(tri(0, t)), x.col(tri(1, t)), x.col(tri(2, t)));
@@ -148,9 +147,6 @@ void SelfContact::search(const Eigen::Matrix3Xd& x) {
     const auto& ea = edges_[a];
     const auto& eb = edges_[b];
     if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return;
-    if (adjacent(ea[0], eb[0]) || adjacent(ea[0], eb[1]) || adjacent(ea[1], eb[0]) ||
-        adjacent(ea[1], eb[1]))
-      return;
     const SegmentProximity near =
         closest_points_of_segments(x.col(ea[0]), x.col(ea[1]), x.col(eb[0]), x.col(eb[1]));
     if ((near.on_first - near.on_second).squaredNorm() < reach2) edge_edge_.push_back({a, b});

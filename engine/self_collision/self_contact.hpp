@@ -67,12 +67,9 @@ class SelfContact {
   bool needs_search(const Eigen::Matrix3Xd& x) const;
   void search(const Eigen::Matrix3Xd& x);
   void find_contacts(const Eigen::Matrix3Xd& x);
-  // Whether a and b are joined by a mesh edge: a particle and a triangle with such a corner, and
-  // two edges with such ends, are never candidates (nor two such particles a contact). Within two
-  // rings of each other, two parts of the cloth come within the thickness only folded over a radius
-  // below half of it, sharper than a grid of spacing d can bend while the thickness stays below 0.6
-  // d (the loader warns above 0.7 d); in a flat sheet they are most of the pairs within the broad
-  // phase's reach.
+  // Whether a and b are joined by a mesh edge (two such particles are never a contact: their
+  // spring holds them apart). Pairs a ring or two apart stay candidates: a soft cloth crumpled in a
+  // heap folds sharply enough for them to meet (excluding them let layers cross there).
   bool adjacent(int a, int b) const;
   // Whether p at position `point` is nearest edge a-b (a < b) on every triangle that has that edge,
   // or nearest corner q on every triangle at q: otherwise a face (or edge) of one of them is nearer
