@@ -71,7 +71,9 @@ TEST(DrapeValidationV10, AVeryStiffClothStaysNearlyFlat) {
   EXPECT_GT(r.coefficient, 0.95);
 }
 
-// No bending, no shear, four times the weight: measured 0.241. It cannot reach 0 on this mesh: the
+// No bending, no shear, four times the weight: measured 0.368 (0.241 with contact at particles
+// only, when the rim cut between the ring of particles on it and let the skirt hang closer to the
+// support; the cloth's edges along the rim now rest on it too). It cannot reach 0 on this mesh: the
 // stretch springs resist compression as much as tension, so the skirt, whose rim is 0.94 m long
 // around a 0.57 m support, must fold, and folds cannot be narrower than two ring spacings (3.75
 // cm), so they stand out from the support. Finer meshes lower this floor (cotton with no bending:
@@ -79,7 +81,7 @@ TEST(DrapeValidationV10, AVeryStiffClothStaysNearlyFlat) {
 TEST(DrapeValidationV10, ALimpHeavyClothHangsDown) {
   const DrapeResult limp =
       run_cusick({bend(0.0), "cloth.springs.shear.ks=0", "cloth.areal_density=0.5"});
-  EXPECT_LT(limp.coefficient, 0.3);
+  EXPECT_LT(limp.coefficient, 0.4);
   const DrapeResult cotton_like = run_cusick({});
   EXPECT_LT(limp.coefficient, cotton_like.coefficient - 0.5);
 }
