@@ -140,7 +140,8 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
     reach.max().array() += thickness_;
     // Collider edges against cloth edges: the nearest collider edge, if it is nearest to the
     // inside of the cloth edge (at an end, the particle contact has it).
-    for (const auto& [a, b] : edges_) {
+    for (const auto& edge : edges_) {
+      const int a = edge[0], b = edge[1];  // named, not bound: lambdas capture them below
       if (!box_of(x.col(a), x.col(b)).intersects(reach)) continue;
       Found best;
       double best_distance2 = h2;

@@ -94,12 +94,13 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
                                 const std::vector<WeightedContact>& couplings,
                                 Eigen::Matrix3Xd& dv) {
   const int n = model.particle_count();
+  const auto moving = [&](int i) { return free_[static_cast<std::size_t>(i)] != 0.0; };
   std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
   stiffness_times_velocity_.setZero();
 
   // Diagonal: M + h a M (air damping), or the identity for a pinned particle.
   for (int i = 0; i < n; ++i) {
-    const double diagonal = free_[i] ? model.mass[i] * (1.0 + h * air_damping) : 1.0;
+    const double diagonal = moving(i) ? model.mass[i] * (1.0 + h * air_damping) : 1.0;
     add_block(static_cast<std::size_t>(kSlotsPerBlock) * i, diagonal * Eigen::Matrix3d::Identity());
   }
   // Springs: A gets -(h D + h^2 K) on the two diagonal blocks and its negative off the diagonal.
@@ -111,9 +112,9 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
         spring_jacobian_for_solve(x.col(a), x.col(b), s.ks[e], s.kd[e], s.rest_length[e]);
     const Eigen::Matrix3d block = -(h * j.dforce_dv + h * h * j.dforce_dx);
     const std::size_t first = spring_base + kSlotsPerSpring * e;
-    if (free_[a]) add_block(first, block);
-    if (free_[b]) add_block(first + kSlotsPerBlock, block);
-    if (free_[a] && free_[b]) {
+    if (moving(a)) add_block(first, block);
+    if (moving(b)) add_block(first + kSlotsPerBlock, block);
+    if (moving(a) && moving(b)) {
       add_block(first + 2 * kSlotsPerBlock, -block);
       add_block(first + 3 * kSlotsPerBlock, -block);
     }
@@ -132,19 +133,18 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
 
   // Contacts between particles: their diagonal blocks into the matrix, their K v0 into the
   // right-hand side, their off-diagonal blocks into the operator's products.
-  build_couplings(
-      couplings, v, h, [&](int i) { return free_[i] != 0.0; }, cg_->couplings,
-      [&](int i, const Eigen::Matrix3d& block, const Eigen::Vector3d& kv) {
-        add_block(static_cast<std::size_t>(kSlotsPerBlock) * i, block);
-        stiffness_times_velocity_.col(i) += kv / (h * h);
-      });
+  build_couplings(couplings, v, h, moving, cg_->couplings,
+                  [&](int i, const Eigen::Matrix3d& block, const Eigen::Vector3d& kv) {
+                    add_block(static_cast<std::size_t>(kSlotsPerBlock) * i, block);
+                    stiffness_times_velocity_.col(i) += kv / (h * h);
+                  });
 
   for (int i = 0; i < n; ++i)
     rhs_.segment<3>(3 * i) =
-        free_[i] ? Eigen::Vector3d(h * (force.col(i) + h * stiffness_times_velocity_.col(i)))
-                 : Eigen::Vector3d::Zero();
+        moving(i) ? Eigen::Vector3d(h * (force.col(i) + h * stiffness_times_velocity_.col(i)))
+                  : Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i)
-    if (!free_[i]) solution_.segment<3>(3 * i).setZero();
+    if (!moving(i)) solution_.segment<3>(3 * i).setZero();
 
   const CoupledMatrix system(matrix_, cg_->couplings, free_);
   cg_->cg.compute(system);

@@ -71,13 +71,13 @@ TEST(DrapeValidationV10, AVeryStiffClothStaysNearlyFlat) {
   EXPECT_GT(r.coefficient, 0.95);
 }
 
-// No bending, no shear, four times the weight: measured 0.368 (0.241 with contact at particles
-// only, when the rim cut between the ring of particles on it and let the skirt hang closer to the
-// support; the cloth's edges along the rim now rest on it too). It cannot reach 0 on this mesh: the
-// stretch springs resist compression as much as tension, so the skirt, whose rim is 0.94 m long
-// around a 0.57 m support, must fold, and folds cannot be narrower than two ring spacings (3.75
-// cm), so they stand out from the support. Finer meshes lower this floor (cotton with no bending:
-// 0.62 here, 0.45 at the 12 rings of scenes/cusick.yaml).
+// No bending, no shear, four times the weight: measured 0.368, with the cloth's edges along the rim
+// resting on it (contact on triangles); 0.241 with contact at particles only, where the rim cuts
+// between the ring of particles on it and the skirt hangs closer to the support. It cannot reach 0
+// on this mesh: the stretch springs resist compression as much as tension, so the skirt, whose rim
+// is 0.94 m long around a 0.57 m support, must fold, and folds cannot be narrower than two ring
+// spacings (3.75 cm), so they stand out from the support. Finer meshes lower this floor (cotton
+// with no bending: 0.62 here, 0.45 at the 12 rings of scenes/cusick.yaml).
 TEST(DrapeValidationV10, ALimpHeavyClothHangsDown) {
   const DrapeResult limp =
       run_cusick({bend(0.0), "cloth.springs.shear.ks=0", "cloth.areal_density=0.5"});

@@ -1,8 +1,8 @@
-// Our spring-damper cloth: forces from gravity, damped springs, air damping and penalty contact
-// with friction, advanced by any integrator of integrators.hpp. A step is a visible list of phases,
-// each timed into StepStats:
-//   body forces (gravity and air drag) -> springs -> contacts -> integrate (pins held) -> health
-//   check.
+// Our spring-damper cloth: forces from gravity, damped springs, air damping, self-collision and
+// penalty contact with friction, advanced by any integrator of integrators.hpp. A step is a visible
+// list of phases, each timed into StepStats:
+//   body forces (gravity and air drag) -> springs -> self-contacts -> contacts (collider edges on
+//   the cloth's edges and triangles, then particles) -> integrate (pins held) -> health check.
 // Multi-stage schemes run the force phases once per stage; "integrate" is the rest of the step
 // (stage arithmetic, and for implicit Euler the assembly and conjugate-gradient solve). The Euler
 // pair with colliders updates each block of particles inside the contact phase, as soon as its
