@@ -303,7 +303,7 @@ double SpringDamperSolver::largest_relative_motion(const Eigen::Matrix3Xd& from)
 }
 
 void SpringDamperSolver::step_without_tunnelling(double h) {
-  // At most 2^10 pieces: beyond, the step goes on and is counted (the run warns).
+  // At most 2^10 pieces: beyond, the step goes on and is counted (unresolved_fast_steps).
   constexpr int kMostPieces = 1024;
   const double bound = 0.25 * self_contact_->thickness();  // m
   const Eigen::Vector3d mean_velocity = state_.v.rowwise().mean();

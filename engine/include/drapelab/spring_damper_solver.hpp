@@ -90,7 +90,7 @@ struct StepStats {
   int substeps_max = 0;
   // Self-collision: steps split so that no particle moves more than half the thickness relative
   // to another, the most pieces one step needed, and steps still above that bound at the finest
-  // split allowed (each may let a layer through: the run warns).
+  // split allowed (each may let a layer through; summary.json reports the count).
   std::int64_t split_steps = 0;
   int split_pieces_max = 0;
   std::int64_t unresolved_fast_steps = 0;
