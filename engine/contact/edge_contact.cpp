@@ -226,6 +226,8 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
       w.normal = f.normal;
       w.stiffness = p.stiffness;
       w.damping = p.damping;
+      w.depth = f.depth;
+      w.force = fn;
       active->push_back(w);
     }
   }

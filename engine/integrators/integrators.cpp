@@ -11,7 +11,7 @@ std::vector<Integrator> all_integrators() {
   return {Integrator::explicit_euler, Integrator::symplectic_euler,
           Integrator::midpoint,       Integrator::rk4,
           Integrator::verlet,         Integrator::leapfrog,
-          Integrator::implicit_euler};
+          Integrator::implicit_euler, Integrator::vbd};
 }
 
 const char* integrator_name(Integrator integrator) {
@@ -30,6 +30,8 @@ const char* integrator_name(Integrator integrator) {
       return "leapfrog";
     case Integrator::implicit_euler:
       return "implicit_euler";
+    case Integrator::vbd:
+      return "vbd";
   }
   return "unknown";
 }
@@ -79,6 +81,7 @@ double undamped_stability_limit(Integrator integrator) {
     case Integrator::rk4:
       return 2.0 * std::sqrt(2.0);
     case Integrator::implicit_euler:
+    case Integrator::vbd:
       return std::numeric_limits<double>::infinity();
     default:
       return 0.0;

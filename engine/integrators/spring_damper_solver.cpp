@@ -16,6 +16,7 @@
 #include "integrators/family_implicit.hpp"
 #include "integrators/particle_loops.hpp"
 #include "integrators/shape_bound.hpp"
+#include "integrators/vbd/vertex_block_descent.hpp"
 #include "self_collision/self_contact.hpp"
 
 namespace drapelab {
@@ -109,6 +110,9 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       stage_v_.resize(3, n);  // dv
       active_contacts_.reserve(static_cast<std::size_t>(n));
       break;
+    case Integrator::vbd:
+      vbd_ = std::make_unique<VertexBlockDescent>(*model_, settings_.vbd);
+      break;
   }
   for (int i = 0; i < model_->particle_count(); ++i)
     if (model_->is_pinned(i)) state_.v.col(i).setZero();  // a pin holds its particle still
@@ -144,7 +148,8 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
 void SpringDamperSolver::add_pair_contact_forces(const Eigen::Matrix3Xd& x,
                                                  const Eigen::Matrix3Xd& v, double t, double h) {
   // The implicit solve takes the couplings of its one (start-of-step) evaluation.
-  std::vector<WeightedContact>* couplings = implicit_stats() ? &active_couplings_ : nullptr;
+  // So does vertex block descent, as the contacts' energies in its descent.
+  std::vector<WeightedContact>* couplings = implicit_stats() || vbd_ ? &active_couplings_ : nullptr;
   if (self_contact_) {
     PhaseTimer timer(stats_, StepPhase::self_contacts);
     self_contact_->add_forces(x, v, h, model_->inverse_mass, force_, couplings);
@@ -186,15 +191,19 @@ std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x,
   const std::int64_t flagged = settings_.contacts->add_contact_forces(
       *model_, t, h, x, v, force_, contact_totals_, implicit_stats() ? &active_contacts_ : nullptr,
       contact_workspace_.get(), contact_normal_scheme(), follow_up);
-  if (edge_contact_)  // the particle contacts' totals were just overwritten: add the edges'
-    for (std::size_t c = 0; c < contact_totals_.size(); ++c) {
-      const EdgeContactTotals& edges = edge_contact_->totals()[c];
-      contact_totals_[c].contact_count += edges.contact_count;
-      contact_totals_[c].normal_force += edges.normal_force;
-      contact_totals_[c].friction_force += edges.friction_force;
-      contact_totals_[c].max_depth = std::max(contact_totals_[c].max_depth, edges.max_depth);
-    }
+  add_edge_contact_totals();  // the particle contacts' totals were just overwritten
   return flagged;
+}
+
+void SpringDamperSolver::add_edge_contact_totals() {
+  if (!edge_contact_) return;
+  for (std::size_t c = 0; c < contact_totals_.size(); ++c) {
+    const EdgeContactTotals& edges = edge_contact_->totals()[c];
+    contact_totals_[c].contact_count += edges.contact_count;
+    contact_totals_[c].normal_force += edges.normal_force;
+    contact_totals_[c].friction_force += edges.friction_force;
+    contact_totals_[c].max_depth = std::max(contact_totals_[c].max_depth, edges.max_depth);
+  }
 }
 
 ContactNormalScheme SpringDamperSolver::contact_normal_scheme() const {
@@ -222,6 +231,8 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() 
 
 // Out of line: the private machinery's types are complete only here.
 SpringDamperSolver::~SpringDamperSolver() = default;
+
+const VbdStats* SpringDamperSolver::vbd_stats() const { return vbd_ ? &vbd_->stats() : nullptr; }
 
 const ImplicitSolveStats* SpringDamperSolver::implicit_stats() const {
   if (implicit_) return &implicit_->stats();
@@ -258,6 +269,15 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::scheme_counters(
                  : 0.0},
             {"substeps_per_step_min", static_cast<double>(stats_.substeps_min)},
             {"substeps_per_step_max", static_cast<double>(stats_.substeps_max)}};
+  if (vbd_) {
+    const VbdStats& s = vbd_->stats();
+    return {{"vbd_iterations", settings_.vbd.iterations},
+            {"vbd_chebyshev_rho", settings_.vbd.chebyshev_rho},
+            {"vbd_colors", s.colors},
+            {"vbd_last_sweep_move", s.last_sweep_move},
+            {"vbd_last_sweep_move_max", s.last_sweep_move_max},
+            {"vbd_contact_planes_last", static_cast<double>(s.contacts_last)}};
+  }
   if (!implicit_stats()) return {};
   const ImplicitSolveStats& cg = *implicit_stats();
   const double mean =
@@ -399,6 +419,9 @@ void SpringDamperSolver::single_step(double h) {
     case Integrator::implicit_euler:
       implicit_euler_step(h);
       break;
+    case Integrator::vbd:
+      vbd_step(h);
+      break;
   }
   // Only the Euler pair with colliders keeps the spring kernel's split state in step with the
   // update.
@@ -514,6 +537,30 @@ void SpringDamperSolver::implicit_euler_step(double h) {
   state_.x.noalias() += h * state_.v;  // x(n+1) = x(n) + h v(n+1)
 }
 
+// Backward Euler by vertex block descent (vertex_block_descent.hpp). The contacts between particles
+// are found at the step's start: their pushes enter the descent as energies of the particles'
+// motion, their friction as an explicit force of the step.
+void SpringDamperSolver::vbd_step(double h) {
+  VbdStepInput input;
+  input.t = state_.time;
+  input.h = h;
+  input.gravity = settings_.gravity;
+  input.air_damping = settings_.air_damping;
+  input.contacts = settings_.contacts.get();
+  if (has_pair_contacts()) {
+    active_couplings_.clear();
+    force_.setZero();
+    add_pair_contact_forces(state_.x, state_.v, state_.time, h);
+    for (const WeightedContact& c : active_couplings_)  // leaves the friction only
+      for (int s = 0; s < 4; ++s)
+        if (c.particle[s] >= 0) force_.col(c.particle[s]) -= (c.weight[s] * c.force) * c.normal;
+    input.couplings = &active_couplings_;
+    input.explicit_force = &force_;
+  }
+  vbd_->step(*model_, input, state_.x, state_.v, contact_totals_);
+  add_edge_contact_totals();
+}
+
 // Stops the solver on a non-finite or runaway particle, naming the first one, the step, and what to
 // try. Runs every step over particles only (O(N)); the message is built only on failure.
 void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scanned) {
@@ -557,7 +604,12 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
          << integrator_name(settings_.integrator)
          << " gains energy on every undamped spring and is stable only while damping outweighs "
             "it), ";
-  if (settings_.integrator == Integrator::implicit_euler)
+  if (settings_.integrator == Integrator::vbd)
+    text << "a smaller dt or more vbd iterations (" << settings_.vbd.iterations
+         << " sweeps per step left particles moving by up to " << vbd_->stats().last_sweep_move
+         << " m in the last sweep; a collider moving faster than its contact can push back also "
+            "needs a smaller dt), ";
+  else if (settings_.integrator == Integrator::implicit_euler)
     text << "a smaller dt or a larger implicit max_iterations (the conjugate gradient reached a "
             "relative "
             "residual of "
@@ -573,7 +625,7 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
          << " s, so a contact or a fast collider is the likely cause: try half the dt, or a softer "
             "contact), ";
   // In h^2 K + 2 h C < 4, the larger term says whether springs or dampers limit the step.
-  if (settings_.integrator == Integrator::implicit_euler)
+  if (settings_.integrator == Integrator::implicit_euler || settings_.integrator == Integrator::vbd)
     text << "or a softer contact (lower contact.stiffness).";
   else if (settings_.integrator == Integrator::explicit_euler ||
            settings_.integrator == Integrator::midpoint)

@@ -111,6 +111,7 @@ double step_from_rates(const NetworkRates& rates, Integrator integrator, double 
     case Integrator::midpoint:
       return std::min(damping_ratio, symplectic);
     case Integrator::implicit_euler:
+    case Integrator::vbd:
       break;
   }
   return std::numeric_limits<double>::infinity();

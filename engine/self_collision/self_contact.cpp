@@ -253,6 +253,8 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
       w.normal = push.normal;
       w.stiffness = k;
       w.damping = c;
+      w.depth = thickness_ - push.distance;
+      w.force = push.force;
       active->push_back(w);
     }
   }

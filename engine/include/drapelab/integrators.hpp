@@ -17,6 +17,10 @@
 //   < 2 leapfrog         kick h/2, drift h, kick h/2 (velocity Verlet)     order 2, 1 eval, w h < 2
 //   implicit_euler   (M - h D - h^2 K) dv = h (f0 + h K v0)            order 1, 1 eval + CG,
 //   unconditionally
+//   vbd              the same backward Euler step, x1 minimising its variational form by a fixed
+//                    number of per-particle Newton sweeps (vertex_block_descent.hpp)
+//                                                                      order 1, sweeps,
+//                                                                      unconditionally
 #pragma once
 
 #include <optional>
@@ -34,6 +38,7 @@ enum class Integrator {
   verlet,            // position (Stoermer) Verlet; velocity estimated, see explicit_schemes.cpp
   leapfrog,          // kick-drift-kick (velocity Verlet)
   implicit_euler,    // backward Euler linearised once per step (Baraff & Witkin 1998)
+  vbd,  // backward Euler minimised by vertex block descent (Chen et al. 2024), a fixed budget
 };
 
 const char* integrator_name(Integrator integrator);

@@ -27,6 +27,7 @@
 #include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/stability.hpp"
+#include "drapelab/vertex_block_descent.hpp"
 #include "drapelab/weighted_contact.hpp"
 
 namespace drapelab {
@@ -40,6 +41,7 @@ struct ContactWorkspace;
 struct ContactBlockFollowUp;
 class SelfContact;
 class EdgeContact;
+class VertexBlockDescent;
 
 struct SpringDamperSettings {
   Integrator integrator = Integrator::symplectic_euler;
@@ -48,6 +50,7 @@ struct SpringDamperSettings {
   double max_speed = 1000.0;                 // m/s: a faster particle means the run has blown up
   std::shared_ptr<const ContactModel> contacts;  // colliders and penalty parameters; none when null
   ImplicitSolveSettings implicit;  // implicit_euler only: CG tolerance and iteration cap
+  VbdSettings vbd;                 // vbd only: sweeps per step and their acceleration
   bool fast_springs =
       true;  // the spring-family fast path when the springs allow (spring_families.hpp)
   // Adaptive substeps: each step(h) is split into as many equal substeps as the current shape's
@@ -132,6 +135,8 @@ class SpringDamperSolver final : public Solver {
   const FamilyImplicitSystem* family_implicit_system() const { return family_implicit_.get(); }
   // The statistics of whichever implicit solve runs (null unless the integrator is implicit_euler).
   const ImplicitSolveStats* implicit_stats() const;
+  // Vertex block descent's statistics (null unless the integrator is vbd).
+  const VbdStats* vbd_stats() const;
   // Whether the spring phase runs the spring-family fast path.
   bool uses_fast_springs() const { return spring_families_ != nullptr; }
 
@@ -157,6 +162,9 @@ class SpringDamperSolver final : public Solver {
   void verlet_step(double h);
   void leapfrog_step(double h);
   void implicit_euler_step(double h);
+  void vbd_step(double h);
+  // Adds the collider edges' contacts to the particle contacts' totals of the same evaluation.
+  void add_edge_contact_totals();
   // The force phases on their own: gravity, air drag and springs overwrite force_; contacts add to
   // it (with `follow_up` run on each block of particles once its force is final; returns its flag).
   void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
@@ -202,6 +210,7 @@ class SpringDamperSolver final : public Solver {
   std::unique_ptr<ImplicitEulerSystem> implicit_;
   std::unique_ptr<FamilyImplicitSystem> family_implicit_;
   std::unique_ptr<SpringFamilies> spring_families_;  // null: the plain edge-list loop
+  std::unique_ptr<VertexBlockDescent> vbd_;          // null unless the integrator is vbd
   // The fast path's unit-stride copy of the state equals state_.x and state_.v: set by the Euler
   // update with colliders (which splits each block as it updates it) and by a force evaluation at
   // the solver's state; cleared by every other change of the state.

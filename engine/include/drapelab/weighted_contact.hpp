@@ -16,6 +16,8 @@ struct WeightedContact {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit: the direction the force pushes
   double stiffness = 0.0;                             // N/m
   double damping = 0.0;                               // N*s/m
+  double depth = 0.0;  // m: how far inside the contact distance at the evaluation
+  double force = 0.0;  // N: the push f at the evaluation
 };
 
 }  // namespace drapelab

@@ -149,6 +149,11 @@ std::string resolved_scene_yaml(const Scene& s) {
           << "  # a plugin in a Bullet world, or bare\n"
           << "    adaptive_substeps: " << (solver.adaptive_substeps ? "true" : "false")
           << "  # split dt into the substeps the shape's stable step needs\n";
+    if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::vbd)
+      out << "    vbd: {iterations: " << solver.vbd.iterations
+          << ", chebyshev_rho: " << format_number(solver.vbd.chebyshev_rho)
+          << ", friction_velocity: " << format_number(solver.vbd.friction_velocity)
+          << "}  # sweeps per step\n";
     if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::implicit_euler)
       out << "    implicit: {tolerance: " << format_number(solver.implicit.tolerance)
           << ", max_iterations: " << solver.implicit.max_iterations << "}  # conjugate gradient\n";

@@ -14,9 +14,13 @@
 namespace drapelab::scene {
 namespace {
 
+// vbd without a dt: two steps per 60 Hz frame (docs/physics.md, "Vertex block descent": the step
+// and sweep count at which the drape scenes keep their stretch and penetration).
+constexpr double kVbdDefaultStep = 1.0 / 120.0;  // s
+
 const std::vector<std::string> kCommonKeys = {"name",     "type",      "dt",
                                               "round_dt", "max_speed", "runaway_stretch"};
-const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit",
+const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit", "vbd",
                                                     "adaptive_substeps"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size",
                                                       "collider_margin", "kLST"};
@@ -83,6 +87,7 @@ class SolverReader {
       if (const auto name =
               r_.choice(solver.get("integrator"), path + ".integrator", integrator_names()))
         spec.integrator = *parse_integrator(*name);
+    read_vbd(solver, path, spec);
     if (!solver.has("implicit")) return;
     if (spec.integrator != Integrator::implicit_euler) {
       r_.error(solver.get("implicit"), path + ".implicit",
@@ -100,6 +105,29 @@ class SolverReader {
     spec.implicit.max_iterations = static_cast<int>(
         implicit.integer("max_iterations", {1.0, true, 1e6, true}, defaults.max_iterations)
             .value_or(defaults.max_iterations));
+  }
+
+  void read_vbd(MapReader& solver, const std::string& path, SolverSpec& spec) {
+    if (!solver.has("vbd")) return;
+    if (spec.integrator != Integrator::vbd) {
+      r_.error(solver.get("vbd"), path + ".vbd",
+               "applies only to integrator: vbd (this solver uses " +
+                   std::string(integrator_name(spec.integrator)) + ")");
+      return;
+    }
+    MapReader vbd(r_, solver.get("vbd"), solver.path_of("vbd"),
+                  {"iterations", "chebyshev_rho", "friction_velocity"});
+    if (!vbd.valid()) return;
+    const VbdSettings defaults;
+    spec.vbd.iterations =
+        static_cast<int>(vbd.integer("iterations", {1.0, true, 1e4, true}, defaults.iterations)
+                             .value_or(defaults.iterations));
+    spec.vbd.chebyshev_rho =
+        vbd.number("chebyshev_rho", {0.0, true, 1.0, false}, defaults.chebyshev_rho)
+            .value_or(defaults.chebyshev_rho);
+    spec.vbd.friction_velocity =
+        vbd.number("friction_velocity", {0.0, false, 10.0, true}, defaults.friction_velocity)
+            .value_or(defaults.friction_velocity);
   }
 
   // Adaptive substeps follow symplectic Euler's stable step as the shape changes: its damped
@@ -165,6 +193,10 @@ class SolverReader {
     } else if (spec.integrator == Integrator::implicit_euler) {
       target = 1.0 / 240.0;
       reason = "implicit Euler's default of 1/240 s";
+    } else if (spec.integrator == Integrator::vbd) {
+      target = kVbdDefaultStep;
+      reason = "vbd's default of 1/120 s with " + std::to_string(spec.vbd.iterations) +
+               " sweeps per step";
     } else {
       double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(),
                                           spec.integrator);

@@ -21,6 +21,7 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
   settings.air_damping = scene.cloth.air_damping;
   settings.max_speed = spec.max_speed;
   settings.implicit = spec.implicit;
+  settings.vbd = spec.vbd;
   settings.adaptive_substeps = spec.adaptive_substeps;
   settings.self_collision = scene.cloth.self_collision;
   settings.collider_edges = scene.contact.triangles;

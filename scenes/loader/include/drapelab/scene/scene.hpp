@@ -21,6 +21,7 @@
 #include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/stability.hpp"
+#include "drapelab/vertex_block_descent.hpp"
 
 namespace drapelab::scene {
 
@@ -75,6 +76,8 @@ struct SolverSpec {
   bool adaptive_substeps = false;
   // spring_damper with implicit_euler only: the conjugate gradient's relative tolerance and cap.
   ImplicitSolveSettings implicit;
+  // spring_damper with vbd only: sweeps per step and their Chebyshev acceleration.
+  VbdSettings vbd;
   // Bullet's cloths (docs/bullet.md, "Fairness table"); iterations and link_stiffness are for
   // bullet_softbody only (docs/bullet.md, "Mapping our parameters to the classic cloth"):
   int iterations = 1;       // position-solver sweeps per substep

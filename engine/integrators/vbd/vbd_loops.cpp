@@ -1,0 +1,197 @@
+// One sweep of vertex block descent over plain arrays (vbd_loops.hpp). Per particle i, the force
+// f = -dG/dx_i and the block H = d2G/dx_i2 of the variational form are summed term by term, and
+// x_i moves by H^-1 f. Every term's block is positive semidefinite (the springs' transverse term
+// is dropped when compressed, as a Newton step needs), and the inertia m / h^2 I makes H positive
+// definite, so each move lowers G.
+#include "integrators/vbd/vbd_loops.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace drapelab::kernels {
+namespace {
+
+// The running sums of one particle's Newton step: f (N) and the symmetric H (N/m), stored as its
+// six entries xx, yy, zz, xy, xz, yz.
+struct Block {
+  double f[3] = {0.0, 0.0, 0.0};
+  double h[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+
+  // H += a I
+  void add_identity(double a) {
+    h[0] += a;
+    h[1] += a;
+    h[2] += a;
+  }
+  // H += a u u^T
+  void add_outer(double a, const double* u) {
+    h[0] += a * u[0] * u[0];
+    h[1] += a * u[1] * u[1];
+    h[2] += a * u[2] * u[2];
+    h[3] += a * u[0] * u[1];
+    h[4] += a * u[0] * u[2];
+    h[5] += a * u[1] * u[2];
+  }
+  void add_force(double a, const double* u) {
+    f[0] += a * u[0];
+    f[1] += a * u[1];
+    f[2] += a * u[2];
+  }
+  // The move H^-1 f by Cramer's rule (H is 3 x 3 symmetric positive definite); no move when H is
+  // singular to rounding.
+  bool solve(double* move) const {
+    const double c00 = h[1] * h[2] - h[5] * h[5];
+    const double c01 = h[4] * h[5] - h[3] * h[2];
+    const double c02 = h[3] * h[5] - h[4] * h[1];
+    const double det = h[0] * c00 + h[3] * c01 + h[4] * c02;
+    if (!(det > 1e-300)) return false;
+    const double c11 = h[0] * h[2] - h[4] * h[4];
+    const double c12 = h[3] * h[4] - h[0] * h[5];
+    const double c22 = h[0] * h[1] - h[3] * h[3];
+    const double inv = 1.0 / det;
+    move[0] = (c00 * f[0] + c01 * f[1] + c02 * f[2]) * inv;
+    move[1] = (c01 * f[0] + c11 * f[1] + c12 * f[2]) * inv;
+    move[2] = (c02 * f[0] + c12 * f[1] + c22 * f[2]) * inv;
+    return true;
+  }
+};
+
+inline double dot(const double* a, const double* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// The damped springs at particle i: E = ks (l - l0)^2 / 2 and the damper's dissipation
+// kd ((dx_i - dx_j) . u)^2 / (2 h) with dx the displacement over the step, u the unit spring.
+void add_springs(const VbdProblem& p, std::int64_t i, const double* x, const double* move_i,
+                 Block& b) {
+  const VbdSprings& s = p.springs;
+  const double* xi = x + 3 * i;
+  for (std::int32_t e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
+    const std::int64_t j = s.other[e];
+    const double* xj = x + 3 * j;
+    double u[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+    const double length = std::sqrt(dot(u, u));
+    if (!(length > 0.0)) continue;  // coincident ends have no direction: the spring is skipped
+    const double inv_length = 1.0 / length;
+    u[0] *= inv_length;
+    u[1] *= inv_length;
+    u[2] *= inv_length;
+    const double* sj = p.start + 3 * j;
+    const double rel[3] = {move_i[0] - (xj[0] - sj[0]), move_i[1] - (xj[1] - sj[1]),
+                           move_i[2] - (xj[2] - sj[2])};
+    const double stretch_velocity = dot(rel, u) / p.h;  // m/s, > 0 lengthening
+    b.add_force(-(s.ks[e] * (length - s.rest_length[e]) + s.kd[e] * stretch_velocity), u);
+    // ks u u^T along the spring; across it ks (1 - l0 / l), kept only while the spring is longer
+    // than at rest (compressed, that term is negative and a Newton step could go uphill).
+    const double across = s.ks[e] * std::max(0.0, 1.0 - s.rest_length[e] * inv_length);
+    b.add_identity(across);
+    b.add_outer(s.ks[e] - across + s.kd[e] / p.h, u);
+  }
+}
+
+// Collider contact planes: E = k depth^2 / 2 with depth = radius - (x - p) . n, the damper
+// c (du . n)^2 / (2 h), and friction whose lagged normal force is this iterate's fn.
+void add_planes(const VbdProblem& p, std::int64_t i, const double* xi, const double* move_i,
+                Block& b) {
+  const VbdPlanes& q = p.planes;
+  const double slip_scale = p.friction_velocity * p.h;  // m: the stick-slip boundary of a step
+  for (int k = 0; k < q.count[i]; ++k) {
+    const std::int64_t e = i * q.slots + k;
+    const double* n = q.normal + 3 * e;
+    const double* point = q.point + 3 * e;
+    const double offset[3] = {xi[0] - point[0], xi[1] - point[1], xi[2] - point[2]};
+    const double depth = q.radius - dot(offset, n);  // m
+    if (depth <= 0.0) continue;
+    const double* surface = q.surface_move + 3 * e;
+    const double rel[3] = {move_i[0] - surface[0], move_i[1] - surface[1], move_i[2] - surface[2]};
+    const double along = dot(rel, n);                                 // m
+    const double fn = q.stiffness * depth - q.damping * along / p.h;  // N
+    if (fn <= 0.0) continue;
+    b.add_force(fn, n);
+    b.add_outer(q.stiffness + q.damping / p.h, n);
+    const double slip[3] = {rel[0] - along * n[0], rel[1] - along * n[1], rel[2] - along * n[2]};
+    const double slip_length = std::sqrt(dot(slip, slip));  // m over the step
+    if (slip_length < slip_scale) {
+      // Sticking: a tangential spring of mu_s fn / slip_scale, at most mu_s fn at the boundary.
+      const double k_stick = q.fixed[e] * fn / slip_scale;
+      b.add_force(-k_stick, slip);
+      b.add_identity(k_stick);
+      b.add_outer(-k_stick, n);
+    } else {
+      // Sliding: mu_k fn against the slip. Its Hessian mu_k fn / |s| (T - s s^T / |s|^2) is the
+      // tangent plane's projector T less the slip direction: positive semidefinite.
+      const double k_slide = q.kinetic[e] * fn / slip_length;
+      b.add_force(-k_slide, slip);
+      b.add_identity(k_slide);
+      b.add_outer(-k_slide, n);
+      const double inv = 1.0 / slip_length;
+      const double dir[3] = {slip[0] * inv, slip[1] * inv, slip[2] * inv};
+      b.add_outer(-k_slide, dir);
+    }
+  }
+}
+
+// Contacts between particles, linearised at the step's start; the other particles are read at the
+// sweep's start (Jacobi), since a contact may join two particles of one colour.
+void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, Block& b) {
+  const VbdCouplings& c = p.couplings;
+  for (std::int32_t e = c.offsets[i]; e < c.offsets[i + 1]; ++e) {
+    const std::int64_t contact = c.contact[e];
+    const double* n = c.normal + 3 * contact;
+    double along = 0.0;  // m: n . sum_j w_j (x_j - x_j(n))
+    for (int s = 0; s < 4; ++s) {
+      const std::int64_t j = c.particle[4 * contact + s];
+      if (j < 0) continue;
+      const double* xj = j == i ? xi : p.sweep_start + 3 * j;
+      const double* sj = p.start + 3 * j;
+      const double d[3] = {xj[0] - sj[0], xj[1] - sj[1], xj[2] - sj[2]};
+      along += c.weight[4 * contact + s] * dot(d, n);
+    }
+    const double depth = c.depth[contact] - along;
+    const double fn = c.stiffness[contact] * depth - c.damping[contact] * along / p.h;  // N
+    if (fn <= 0.0) continue;
+    const double w = c.weight[4 * contact + c.slot[e]];
+    b.add_force(w * fn, n);
+    b.add_outer(w * w * (c.stiffness[contact] + c.damping[contact] / p.h), n);
+  }
+}
+
+// Particle i's Newton step; returns how far it moved (m).
+double solve_particle(const VbdProblem& p, std::int64_t i, double* x) {
+  if (p.inverse_mass[i] == 0.0) return 0.0;  // pinned
+  double* xi = x + 3 * i;
+  const double* si = p.start + 3 * i;
+  const double* yi = p.inertia + 3 * i;
+  const double move_i[3] = {xi[0] - si[0], xi[1] - si[1], xi[2] - si[2]};
+  Block b;
+  // Inertia m |x - y|^2 / (2 h^2) and air drag a m |x - x(n)|^2 / (2 h).
+  const double inertia = p.mass[i] / (p.h * p.h);       // N/m
+  const double drag = p.air_damping * p.mass[i] / p.h;  // N/m
+  for (int d = 0; d < 3; ++d) b.f[d] = -inertia * (xi[d] - yi[d]) - drag * move_i[d];
+  b.add_identity(inertia + drag);
+  add_springs(p, i, x, move_i, b);
+  if (p.planes.count) add_planes(p, i, xi, move_i, b);
+  if (p.couplings.offsets) add_couplings(p, i, xi, b);
+  double move[3];
+  if (!b.solve(move)) return 0.0;
+  xi[0] += move[0];
+  xi[1] += move[1];
+  xi[2] += move[2];
+  return std::sqrt(dot(move, move));
+}
+
+}  // namespace
+
+double vbd_sweep(const VbdProblem& problem, double* x) {
+  double largest = 0.0;
+#pragma omp parallel if (problem.n >= 2048)
+  for (int c = 0; c < problem.colors; ++c) {
+    const std::int32_t begin = problem.color_offsets[c], end = problem.color_offsets[c + 1];
+#pragma omp for schedule(static) reduction(max : largest)
+    for (std::int32_t k = begin; k < end; ++k)
+      largest = std::max(largest, solve_particle(problem, problem.color_particles[k], x));
+  }
+  return largest;
+}
+
+}  // namespace drapelab::kernels

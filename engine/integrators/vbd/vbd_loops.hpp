@@ -1,0 +1,77 @@
+// The sweeps of vertex block descent (drapelab/vertex_block_descent.hpp) on plain arrays. Like
+// particle_loops.hpp, this header and its source include no Eigen: the source is built with OpenMP
+// for the build machine's CPU. Positions are 3 x n packed as in ClothState. Within a colour every
+// particle reads only particles of other colours (or, for the contacts between particles, the
+// positions at the sweep's start), and writes only itself, so the result is the same for any
+// number of threads.
+#pragma once
+
+#include <cstdint>
+
+namespace drapelab::kernels {
+
+// Each particle's springs, as compressed rows: particle i's are entries offsets[i] to
+// offsets[i + 1] - 1.
+struct VbdSprings {
+  const std::int32_t* offsets = nullptr;
+  const std::int32_t* other = nullptr;  // the particle at the spring's other end
+  const double* rest_length = nullptr;  // m
+  const double* ks = nullptr;           // N/m
+  const double* kd = nullptr;           // N*s/m
+};
+
+// Collider contacts as planes fixed for the step, at most `slots` per particle: particle i's k-th
+// plane is entry i * slots + k, valid for k < count[i]. The plane is where the collider's surface
+// is at the step's end; the particle keeps `radius` off it.
+struct VbdPlanes {
+  int slots = 0;
+  const std::int32_t* count = nullptr;
+  const double* point = nullptr;         // m, 3 per entry: a point of the surface
+  const double* normal = nullptr;        // unit, 3 per entry: out of the collider
+  const double* surface_move = nullptr;  // m, 3 per entry: the surface's motion over the step
+  const double* kinetic = nullptr;       // Coulomb coefficients per entry
+  const double* fixed = nullptr;         // static coefficient per entry
+  double radius = 0.0;                   // m: the cloth's thickness
+  double stiffness = 0.0;                // N/m
+  double damping = 0.0;                  // N*s/m
+};
+
+// Contacts between particles (self-collision, collider edges on cloth edges), linearised at the
+// step's start: the contact's depth is depth - n . sum_j w_j (x_j - x_j(n)). Particle i's entries
+// are rows offsets[i] to offsets[i + 1] - 1 of (contact, slot) pairs.
+struct VbdCouplings {
+  const std::int32_t* offsets = nullptr;
+  const std::int32_t* contact = nullptr;
+  const std::int32_t* slot = nullptr;
+  const std::int32_t* particle = nullptr;  // 4 per contact, -1 unused
+  const double* weight = nullptr;          // 4 per contact
+  const double* normal = nullptr;          // 3 per contact
+  const double* depth = nullptr;           // m per contact, at the step's start
+  const double* stiffness = nullptr;       // N/m per contact
+  const double* damping = nullptr;         // N*s/m per contact
+};
+
+struct VbdProblem {
+  std::int64_t n = 0;
+  double h = 0.0;                        // s
+  double air_damping = 0.0;              // 1/s
+  double friction_velocity = 0.0;        // m/s
+  const double* mass = nullptr;          // kg per particle
+  const double* inverse_mass = nullptr;  // 1/kg per particle, 0 when pinned
+  const double* start = nullptr;         // m: x(n)
+  const double* inertia = nullptr;       // m: y = x(n) + h v(n) + h^2 a
+  const double* sweep_start = nullptr;   // m: the positions at the start of the sweep
+  VbdSprings springs;
+  VbdPlanes planes;
+  VbdCouplings couplings;  // offsets null: none
+  // Colour c's particles are color_particles[color_offsets[c]] to [color_offsets[c + 1] - 1].
+  const std::int32_t* color_offsets = nullptr;
+  const std::int32_t* color_particles = nullptr;
+  int colors = 0;
+};
+
+// One sweep: every colour in turn, each particle's Newton step on G with the others held. Updates
+// x in place and returns the largest distance one particle moved (m).
+double vbd_sweep(const VbdProblem& problem, double* x);
+
+}  // namespace drapelab::kernels

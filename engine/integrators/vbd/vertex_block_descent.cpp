@@ -1,0 +1,287 @@
+// Vertex block descent: the per-step work around the sweeps (vertex_block_descent.hpp).
+#include "integrators/vbd/vertex_block_descent.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "integrators/particle_loops.hpp"
+#include "integrators/vbd/vbd_loops.hpp"
+
+namespace drapelab {
+namespace {
+
+// Collider planes kept per particle: a particle touches at most a corner's three faces in the
+// scenes drapelab runs; a fourth slot leaves room for a second collider.
+constexpr int kPlaneSlots = 4;
+
+void store(double* to, const Eigen::Vector3d& value) {
+  to[0] = value[0];
+  to[1] = value[1];
+  to[2] = value[2];
+}
+
+}  // namespace
+
+std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model) {
+  const int n = model.particle_count();
+  std::vector<std::vector<std::int32_t>> neighbours(static_cast<std::size_t>(n));
+  for (std::size_t e = 0; e < model.springs.size(); ++e) {
+    neighbours[static_cast<std::size_t>(model.springs.v0[e])].push_back(model.springs.v1[e]);
+    neighbours[static_cast<std::size_t>(model.springs.v1[e])].push_back(model.springs.v0[e]);
+  }
+  std::vector<int> color(static_cast<std::size_t>(n), -1);
+  std::vector<std::vector<std::int32_t>> colors;
+  std::vector<char> taken;
+  for (int i = 0; i < n; ++i) {
+    taken.assign(colors.size() + 1, 0);
+    for (std::int32_t j : neighbours[static_cast<std::size_t>(i)])
+      if (color[static_cast<std::size_t>(j)] >= 0) taken[static_cast<std::size_t>(color[j])] = 1;
+    const int c = static_cast<int>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
+    if (c == static_cast<int>(colors.size())) colors.emplace_back();
+    colors[static_cast<std::size_t>(c)].push_back(i);
+    color[static_cast<std::size_t>(i)] = c;
+  }
+  return colors;
+}
+
+VertexBlockDescent::VertexBlockDescent(const ClothModel& model, VbdSettings settings)
+    : settings_(settings) {
+  const int n = model.particle_count();
+  const SpringSet& springs = model.springs;
+  // Springs per particle, as compressed rows: count, then place each spring at both its ends.
+  spring_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (std::size_t e = 0; e < springs.size(); ++e) {
+    ++spring_offsets_[static_cast<std::size_t>(springs.v0[e]) + 1];
+    ++spring_offsets_[static_cast<std::size_t>(springs.v1[e]) + 1];
+  }
+  for (int i = 0; i < n; ++i) spring_offsets_[i + 1] += spring_offsets_[i];
+  const std::size_t entries = static_cast<std::size_t>(spring_offsets_.back());
+  spring_other_.resize(entries);
+  spring_rest_.resize(entries);
+  spring_ks_.resize(entries);
+  spring_kd_.resize(entries);
+  std::vector<std::int32_t> fill(spring_offsets_.begin(), spring_offsets_.end() - 1);
+  for (std::size_t e = 0; e < springs.size(); ++e)
+    for (int end = 0; end < 2; ++end) {
+      const std::int32_t at = end == 0 ? springs.v0[e] : springs.v1[e];
+      const std::size_t slot = static_cast<std::size_t>(fill[static_cast<std::size_t>(at)]++);
+      spring_other_[slot] = end == 0 ? springs.v1[e] : springs.v0[e];
+      spring_rest_[slot] = springs.rest_length[e];
+      spring_ks_[slot] = springs.ks[e];
+      spring_kd_[slot] = springs.kd[e];
+    }
+  const auto colors = color_particles(model);
+  color_offsets_.assign(1, 0);
+  for (const auto& members : colors) {
+    color_particles_.insert(color_particles_.end(), members.begin(), members.end());
+    color_offsets_.push_back(static_cast<std::int32_t>(color_particles_.size()));
+  }
+  stats_.colors = static_cast<int>(colors.size());
+  const std::size_t slots = static_cast<std::size_t>(n) * kPlaneSlots;
+  plane_count_.assign(static_cast<std::size_t>(n), 0);
+  plane_collider_.resize(slots);
+  plane_point_.resize(3 * slots);
+  plane_normal_.resize(3 * slots);
+  plane_surface_move_.resize(3 * slots);
+  plane_kinetic_.resize(slots);
+  plane_fixed_.resize(slots);
+  start_.resize(3, n);
+  inertia_.resize(3, n);
+  sweep_start_.resize(3, n);
+  previous_v_.resize(3, n);
+}
+
+void VertexBlockDescent::find_planes(const ClothModel& model, const VbdStepInput& input,
+                                     const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v) {
+  std::fill(plane_count_.begin(), plane_count_.end(), 0);
+  if (!input.contacts || input.contacts->empty()) return;
+  const ContactModel& contacts = *input.contacts;
+  const double radius = contacts.query().radius();  // m
+  // The query sphere reaches a margin beyond the thickness: twice the fastest particle's travel
+  // over the step, and at least the thickness, so a particle that can reach a surface during the
+  // step has its plane.
+  const double fastest = v.colwise().norm().maxCoeff();  // m/s
+  const double reach = radius + std::max(radius, 2.0 * fastest * input.h);
+  const ParticleContactQuery query(reach);
+  const double end_time = input.t + input.h;
+  const int n = model.particle_count();
+  const std::int64_t blocks = (n + kernels::kPhaseBlock - 1) / kernels::kPhaseBlock;
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const Eigen::Isometry3d pose = contacts.shape_pose(c, end_time);
+    const Eigen::AlignedBox3d bounds = collider_bounds(contacts.fcl_collider(c), pose, reach);
+    const Collider& collider = contacts.collider(c);
+    kernels::for_each_block(blocks, n >= kernels::kParallelParticles, [&](std::int64_t block) {
+      const int begin = static_cast<int>(block * kernels::kPhaseBlock);
+      const int end = static_cast<int>(std::min<std::int64_t>(n, begin + kernels::kPhaseBlock));
+      for (int i = begin; i < end; ++i) {
+        std::int32_t& count = plane_count_[static_cast<std::size_t>(i)];
+        if (model.is_pinned(i) || count >= kPlaneSlots || !bounds.contains(x.col(i))) continue;
+        const auto touch = query.contact(contacts.fcl_collider(c), pose, x.col(i));
+        if (!touch) continue;
+        const std::size_t e = static_cast<std::size_t>(i) * kPlaneSlots + count++;
+        // The surface point under the particle: the query sphere reaches `depth` past it.
+        const Eigen::Vector3d point = x.col(i) - (reach - touch->depth) * touch->normal;
+        store(&plane_point_[3 * e], point);
+        store(&plane_normal_[3 * e], touch->normal);
+        store(&plane_surface_move_[3 * e], input.h * contacts.surface_velocity(c, end_time, point));
+        plane_collider_[e] = static_cast<std::int32_t>(c);
+        plane_kinetic_[e] = collider.friction;
+        plane_fixed_[e] = std::max(collider.friction, collider.static_friction);
+      }
+    });
+  }
+}
+
+void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContact>& couplings) {
+  const std::size_t count = couplings.size();
+  coupling_particle_.resize(4 * count);
+  coupling_weight_.resize(4 * count);
+  coupling_normal_.resize(3 * count);
+  coupling_depth_.resize(count);
+  coupling_stiffness_.resize(count);
+  coupling_damping_.resize(count);
+  coupling_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (std::size_t c = 0; c < count; ++c) {
+    const WeightedContact& w = couplings[c];
+    for (int s = 0; s < 4; ++s) {
+      coupling_particle_[4 * c + s] = w.particle[s];
+      coupling_weight_[4 * c + s] = w.weight[s];
+      if (w.particle[s] >= 0) ++coupling_offsets_[static_cast<std::size_t>(w.particle[s]) + 1];
+    }
+    store(&coupling_normal_[3 * c], w.normal);
+    coupling_depth_[c] = w.depth;
+    coupling_stiffness_[c] = w.stiffness;
+    coupling_damping_[c] = w.damping;
+  }
+  for (int i = 0; i < n; ++i) coupling_offsets_[i + 1] += coupling_offsets_[i];
+  coupling_contact_.resize(static_cast<std::size_t>(coupling_offsets_.back()));
+  coupling_slot_.resize(coupling_contact_.size());
+  std::vector<std::int32_t> fill(coupling_offsets_.begin(), coupling_offsets_.end() - 1);
+  for (std::size_t c = 0; c < count; ++c)
+    for (int s = 0; s < 4; ++s) {
+      const int i = couplings[c].particle[s];
+      if (i < 0) continue;
+      const std::size_t at = static_cast<std::size_t>(fill[static_cast<std::size_t>(i)]++);
+      coupling_contact_[at] = static_cast<std::int32_t>(c);
+      coupling_slot_[at] = s;
+    }
+}
+
+void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input,
+                              Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v,
+                              std::vector<ColliderContactTotals>& totals) {
+  const int n = model.particle_count();
+  const double h = input.h;
+  find_planes(model, input, x, v);
+  const bool coupled = input.couplings && !input.couplings->empty();
+  if (coupled) index_couplings(n, *input.couplings);
+  start_ = x;
+  // y = x(n) + h v(n) + h^2 (g + f_explicit / m)
+  inertia_ = x + h * v;
+  inertia_.colwise() += (h * h) * input.gravity;
+  if (input.explicit_force && input.explicit_force->cols() == n)
+    inertia_ += (h * h) * (*input.explicit_force * model.inverse_mass.asDiagonal());
+  // The initial guess (the paper's adaptive one): inertia plus as much of gravity as the particle
+  // felt over the last step, from none (held, as on a table) to all (falling freely).
+  const double g2 = input.gravity.squaredNorm();
+  for (int i = 0; i < n; ++i) {
+    double felt = 1.0;
+    if (has_previous_v_ && g2 > 0.0)
+      felt = std::clamp((v.col(i) - previous_v_.col(i)).dot(input.gravity) / (h * g2), 0.0, 1.0);
+    if (!model.is_pinned(i))
+      x.col(i) = start_.col(i) + h * v.col(i) + (h * h * felt) * input.gravity;
+  }
+  if (input.explicit_force && input.explicit_force->cols() == n)
+    x += (h * h) * (*input.explicit_force * model.inverse_mass.asDiagonal());
+
+  kernels::VbdProblem problem;
+  problem.n = n;
+  problem.h = h;
+  problem.air_damping = input.air_damping;
+  problem.friction_velocity = settings_.friction_velocity;
+  problem.mass = model.mass.data();
+  problem.inverse_mass = model.inverse_mass.data();
+  problem.start = start_.data();
+  problem.inertia = inertia_.data();
+  problem.sweep_start = sweep_start_.data();
+  problem.springs = {spring_offsets_.data(), spring_other_.data(), spring_rest_.data(),
+                     spring_ks_.data(), spring_kd_.data()};
+  stats_.contacts_last = std::accumulate(plane_count_.begin(), plane_count_.end(), std::int64_t{0});
+  if (input.contacts && !input.contacts->empty()) {
+    const ContactParameters& k = input.contacts->parameters();
+    contact_ = {input.contacts->query().radius(), k.stiffness, k.damping};
+    problem.planes = {kPlaneSlots,
+                      plane_count_.data(),
+                      plane_point_.data(),
+                      plane_normal_.data(),
+                      plane_surface_move_.data(),
+                      plane_kinetic_.data(),
+                      plane_fixed_.data(),
+                      input.contacts->query().radius(),
+                      k.stiffness,
+                      k.damping};
+  }
+  if (coupled)
+    problem.couplings = {
+        coupling_offsets_.data(),  coupling_contact_.data(),   coupling_slot_.data(),
+        coupling_particle_.data(), coupling_weight_.data(),    coupling_normal_.data(),
+        coupling_depth_.data(),    coupling_stiffness_.data(), coupling_damping_.data()};
+  problem.color_offsets = color_offsets_.data();
+  problem.color_particles = color_particles_.data();
+  problem.colors = static_cast<int>(color_offsets_.size()) - 1;
+
+  // Chebyshev semi-iteration: x(k) = w_k (sweep(x(k-1)) - x(k-2)) + x(k-2), with w_1 = 1,
+  // w_2 = 2 / (2 - rho^2), w_k = 4 / (4 - rho^2 w_(k-1)).
+  const double rho = settings_.chebyshev_rho;
+  const bool accelerate = rho > 0.0;
+  if (accelerate) before_last_ = x;
+  double omega = 1.0, last_move = 0.0;
+  for (int k = 0; k < settings_.iterations; ++k) {
+    sweep_start_ = x;
+    last_move = kernels::vbd_sweep(problem, x.data());
+    if (!accelerate) continue;
+    omega = k == 0 ? 1.0 : k == 1 ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
+    if (k > 0) x = omega * (x - before_last_) + before_last_;
+    before_last_ = sweep_start_;
+  }
+  previous_v_ = v;
+  has_previous_v_ = true;
+  v = (x - start_) / h;
+  ++stats_.steps;
+  stats_.iterations_total += settings_.iterations;
+  stats_.last_sweep_move = last_move;
+  stats_.last_sweep_move_max = std::max(stats_.last_sweep_move_max, last_move);
+  record_contact_totals(x, h, totals);
+}
+
+void VertexBlockDescent::record_contact_totals(const Eigen::Matrix3Xd& x, double h,
+                                               std::vector<ColliderContactTotals>& totals) const {
+  if (totals.empty()) return;
+  for (ColliderContactTotals& t : totals) t = ColliderContactTotals{};
+  // The plane's spring-damper at the end state, and the friction the end state's slip implies.
+  for (std::size_t i = 0; i < plane_count_.size(); ++i)
+    for (int k = 0; k < plane_count_[i]; ++k) {
+      const std::size_t e = i * kPlaneSlots + static_cast<std::size_t>(k);
+      const Eigen::Map<const Eigen::Vector3d> n(&plane_normal_[3 * e]);
+      const Eigen::Map<const Eigen::Vector3d> point(&plane_point_[3 * e]);
+      const double depth = contact_.radius - (x.col(static_cast<Eigen::Index>(i)) - point).dot(n);
+      if (depth <= 0.0) continue;
+      const Eigen::Map<const Eigen::Vector3d> surface(&plane_surface_move_[3 * e]);
+      const Eigen::Vector3d rel =
+          x.col(static_cast<Eigen::Index>(i)) - start_.col(static_cast<Eigen::Index>(i)) - surface;
+      const double fn =
+          std::max(0.0, contact_.stiffness * depth - contact_.damping * rel.dot(n) / h);
+      if (fn <= 0.0) continue;
+      ColliderContactTotals& t = totals[static_cast<std::size_t>(plane_collider_[e])];
+      ++t.contact_count;
+      t.normal_force += fn;
+      const double slip = (rel - rel.dot(n) * n).norm();
+      const double scale = settings_.friction_velocity * h;
+      t.friction_force +=
+          slip < scale ? plane_fixed_[e] * fn * slip / scale : plane_kinetic_[e] * fn;
+      t.max_depth = std::max(t.max_depth, depth);
+    }
+}
+
+}  // namespace drapelab

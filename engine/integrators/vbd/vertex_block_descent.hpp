@@ -1,0 +1,85 @@
+// The driver of vertex block descent (drapelab/vertex_block_descent.hpp): the particles' spring
+// lists and colouring, built once; per step the collider contact planes, the contacts between
+// particles, the inertial target y, the initial guess, the sweeps (vbd_loops.hpp) with optional
+// Chebyshev acceleration, and the new velocities.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "drapelab/cloth_model.hpp"
+#include "drapelab/contact_model.hpp"
+#include "drapelab/vertex_block_descent.hpp"
+#include "drapelab/weighted_contact.hpp"
+
+namespace drapelab {
+
+// Greedy colouring of the particles so that no two joined by a spring share a colour: particles in
+// index order, each taking the lowest colour none of its neighbours has. Returns each colour's
+// particles in increasing order.
+std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model);
+
+// What one step needs besides the state.
+struct VbdStepInput {
+  double t = 0.0;                                     // s, at the step's start
+  double h = 0.0;                                     // s
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // m/s^2
+  double air_damping = 0.0;                           // 1/s
+  const ContactModel* contacts = nullptr;             // colliders; none when null
+  // Contacts between particles found at the step's start, and the explicit force (N, 3 x N) of
+  // the step on each particle besides gravity (their friction); both may be empty.
+  const std::vector<WeightedContact>* couplings = nullptr;
+  const Eigen::Matrix3Xd* explicit_force = nullptr;
+};
+
+class VertexBlockDescent {
+ public:
+  VertexBlockDescent(const ClothModel& model, VbdSettings settings);
+
+  // One backward Euler step of the cloth from (x, v), both overwritten with the step's end.
+  // `totals`, one per collider, receives what each collider's contact did at the end state.
+  void step(const ClothModel& model, const VbdStepInput& input, Eigen::Matrix3Xd& x,
+            Eigen::Matrix3Xd& v, std::vector<ColliderContactTotals>& totals);
+
+  const VbdSettings& settings() const { return settings_; }
+  const VbdStats& stats() const { return stats_; }
+
+ private:
+  // Collider contacts for the step: every collider whose surface at the step's end lies within
+  // the cloth's thickness plus a margin of a particle's start, as a plane (vbd_loops.hpp).
+  void find_planes(const ClothModel& model, const VbdStepInput& input, const Eigen::Matrix3Xd& x,
+                   const Eigen::Matrix3Xd& v);
+  // The per-particle rows of the contacts between particles.
+  void index_couplings(int n, const std::vector<WeightedContact>& couplings);
+  void record_contact_totals(const Eigen::Matrix3Xd& x, double h,
+                             std::vector<ColliderContactTotals>& totals) const;
+
+  VbdSettings settings_;
+  VbdStats stats_;
+  // The colliders' penalty contact of the current step.
+  struct PlaneContact {
+    double radius = 0.0;     // m: the cloth's thickness
+    double stiffness = 0.0;  // N/m
+    double damping = 0.0;    // N*s/m
+  } contact_;
+  // Springs per particle (compressed rows) and the colouring.
+  std::vector<std::int32_t> spring_offsets_, spring_other_;
+  std::vector<double> spring_rest_, spring_ks_, spring_kd_;
+  std::vector<std::int32_t> color_offsets_, color_particles_;
+  // Contact planes, kPlaneSlots per particle.
+  std::vector<std::int32_t> plane_count_, plane_collider_;
+  std::vector<double> plane_point_, plane_normal_, plane_surface_move_, plane_kinetic_,
+      plane_fixed_;
+  // Contacts between particles.
+  std::vector<std::int32_t> coupling_offsets_, coupling_contact_, coupling_slot_,
+      coupling_particle_;
+  std::vector<double> coupling_weight_, coupling_normal_, coupling_depth_, coupling_stiffness_,
+      coupling_damping_;
+  // Per step (m, 3 x N): x(n), the inertial target, the sweep's start and Chebyshev's history.
+  Eigen::Matrix3Xd start_, inertia_, sweep_start_, before_last_;
+  Eigen::Matrix3Xd previous_v_;  // m/s: v(n-1), for the initial guess
+  bool has_previous_v_ = false;
+};
+
+}  // namespace drapelab
