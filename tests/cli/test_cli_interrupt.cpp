@@ -71,7 +71,7 @@ TEST_F(CliInterrupt, CtrlCLeavesCompleteFilesAndExits130) {
 TEST_F(CliInterrupt, CtrlCDuringABenchKeepsTheMeasuredRowsAndExits130) {
   const fs::path out = dir() / "bench";
   const std::string scene = std::string(DRAPELAB_SOURCE_DIR) + "/scenes/sphere_drape.yaml";
-  // Interrupted once the first cell's three rows are on disk.
+  // Interrupted once the first cell's four rows (three solvers and the reference) are on disk.
   const int exit_code = interrupt_drapelab_when(
       {"bench", "--sizes", "5,65", "--repeat", "2", "--duration", "1", "--scenes", scene, "--out",
        out.string()},
@@ -82,11 +82,12 @@ TEST_F(CliInterrupt, CtrlCDuringABenchKeepsTheMeasuredRowsAndExits130) {
     const auto cells = split_csv(row);
     if (cells[0] != "sphere_drape" || cells[1] != "5") continue;
     ++small_cell;
-    ASSERT_EQ(cells.size(), 18u) << row;
+    ASSERT_EQ(cells.size(), 19u) << row;
     EXPECT_EQ(cells[8], "ok") << row;
-    EXPECT_EQ(cells[16], "2") << "two runs: " << row;
+    EXPECT_EQ(cells[17], cells[4] == "reference" ? "1" : "2")
+        << "two runs, the reference one: " << row;
   }
-  EXPECT_EQ(small_cell, 3u);
+  EXPECT_EQ(small_cell, 4u);
   EXPECT_TRUE(fs::exists(out / "bench.md"));
 }
 

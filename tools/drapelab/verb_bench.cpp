@@ -3,14 +3,17 @@
 // (symplectic Euler in adaptive substeps at 0.9 of its shape's stable step, the spring fast path,
 // OpenMP threads in every phase); Bullet's classic cloth at its cheapest stable setting (a 240 Hz
 // step with 4 iterations, halved until it holds); Bullet's deformable world at its own stable step
-// (skipped above 65 x 65 particles: it costs minutes there). Writes bench.csv and bench.md; the
-// numbers are measurements, never checked against targets.
+// (skipped above 65 x 65 particles: it costs minutes there). Once per scene and size, a reference
+// run (our cloth, symplectic Euler at a fixed quarter of its stable step) gives every solver's
+// distance to it at the final frame. Writes bench.csv and bench.md; the numbers are measurements,
+// never checked against targets.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -21,6 +24,7 @@
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/runner/trial_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
+#include "drapelab/stability.hpp"
 #include "interrupt.hpp"
 #include "verbs.hpp"
 
@@ -31,19 +35,27 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The solvers every bench scene runs, replacing the scene's own list.
+// The solvers every bench scene runs, replacing the scene's own list (the entries of its `solvers`
+// list, in scene-file syntax). The first spring_damper entry is "ours", the denominator of every
+// cost ratio; further spring_damper entries are rows like any other.
 const std::string kSolvers =
-    "solvers=[{name: ours, type: spring_damper, integrator: symplectic_euler, adaptive_substeps: "
-    "true, host: none},"
+    "{name: ours, type: spring_damper, integrator: symplectic_euler, adaptive_substeps: true, "
+    "host: none},"
     " {name: bullet_classic, type: bullet_softbody, iterations: 4, dt: 0.004166666666666667},"
-    " {name: bullet_deformable, type: bullet_deformable}]";
-constexpr int kLargestDeformable = 65;  // particles per side
-constexpr int kClassicHalvings = 3;     // 240 Hz, then 480, 960, 1920 Hz
+    " {name: bullet_deformable, type: bullet_deformable}";
+// The reference run, appended to the list so the loader checks it and fills in its defaults; its
+// automatic step is then replaced by a quarter of the stable step (reference_spec).
+const std::string kReference =
+    "{name: reference, type: spring_damper, integrator: symplectic_euler, host: none}";
+constexpr int kReferenceStepFraction = 4;  // the reference's step is 1/4 of the stable step
+constexpr int kLargestDeformable = 65;     // particles per side
+constexpr int kClassicHalvings = 3;        // 240 Hz, then 480, 960, 1920 Hz
 
 struct Measured {
   runner::SimulationResult result;
   double max_penetration = 0.0;  // m, over every recorded frame
   double max_stretch = 0.0;      // over every recorded frame
+  Eigen::Matrix3Xd last_x;       // m, the positions at the last recorded frame
 };
 
 Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
@@ -52,10 +64,11 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
   runner::SimulationOptions options;
   options.interrupt = &interrupt;
   options.stretch_limit = 1.0;  // the stability verb's rule: twice the rest length has blown up
-  options.on_frame = [&](int, const ClothState&, const ClothMetrics& metrics) {
+  options.on_frame = [&](int, const ClothState& state, const ClothMetrics& metrics) {
     m.max_stretch = std::max(m.max_stretch, metrics.max_stretch);
     if (metrics.max_penetration)
       m.max_penetration = std::max(m.max_penetration, *metrics.max_penetration);
+    m.last_x = state.x;  // the final frame's, once the run has ended
   };
   m.result = runner::simulate_solver(scene, spec, setup, options);
   return m;
@@ -68,6 +81,7 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
 struct SolverRuns {
   scene::SolverSpec trial;
   bool skipped = false;
+  bool reference = false;  // the reference run of the cell, not one of kSolvers
   Measured fastest;
   double slowest_wall = 0.0;  // s
   int count = 0;
@@ -101,7 +115,9 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
     return row;
   }
   const runner::SimulationResult& result = r.fastest.result;
-  row.setting = r.trial.type == SolverType::spring_damper
+  row.setting = r.reference ? std::string(integrator_name(r.trial.integrator)) + " at 1/" +
+                                  std::to_string(kReferenceStepFraction) + " stable step"
+                : r.trial.type == SolverType::spring_damper
                     ? std::string(integrator_name(r.trial.integrator))
                 : r.trial.type == SolverType::bullet_softbody
                     ? std::to_string(r.trial.iterations) + " iterations"
@@ -128,21 +144,63 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
   return row;
 }
 
-// The rows of one scene and size, ours first (the ratios' denominator), printed as they are added.
+// The reference's setting: `spec` (kReference as the loader read it) at a fixed step of at most
+// 1/kReferenceStepFraction of symplectic Euler's stable step estimate on this cloth (the estimate
+// the loader's automatic step takes 0.9 of), rounded down to a whole number of steps per frame. The
+// loader has checked that 0.9 of that estimate gives at most 1e7 steps per frame, so the count here
+// fits an int.
+scene::SolverSpec reference_spec(const scene::Scene& scene, const ClothModel& model,
+                                 scene::SolverSpec spec) {
+  const double stable = stable_step_estimate(model, scene.cloth.air_damping, scene.contact_rates(),
+                                             Integrator::symplectic_euler);  // s, may be infinite
+  const double frame_period = scene.frame_period();                          // s
+  const double steps = std::max(1.0, std::ceil(frame_period * kReferenceStepFraction / stable));
+  spec = with_steps_per_frame(std::move(spec), frame_period, static_cast<int>(steps));
+  // The loader's note gave its automatic step; say which one runs instead.
+  std::cerr << "note: solver '" << spec.name << "': the bench runs it at " << spec.steps_per_frame
+            << " steps per frame instead (dt = " << format_number(spec.dt) << " s, at most 1/"
+            << kReferenceStepFraction << " of the stable step estimate " << format_number(stable)
+            << " s)\n";
+  return spec;
+}
+
+bool ended_ok(const runner::SimulationResult& result) {
+  return result.status == SolverStatus::ok && result.stopped_by == runner::StopCause::none;
+}
+
+// m: the root-mean-square distance between the two runs' particles at their final frames, matched
+// by index (every solver keeps our node order); nothing unless both ran to the end.
+std::optional<double> rms_distance(const Measured& a, const Measured& b) {
+  if (!ended_ok(a.result) || !ended_ok(b.result) || a.last_x.cols() == 0 ||
+      a.last_x.cols() != b.last_x.cols())
+    return std::nullopt;
+  return std::sqrt((a.last_x - b.last_x).colwise().squaredNorm().mean());
+}
+
+// The rows of one scene and size, in the order run, printed as they are added. The ratios'
+// denominator is ours, the first spring_damper solver of kSolvers.
 void add_cell_rows(BenchTable& table, const scene::Scene& scene, int n, const ClothModel& model,
                    const std::vector<SolverRuns>& runs) {
   double ours_cost = 0.0, ours_second_half_cost = 0.0;  // wall s per simulated s
+  const auto ours = std::find_if(runs.begin(), runs.end(), [](const SolverRuns& r) {
+    return !r.reference && !r.skipped && r.trial.type == SolverType::spring_damper;
+  });
+  if (ours != runs.end()) {
+    const BenchRow row = bench_row(scene, n, model, *ours);
+    ours_cost = row.wall_per_simulated;
+    ours_second_half_cost = row.second_half_wall_per_simulated;
+  }
+  const auto reference =
+      std::find_if(runs.begin(), runs.end(), [](const SolverRuns& r) { return r.reference; });
   for (const SolverRuns& r : runs) {
     BenchRow row = bench_row(scene, n, model, r);
-    if (r.trial.type == SolverType::spring_damper) {
-      ours_cost = row.wall_per_simulated;
-      ours_second_half_cost = row.second_half_wall_per_simulated;
-    }
     if (!r.skipped) {
       row.cost_ratio = ours_cost > 0.0 ? row.wall_per_simulated / ours_cost : 0.0;
       row.second_half_cost_ratio = ours_second_half_cost > 0.0
                                        ? row.second_half_wall_per_simulated / ours_second_half_cost
                                        : 0.0;
+      if (reference != runs.end())
+        row.rms_to_reference = rms_distance(r.fastest, reference->fastest);
       std::cout << format_row(row) << std::endl;
     }
     table.rows.push_back(row);
@@ -175,6 +233,8 @@ void add_bench_options(CLI::App& verb, BenchArguments& arguments) {
   verb.add_option(
       "--repeat", arguments.repeat,
       "Runs of every solver in every cell, interleaved; the fastest is reported (default 1)");
+  verb.add_flag("--no-reference", arguments.no_reference,
+                "Skip the reference run of every cell (the rms_to_reference column stays empty)");
 }
 
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt) {
@@ -212,10 +272,18 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
     for (int n : sizes) {
       const std::string resolution =
           "cloth.resolution=[" + std::to_string(n) + ", " + std::to_string(n) + "]";
+      const bool with_reference = !arguments.no_reference;
+      const std::string solvers =
+          "solvers=[" + kSolvers + (with_reference ? ", " + kReference : "") + "]";
       std::shared_ptr<const ClothModel> model;
-      const auto scene = load_trial_scene(file, {resolution, kSolvers}, duration, &model);
+      auto scene = load_trial_scene(file, {resolution, solvers}, duration, &model);
       if (!scene) return kExitBadInput;  // the loader printed why
       const runner::SceneSetup setup = runner::build_scene_setup(*scene, model);
+      std::optional<scene::SolverSpec> reference;  // run once, after the solvers and their repeats
+      if (with_reference) {
+        reference = reference_spec(*scene, *setup.model, scene->solvers.back());
+        scene->solvers.pop_back();
+      }
       // First each solver's setting and its first run, then the repeats, round by round across the
       // solvers, so that a slow spell of the machine falls on all of them alike.
       std::vector<SolverRuns> runs;
@@ -252,6 +320,13 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
                 << "warning: " << scene->name << " " << n << "x" << n << " " << r.trial.name
                 << ": a repeated run gave a different status, max stretch or max penetration\n";
         }
+      if (reference && !stopped) {
+        SolverRuns r;
+        r.trial = *reference;
+        r.reference = true;
+        r.add(measure(*scene, r.trial, setup, interrupt));
+        if (!(stopped = r.interrupted)) runs.push_back(std::move(r));
+      }
       add_cell_rows(table, *scene, n, *setup.model, runs);
       write_bench_files(out,
                         table);  // after every cell, so an interrupted bench keeps what it measured

@@ -110,6 +110,7 @@ struct BenchArguments {
   double duration = 0.0;            // s per run; 0 = 0.5 (0.1 with --quick)
   int threads = 0;                  // threads for our solver's loops; 0 = every core
   int repeat = 1;                   // runs of every solver in every cell; the fastest is reported
+  bool no_reference = false;        // skip the reference run (no rms_to_reference)
 };
 void add_bench_options(CLI::App& verb, BenchArguments& arguments);
 int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interrupt);

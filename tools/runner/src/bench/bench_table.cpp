@@ -17,6 +17,11 @@ std::string number(double value, const char* format = "%.4g") {
 
 bool measured(const BenchRow& row) { return row.status != "skipped"; }
 
+// The rms distance to the reference, or an empty cell.
+std::string rms_cell(const BenchRow& row, const char* format) {
+  return row.rms_to_reference ? number(*row.rms_to_reference, format) : "";
+}
+
 }  // namespace
 
 std::string format_row(const BenchRow& row) {
@@ -28,6 +33,8 @@ std::string format_row(const BenchRow& row) {
          << number(row.ms_per_step) << " ms per step, x" << number(row.cost_ratio, "%.3g")
          << " ours; second half " << number(row.second_half_wall_per_simulated)
          << " wall s per simulated s, x" << number(row.second_half_cost_ratio, "%.3g") << " ours";
+  if (measured(row) && row.rms_to_reference)
+    line << "; " << rms_cell(row, "%.3g") << " m rms to the reference";
   if (measured(row) && row.runs > 1)
     line << "; fastest of " << row.runs << " runs, the slowest x"
          << number(row.wall_spread, "%.3g");
@@ -39,21 +46,22 @@ std::string markdown(const BenchTable& table) {
   md << "Machine: " << table.machine << "\n\n"
      << "| scene | particles | solver | setting | dt (s) | status | wall s / sim s | ms / step | "
         "max stretch | "
-        "max penetration (m) | cost / ours | wall s / sim s, 2nd half | cost / ours, 2nd half | "
+        "max penetration (m) | rms to reference (m) | cost / ours | wall s / sim s, 2nd half | "
+        "cost / ours, 2nd half | "
         "runs | slowest / "
         "fastest |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow& r : table.rows) {
     md << "| " << r.scene << " | " << r.size << " x " << r.size << " | " << r.solver << " | "
        << r.setting << " | ";
     if (!measured(r)) {
-      md << " | " << r.status << " | | | | | | | | | |\n";
+      md << " | " << r.status << " | | | | | | | | | | |\n";
       continue;
     }
     md << number(r.dt) << " | " << r.status << " | " << number(r.wall_per_simulated) << " | "
        << number(r.ms_per_step) << " | " << number(r.max_stretch, "%.3g") << " | "
-       << number(r.max_penetration, "%.3g") << " | " << number(r.cost_ratio, "%.3g") << " | "
-       << number(r.second_half_wall_per_simulated) << " | "
+       << number(r.max_penetration, "%.3g") << " | " << rms_cell(r, "%.3g") << " | "
+       << number(r.cost_ratio, "%.3g") << " | " << number(r.second_half_wall_per_simulated) << " | "
        << number(r.second_half_cost_ratio, "%.3g") << " | " << r.runs << " | "
        << number(r.wall_spread, "%.3g") << " |\n";
   }
@@ -65,7 +73,7 @@ void write_bench_files(const std::filesystem::path& folder, const BenchTable& ta
   std::ostringstream csv;
   csv << "scene,size,particles,springs,solver,type,setting,dt,status,wall_seconds_per_simulated_"
          "second,"
-         "ms_per_step,max_stretch,max_penetration,cost_ratio_to_ours,"
+         "ms_per_step,max_stretch,max_penetration,rms_to_reference,cost_ratio_to_ours,"
          "second_half_wall_seconds_per_simulated_second,second_half_cost_ratio_to_ours,runs,wall_"
          "spread\n";
   for (const BenchRow& r : table.rows) {
@@ -75,11 +83,12 @@ void write_bench_files(const std::filesystem::path& folder, const BenchTable& ta
     if (measured(r))
       csv << number(r.wall_per_simulated, "%.6g") << "," << number(r.ms_per_step, "%.6g") << ","
           << number(r.max_stretch, "%.6g") << "," << number(r.max_penetration, "%.6g") << ","
-          << number(r.cost_ratio, "%.6g") << "," << number(r.second_half_wall_per_simulated, "%.6g")
-          << "," << number(r.second_half_cost_ratio, "%.6g") << "," << r.runs << ","
+          << rms_cell(r, "%.6g") << "," << number(r.cost_ratio, "%.6g") << ","
+          << number(r.second_half_wall_per_simulated, "%.6g") << ","
+          << number(r.second_half_cost_ratio, "%.6g") << "," << r.runs << ","
           << number(r.wall_spread, "%.6g");
     else
-      csv << ",,,,,,,,";
+      csv << ",,,,,,,,,";
     csv << "\n";
   }
   run_folder::write_file_atomically(folder / "bench.csv", csv.str());

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,11 @@ struct BenchRow {
   double ms_per_step = 0.0;
   double max_stretch = 0.0;      // over every frame
   double max_penetration = 0.0;  // m, over every frame
-  double cost_ratio = 0.0;       // wall_per_simulated / ours (same scene and size)
+  // m: the root-mean-square distance between this row's particle positions and the reference run's
+  // at the final frame, particles matched by index; nothing when either run did not end ok or
+  // there is no reference run.
+  std::optional<double> rms_to_reference;
+  double cost_ratio = 0.0;  // wall_per_simulated / ours (same scene and size)
   // The same two over the run's second half (SimulationResult::second_half_...): the steady cost,
   // once the sheet has landed and Bullet's classic cloth has built most of its distance cache.
   double second_half_wall_per_simulated = 0.0;
