@@ -272,6 +272,7 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::scheme_counters(
   if (vbd_) {
     const VbdStats& s = vbd_->stats();
     return {{"vbd_iterations", settings_.vbd.iterations},
+            {"vbd_order", settings_.vbd.order},
             {"vbd_chebyshev_rho", settings_.vbd.chebyshev_rho},
             {"vbd_colors", s.colors},
             {"vbd_last_sweep_move", s.last_sweep_move},

@@ -1,7 +1,8 @@
 // drapelab bench: the cost of every solver on a fixed set of scenes and resolutions, measured in
-// one process run so the ratios compare like with like. Our solver runs at its best setting
-// (symplectic Euler in adaptive substeps at 0.9 of its shape's stable step, the spring fast path,
-// OpenMP threads in every phase); Bullet's classic cloth at its cheapest stable setting (a 240 Hz
+// one process run so the ratios compare like with like. Our solver runs twice: `ours`, vertex block
+// descent at its default step and sweeps, and `ours_explicit`, symplectic Euler in adaptive
+// substeps at 0.9 of its shape's stable step on the spring fast path (OpenMP threads in every
+// phase of both); Bullet's classic cloth at its cheapest stable setting (a 240 Hz
 // step with 4 iterations, halved until it holds); Bullet's deformable world at its own stable step
 // (skipped above 65 x 65 particles: it costs minutes there). Once per scene and size, a reference
 // run (our cloth, symplectic Euler at a fixed quarter of its stable step) gives every solver's
@@ -39,8 +40,9 @@ namespace fs = std::filesystem;
 // list, in scene-file syntax). The first spring_damper entry is "ours", the denominator of every
 // cost ratio; further spring_damper entries are rows like any other.
 const std::string kSolvers =
-    "{name: ours, type: spring_damper, integrator: symplectic_euler, adaptive_substeps: true, "
-    "host: none},"
+    "{name: ours, type: spring_damper, integrator: vbd, host: none},"
+    " {name: ours_explicit, type: spring_damper, integrator: symplectic_euler, "
+    "adaptive_substeps: true, host: none},"
     " {name: bullet_classic, type: bullet_softbody, iterations: 4, dt: 0.004166666666666667},"
     " {name: bullet_deformable, type: bullet_deformable}";
 // The reference run, appended to the list so the loader checks it and fills in its defaults; its
@@ -122,6 +124,9 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
                 : r.trial.type == SolverType::bullet_softbody
                     ? std::to_string(r.trial.iterations) + " iterations"
                     : "its stable step";
+  if (r.trial.type == SolverType::spring_damper && r.trial.integrator == Integrator::vbd)
+    row.setting += " (" + std::to_string(r.trial.vbd.iterations) + " sweeps" +
+                   (r.trial.vbd.order == 2 ? ", BDF2" : "") + ")";
   row.dt = r.trial.dt;
   row.status = solver_status_name(result.status);
   row.wall_per_simulated = result.wall_seconds_per_simulated_second();

@@ -21,6 +21,9 @@ namespace drapelab {
 
 struct VbdSettings {
   int iterations = 10;  // sweeps over every particle per step
+  // 1: backward Euler. 2: BDF2 (second order; the same minimisation with x(n) and v(n) replaced
+  // by blends of the last two steps), backward Euler on a first step or after a change of step.
+  int order = 1;
   // Chebyshev semi-iterative acceleration of the sweeps (the paper's rho, in [0, 1)): 0 is off.
   double chebyshev_rho = 0.0;
   // Friction's smoothing velocity (m/s): a contact whose tangential speed is below it sticks as a

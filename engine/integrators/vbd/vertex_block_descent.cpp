@@ -90,10 +90,13 @@ VertexBlockDescent::VertexBlockDescent(const ClothModel& model, VbdSettings sett
   inertia_.resize(3, n);
   sweep_start_.resize(3, n);
   previous_v_.resize(3, n);
+  previous_x_.resize(3, n);
+  base_v_.resize(3, n);
 }
 
 void VertexBlockDescent::find_planes(const ClothModel& model, const VbdStepInput& input,
-                                     const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v) {
+                                     double velocity_step, const Eigen::Matrix3Xd& x,
+                                     const Eigen::Matrix3Xd& v) {
   std::fill(plane_count_.begin(), plane_count_.end(), 0);
   if (!input.contacts || input.contacts->empty()) return;
   const ContactModel& contacts = *input.contacts;
@@ -124,7 +127,8 @@ void VertexBlockDescent::find_planes(const ClothModel& model, const VbdStepInput
         const Eigen::Vector3d point = x.col(i) - (reach - touch->depth) * touch->normal;
         store(&plane_point_[3 * e], point);
         store(&plane_normal_[3 * e], touch->normal);
-        store(&plane_surface_move_[3 * e], input.h * contacts.surface_velocity(c, end_time, point));
+        store(&plane_surface_move_[3 * e],
+              velocity_step * contacts.surface_velocity(c, end_time, point));
         plane_collider_[e] = static_cast<std::int32_t>(c);
         plane_kinetic_[e] = collider.friction;
         plane_fixed_[e] = std::max(collider.friction, collider.static_friction);
@@ -133,7 +137,8 @@ void VertexBlockDescent::find_planes(const ClothModel& model, const VbdStepInput
   }
 }
 
-void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContact>& couplings) {
+void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContact>& couplings,
+                                         const Eigen::Matrix3Xd& x) {
   const std::size_t count = couplings.size();
   coupling_particle_.resize(4 * count);
   coupling_weight_.resize(4 * count);
@@ -150,7 +155,12 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
       if (w.particle[s] >= 0) ++coupling_offsets_[static_cast<std::size_t>(w.particle[s]) + 1];
     }
     store(&coupling_normal_[3 * c], w.normal);
-    coupling_depth_[c] = w.depth;
+    // The depth is linearised at x(n); the sweeps measure displacements from start_ (X).
+    double shift = 0.0;  // m: n . sum_j w_j (X_j - x_j(n))
+    for (int s = 0; s < 4; ++s)
+      if (w.particle[s] >= 0)
+        shift += w.weight[s] * w.normal.dot(start_.col(w.particle[s]) - x.col(w.particle[s]));
+    coupling_depth_[c] = w.depth - shift;
     coupling_stiffness_[c] = w.stiffness;
     coupling_damping_[c] = w.damping;
   }
@@ -172,25 +182,38 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
                               Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v,
                               std::vector<ColliderContactTotals>& totals) {
   const int n = model.particle_count();
-  const double h = input.h;
-  find_planes(model, input, x, v);
+  // BDF2, x(n+1) = X + b v(n+1) and v(n+1) = V + b a(n+1) with X = (4 x(n) - x(n-1)) / 3,
+  // V = (4 v(n) - v(n-1)) / 3 and b = 2 h / 3, is backward Euler's problem with X, V and b in place
+  // of x(n), v(n) and h. It needs the last step, taken with the same h; without it (the first step,
+  // a change of step), the step is backward Euler's.
+  const bool second_order = settings_.order == 2 && history_step_ == input.h;
+  const double h = second_order ? 2.0 * input.h / 3.0 : input.h;  // s: the b above
+  if (second_order) {
+    start_ = (4.0 * x - previous_x_) / 3.0;
+    base_v_ = (4.0 * v - previous_v_) / 3.0;
+  } else {
+    start_ = x;
+    base_v_ = v;
+  }
+  find_planes(model, input, h, x, v);
   const bool coupled = input.couplings && !input.couplings->empty();
-  if (coupled) index_couplings(n, *input.couplings);
-  start_ = x;
-  // y = x(n) + h v(n) + h^2 (g + f_explicit / m)
-  inertia_ = x + h * v;
+  if (coupled) index_couplings(n, *input.couplings, x);
+  // y = X + b V + b^2 (g + f_explicit / m)
+  inertia_ = start_ + h * base_v_;
   inertia_.colwise() += (h * h) * input.gravity;
   if (input.explicit_force && input.explicit_force->cols() == n)
     inertia_ += (h * h) * (*input.explicit_force * model.inverse_mass.asDiagonal());
+  previous_x_ = x;  // x(n): the next step's history
   // The initial guess (the paper's adaptive one): inertia plus as much of gravity as the particle
   // felt over the last step, from none (held, as on a table) to all (falling freely).
   const double g2 = input.gravity.squaredNorm();
   for (int i = 0; i < n; ++i) {
     double felt = 1.0;
-    if (has_previous_v_ && g2 > 0.0)
-      felt = std::clamp((v.col(i) - previous_v_.col(i)).dot(input.gravity) / (h * g2), 0.0, 1.0);
+    if (history_step_ > 0.0 && g2 > 0.0)
+      felt = std::clamp((v.col(i) - previous_v_.col(i)).dot(input.gravity) / (history_step_ * g2),
+                        0.0, 1.0);
     if (!model.is_pinned(i))
-      x.col(i) = start_.col(i) + h * v.col(i) + (h * h * felt) * input.gravity;
+      x.col(i) = start_.col(i) + h * base_v_.col(i) + (h * h * felt) * input.gravity;
   }
   if (input.explicit_force && input.explicit_force->cols() == n)
     x += (h * h) * (*input.explicit_force * model.inverse_mass.asDiagonal());
@@ -246,7 +269,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
     before_last_ = sweep_start_;
   }
   previous_v_ = v;
-  has_previous_v_ = true;
+  history_step_ = input.h;
   v = (x - start_) / h;
   ++stats_.steps;
   stats_.iterations_total += settings_.iterations;

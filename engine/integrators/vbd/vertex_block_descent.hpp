@@ -48,10 +48,13 @@ class VertexBlockDescent {
  private:
   // Collider contacts for the step: every collider whose surface at the step's end lies within
   // the cloth's thickness plus a margin of a particle's start, as a plane (vbd_loops.hpp).
-  void find_planes(const ClothModel& model, const VbdStepInput& input, const Eigen::Matrix3Xd& x,
-                   const Eigen::Matrix3Xd& v);
+  // `velocity_step` (s): the step that turns the surface's velocity into its motion in the sweeps.
+  void find_planes(const ClothModel& model, const VbdStepInput& input, double velocity_step,
+                   const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
   // The per-particle rows of the contacts between particles.
-  void index_couplings(int n, const std::vector<WeightedContact>& couplings);
+  // `x`: the positions x(n) the contacts were found at.
+  void index_couplings(int n, const std::vector<WeightedContact>& couplings,
+                       const Eigen::Matrix3Xd& x);
   void record_contact_totals(const Eigen::Matrix3Xd& x, double h,
                              std::vector<ColliderContactTotals>& totals) const;
 
@@ -76,10 +79,12 @@ class VertexBlockDescent {
       coupling_particle_;
   std::vector<double> coupling_weight_, coupling_normal_, coupling_depth_, coupling_stiffness_,
       coupling_damping_;
-  // Per step (m, 3 x N): x(n), the inertial target, the sweep's start and Chebyshev's history.
-  Eigen::Matrix3Xd start_, inertia_, sweep_start_, before_last_;
-  Eigen::Matrix3Xd previous_v_;  // m/s: v(n-1), for the initial guess
-  bool has_previous_v_ = false;
+  // Per step (m, 3 x N): the start X (x(n), or BDF2's blend), the inertial target, the sweep's
+  // start and Chebyshev's history; V (m/s), the start velocity.
+  Eigen::Matrix3Xd start_, inertia_, sweep_start_, before_last_, base_v_;
+  // The last step: x(n-1) (m) and v(n-1) (m/s), and its h (s; 0 before the first step).
+  Eigen::Matrix3Xd previous_x_, previous_v_;
+  double history_step_ = 0.0;
 };
 
 }  // namespace drapelab

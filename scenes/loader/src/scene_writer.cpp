@@ -150,7 +150,7 @@ std::string resolved_scene_yaml(const Scene& s) {
           << "    adaptive_substeps: " << (solver.adaptive_substeps ? "true" : "false")
           << "  # split dt into the substeps the shape's stable step needs\n";
     if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::vbd)
-      out << "    vbd: {iterations: " << solver.vbd.iterations
+      out << "    vbd: {iterations: " << solver.vbd.iterations << ", order: " << solver.vbd.order
           << ", chebyshev_rho: " << format_number(solver.vbd.chebyshev_rho)
           << ", friction_velocity: " << format_number(solver.vbd.friction_velocity)
           << "}  # sweeps per step\n";

@@ -116,12 +116,14 @@ class SolverReader {
       return;
     }
     MapReader vbd(r_, solver.get("vbd"), solver.path_of("vbd"),
-                  {"iterations", "chebyshev_rho", "friction_velocity"});
+                  {"iterations", "order", "chebyshev_rho", "friction_velocity"});
     if (!vbd.valid()) return;
     const VbdSettings defaults;
     spec.vbd.iterations =
         static_cast<int>(vbd.integer("iterations", {1.0, true, 1e4, true}, defaults.iterations)
                              .value_or(defaults.iterations));
+    spec.vbd.order = static_cast<int>(
+        vbd.integer("order", {1.0, true, 2.0, true}, defaults.order).value_or(defaults.order));
     spec.vbd.chebyshev_rho =
         vbd.number("chebyshev_rho", {0.0, true, 1.0, false}, defaults.chebyshev_rho)
             .value_or(defaults.chebyshev_rho);
