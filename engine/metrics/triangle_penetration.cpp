@@ -6,7 +6,7 @@
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/sphere.h>
-#include <fcl/narrowphase/detail/convexity_based_algorithm/gjk_libccd.h>
+#include <fcl/narrowphase/detail/gjk_solver_indep.h>
 
 #include <algorithm>
 #include <cmath>
@@ -56,29 +56,26 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
   return a + (vb / denominator) * ab + (vc / denominator) * ac;
 }
 
-// FCL's signed distance between a convex shape posed by shape_pose and a world-space triangle.
+// FCL's signed distance between a convex shape posed by shape_pose and a world-space triangle,
+// from FCL's own GJK and EPA (GJKSolver_indep): libccd's EPA, the other solver FCL offers, aborts
+// the program on an assertion when the triangle meets the shape at a degenerate polytope (seen on
+// cloth pressed flat against a cylinder's rim); this one reports a failed expansion instead.
 template <typename Shape>
 double gjk_signed_distance(const Shape& shape, const Eigen::Isometry3d& shape_pose,
                            const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                            const Eigen::Vector3d& c) {
-  using Initializer = fcl::detail::GJKInitializer<double, Shape>;
+  fcl::detail::GJKSolver_indep<double> solver;
+  solver.gjk_max_iterations = kGjkMaxIterations;
+  solver.epa_max_iterations = kGjkMaxIterations;
+  solver.gjk_tolerance = kTriangleDistanceTolerance;
+  solver.epa_tolerance = kTriangleDistanceTolerance;
   const fcl::Transform3d pose(shape_pose.matrix());
-  void* solid = Initializer::createGJKObject(shape, pose);
-  void* triangle = fcl::detail::triCreateGJKObject<double>(a, b, c);
-  double distance = 0.0;
-  fcl::Vector3d on_solid, on_triangle;
-  try {
-    fcl::detail::GJKSignedDistance<double>(
-        solid, Initializer::getSupportFunction(), triangle, fcl::detail::triGetSupportFunction(),
-        kGjkMaxIterations, kTriangleDistanceTolerance, &distance, &on_solid, &on_triangle);
-  } catch (...) {
-    Initializer::deleteGJKObject(solid);
-    fcl::detail::triDeleteGJKObject(triangle);
-    throw;
-  }
-  Initializer::deleteGJKObject(solid);
-  fcl::detail::triDeleteGJKObject(triangle);
-  return distance;
+  double distance = 0.0;  // m
+  if (solver.shapeTriangleDistance(shape, pose, a, b, c, &distance)) return distance;
+  double depth = 0.0;  // m
+  fcl::Vector3d point, normal;
+  solver.shapeTriangleIntersect(shape, pose, a, b, c, &point, &depth, &normal);
+  return -std::abs(depth);
 }
 
 }  // namespace

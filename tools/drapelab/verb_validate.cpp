@@ -56,6 +56,16 @@ int validate_verb(const ValidateArguments& arguments) {
     std::cout << "  solver " << solver.name << ": " << solver_type_name(solver.type);
     if (solver.type == SolverType::spring_damper)
       std::cout << ", " << integrator_name(solver.integrator);
+    if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::vbd)
+      std::cout << " (" << solver.vbd.iterations << " sweeps per step, "
+                << (solver.vbd.order == 2 ? "BDF2" : "backward Euler")
+                << (solver.vbd.chebyshev_rho > 0.0
+                        ? ", Chebyshev rho " + format_number(solver.vbd.chebyshev_rho)
+                        : std::string())
+                << ")";
+    if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::implicit_euler)
+      std::cout << " (conjugate gradient to " << solver.implicit.tolerance << ", at most "
+                << solver.implicit.max_iterations << " iterations per step)";
     if (solver.type == SolverType::bullet_softbody)
       std::cout << ", " << solver.iterations << " iteration(s)";
     if (solver.type != SolverType::spring_damper)

@@ -62,12 +62,15 @@ inline double dot(const double* a, const double* b) {
 
 // The damped springs at particle i: E = ks (l - l0)^2 / 2 and the damper's dissipation
 // kd ((dx_i - dx_j) . u)^2 / (2 h) with dx the displacement over the step, u the unit spring.
+// `pinned_only`: only the springs to pinned particles (the whole cloth's translation stretches no
+// other).
 void add_springs(const VbdProblem& p, std::int64_t i, const double* x, const double* move_i,
-                 Block& b) {
+                 bool pinned_only, Block& b) {
   const VbdSprings& s = p.springs;
   const double* xi = x + 3 * i;
   for (std::int32_t e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
     const std::int64_t j = s.other[e];
+    if (pinned_only && p.inverse_mass[j] != 0.0) continue;
     const double* xj = x + 3 * j;
     double u[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
     const double length = std::sqrt(dot(u, u));
@@ -156,24 +159,32 @@ void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, Block&
   }
 }
 
-// Particle i's Newton step; returns how far it moved (m).
-double solve_particle(const VbdProblem& p, std::int64_t i, double* x) {
-  if (p.inverse_mass[i] == 0.0) return 0.0;  // pinned
-  double* xi = x + 3 * i;
+// Particle i's force f = -dG/dx_i and block H; `pinned_only` as add_springs, and then without the
+// contacts between particles (the caller takes them whole).
+void particle_block(const VbdProblem& p, std::int64_t i, const double* x, bool pinned_only,
+                    Block& b) {
+  const double* xi = x + 3 * i;
   const double* si = p.start + 3 * i;
   const double* yi = p.inertia + 3 * i;
   const double move_i[3] = {xi[0] - si[0], xi[1] - si[1], xi[2] - si[2]};
-  Block b;
   // Inertia m |x - y|^2 / (2 h^2) and air drag a m |x - x(n)|^2 / (2 h).
   const double inertia = p.mass[i] / (p.h * p.h);       // N/m
   const double drag = p.air_damping * p.mass[i] / p.h;  // N/m
   for (int d = 0; d < 3; ++d) b.f[d] = -inertia * (xi[d] - yi[d]) - drag * move_i[d];
   b.add_identity(inertia + drag);
-  add_springs(p, i, x, move_i, b);
+  add_springs(p, i, x, move_i, pinned_only, b);
   if (p.planes.count) add_planes(p, i, xi, move_i, b);
-  if (p.couplings.offsets) add_couplings(p, i, xi, b);
+  if (p.couplings.offsets && !pinned_only) add_couplings(p, i, xi, b);
+}
+
+// Particle i's Newton step; returns how far it moved (m).
+double solve_particle(const VbdProblem& p, std::int64_t i, double* x) {
+  if (p.inverse_mass[i] == 0.0) return 0.0;  // pinned
+  Block b;
+  particle_block(p, i, x, false, b);
   double move[3];
   if (!b.solve(move)) return 0.0;
+  double* xi = x + 3 * i;
   xi[0] += move[0];
   xi[1] += move[1];
   xi[2] += move[2];
@@ -192,6 +203,49 @@ double vbd_sweep(const VbdProblem& problem, double* x) {
       largest = std::max(largest, solve_particle(problem, problem.color_particles[k], x));
   }
   return largest;
+}
+
+double vbd_translate(const VbdProblem& p, double* x) {
+  // Summed over the free particles in index order on one thread, so the bits do not depend on the
+  // thread count: the springs between free particles cancel, so each particle costs its inertia,
+  // contacts and springs to pins only.
+  Block total;
+  for (std::int64_t i = 0; i < p.n; ++i) {
+    if (p.inverse_mass[i] == 0.0) continue;
+    Block b;
+    particle_block(p, i, x, true, b);
+    for (int d = 0; d < 3; ++d) total.f[d] += b.f[d];
+    for (int d = 0; d < 6; ++d) total.h[d] += b.h[d];
+  }
+  // A contact between particles moves with the cloth as a whole when its weights sum to zero (the
+  // cloth against itself); one against a collider's edge pushes the cloth by its weights' sum.
+  const VbdCouplings& c = p.couplings;
+  for (std::int64_t contact = 0; c.offsets && contact < c.count; ++contact) {
+    const double* n = c.normal + 3 * contact;
+    double along = 0.0, sum = 0.0;
+    for (int s = 0; s < 4; ++s) {
+      const std::int64_t j = c.particle[4 * contact + s];
+      if (j < 0 || p.inverse_mass[j] == 0.0) continue;
+      const double d[3] = {x[3 * j] - p.start[3 * j], x[3 * j + 1] - p.start[3 * j + 1],
+                           x[3 * j + 2] - p.start[3 * j + 2]};
+      along += c.weight[4 * contact + s] * dot(d, n);
+      sum += c.weight[4 * contact + s];
+    }
+    const double fn =
+        c.stiffness[contact] * (c.depth[contact] - along) - c.damping[contact] * along / p.h;  // N
+    if (fn <= 0.0 || sum == 0.0) continue;
+    total.add_force(sum * fn, n);
+    total.add_outer(sum * sum * (c.stiffness[contact] + c.damping[contact] / p.h), n);
+  }
+  double move[3];
+  if (!total.solve(move)) return 0.0;
+  for (std::int64_t i = 0; i < p.n; ++i) {
+    if (p.inverse_mass[i] == 0.0) continue;
+    x[3 * i] += move[0];
+    x[3 * i + 1] += move[1];
+    x[3 * i + 2] += move[2];
+  }
+  return std::sqrt(dot(move, move));
 }
 
 }  // namespace drapelab::kernels

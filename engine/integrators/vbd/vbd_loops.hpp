@@ -40,6 +40,7 @@ struct VbdPlanes {
 // step's start: the contact's depth is depth - n . sum_j w_j (x_j - x_j(n)). Particle i's entries
 // are rows offsets[i] to offsets[i + 1] - 1 of (contact, slot) pairs.
 struct VbdCouplings {
+  std::int64_t count = 0;  // contacts
   const std::int32_t* offsets = nullptr;
   const std::int32_t* contact = nullptr;
   const std::int32_t* slot = nullptr;
@@ -73,5 +74,11 @@ struct VbdProblem {
 // One sweep: every colour in turn, each particle's Newton step on G with the others held. Updates
 // x in place and returns the largest distance one particle moved (m).
 double vbd_sweep(const VbdProblem& problem, double* x);
+
+// The coarse correction of the sweeps: one Newton step on G over a rigid translation of every free
+// particle together, the cloth's slowest mode for the sweeps (each particle's own step moves it
+// against its neighbours, so a move of the whole cloth, as in a fall, spreads one colour at a
+// time). Updates x and returns the length of the translation (m).
+double vbd_translate(const VbdProblem& problem, double* x);
 
 }  // namespace drapelab::kernels

@@ -204,19 +204,13 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   if (input.explicit_force && input.explicit_force->cols() == n)
     inertia_ += (h * h) * (*input.explicit_force * model.inverse_mass.asDiagonal());
   previous_x_ = x;  // x(n): the next step's history
-  // The initial guess (the paper's adaptive one): inertia plus as much of gravity as the particle
-  // felt over the last step, from none (held, as on a table) to all (falling freely).
-  const double g2 = input.gravity.squaredNorm();
-  for (int i = 0; i < n; ++i) {
-    double felt = 1.0;
-    if (history_step_ > 0.0 && g2 > 0.0)
-      felt = std::clamp((v.col(i) - previous_v_.col(i)).dot(input.gravity) / (history_step_ * g2),
-                        0.0, 1.0);
-    if (!model.is_pinned(i))
-      x.col(i) = start_.col(i) + h * base_v_.col(i) + (h * h * felt) * input.gravity;
-  }
-  if (input.explicit_force && input.explicit_force->cols() == n)
-    x += (h * h) * (*input.explicit_force * model.inverse_mass.asDiagonal());
+  // The initial guess: X + b V, the motion without the step's forces. The paper's adaptive guess
+  // adds the part of gravity each particle felt over the last step; with a fixed budget of sweeps
+  // that part is not always taken back where the cloth is held, and an undamped curtain then gained
+  // energy (9.6 J from 2.45 J in 2 s at 1/120 s, 10 sweeps). The fall itself comes from the
+  // translation step after every sweep.
+  for (int i = 0; i < n; ++i)
+    if (!model.is_pinned(i)) x.col(i) = start_.col(i) + h * base_v_.col(i);
 
   kernels::VbdProblem problem;
   problem.n = n;
@@ -246,10 +240,16 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
                       k.damping};
   }
   if (coupled)
-    problem.couplings = {
-        coupling_offsets_.data(),  coupling_contact_.data(),   coupling_slot_.data(),
-        coupling_particle_.data(), coupling_weight_.data(),    coupling_normal_.data(),
-        coupling_depth_.data(),    coupling_stiffness_.data(), coupling_damping_.data()};
+    problem.couplings = {static_cast<std::int64_t>(input.couplings->size()),
+                         coupling_offsets_.data(),
+                         coupling_contact_.data(),
+                         coupling_slot_.data(),
+                         coupling_particle_.data(),
+                         coupling_weight_.data(),
+                         coupling_normal_.data(),
+                         coupling_depth_.data(),
+                         coupling_stiffness_.data(),
+                         coupling_damping_.data()};
   problem.color_offsets = color_offsets_.data();
   problem.color_particles = color_particles_.data();
   problem.colors = static_cast<int>(color_offsets_.size()) - 1;
@@ -261,12 +261,15 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   if (accelerate) before_last_ = x;
   double omega = 1.0, last_move = 0.0;
   for (int k = 0; k < settings_.iterations; ++k) {
-    sweep_start_ = x;
+    if (accelerate) iteration_start_ = x;
+    // The translation first, so that the sweep after it settles what it moved into contact.
+    if (settings_.translation) kernels::vbd_translate(problem, x.data());
+    if (coupled) sweep_start_ = x;
     last_move = kernels::vbd_sweep(problem, x.data());
     if (!accelerate) continue;
     omega = k == 0 ? 1.0 : k == 1 ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
     if (k > 0) x = omega * (x - before_last_) + before_last_;
-    before_last_ = sweep_start_;
+    before_last_ = iteration_start_;
   }
   previous_v_ = v;
   history_step_ = input.h;

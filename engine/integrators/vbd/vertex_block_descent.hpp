@@ -80,8 +80,9 @@ class VertexBlockDescent {
   std::vector<double> coupling_weight_, coupling_normal_, coupling_depth_, coupling_stiffness_,
       coupling_damping_;
   // Per step (m, 3 x N): the start X (x(n), or BDF2's blend), the inertial target, the sweep's
-  // start and Chebyshev's history; V (m/s), the start velocity.
-  Eigen::Matrix3Xd start_, inertia_, sweep_start_, before_last_, base_v_;
+  // start (read by the contacts between particles), the iteration's start and the one before
+  // (Chebyshev's history); V (m/s), the start velocity.
+  Eigen::Matrix3Xd start_, inertia_, sweep_start_, iteration_start_, before_last_, base_v_;
   // The last step: x(n-1) (m) and v(n-1) (m/s), and its h (s; 0 before the first step).
   Eigen::Matrix3Xd previous_x_, previous_v_;
   double history_step_ = 0.0;
