@@ -26,8 +26,9 @@ struct VbdSettings {
   int order = 1;
   // Chebyshev semi-iterative acceleration of the sweeps (the paper's rho, in [0, 1)): 0 is off.
   double chebyshev_rho = 0.0;
-  // After each sweep, a Newton step on the translation of the whole cloth (its slowest mode).
-  bool translation = true;
+  // Before each sweep, a Newton step on the translations of aggregates of 16 particles, solved
+  // exactly: the modes of whole regions, which the sweeps reach slowest.
+  bool coarse_correction = true;
   // Friction's smoothing velocity (m/s): a contact whose tangential speed is below it sticks as a
   // stiff spring of mu_s fn / (friction_velocity h), so a sticking particle creeps at most this
   // fast; above it, the Coulomb force mu_k fn opposes the slip.

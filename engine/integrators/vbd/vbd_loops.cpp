@@ -60,35 +60,43 @@ inline double dot(const double* a, const double* b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-// The damped springs at particle i: E = ks (l - l0)^2 / 2 and the damper's dissipation
-// kd ((dx_i - dx_j) . u)^2 / (2 h) with dx the displacement over the step, u the unit spring.
-// `pinned_only`: only the springs to pinned particles (the whole cloth's translation stretches no
-// other).
-void add_springs(const VbdProblem& p, std::int64_t i, const double* x, const double* move_i,
-                 bool pinned_only, Block& b) {
+// One damped spring seen from its end i: E = ks (l - l0)^2 / 2 and the damper's dissipation
+// kd ((dx_i - dx_j) . u)^2 / (2 h) with dx the displacement over the step and u the unit spring
+// from j to i. Adds the force on i to f and, when `hessian`, the block d2/dx_i2, which is also
+// minus the block d2/dx_i dx_j. False when the ends coincide (no direction: nothing is added).
+[[gnu::always_inline]] inline bool add_spring(const double* xi, const double* si, const double* xj,
+                                              const double* sj, double rest_length, double ks,
+                                              double kd, double h, bool hessian, Block& b) {
+  double u[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+  const double length = std::sqrt(dot(u, u));
+  if (!(length > 0.0)) return false;
+  const double inv_length = 1.0 / length;
+  u[0] *= inv_length;
+  u[1] *= inv_length;
+  u[2] *= inv_length;
+  const double rel[3] = {(xi[0] - si[0]) - (xj[0] - sj[0]), (xi[1] - si[1]) - (xj[1] - sj[1]),
+                         (xi[2] - si[2]) - (xj[2] - sj[2])};
+  const double stretch_velocity = dot(rel, u) / h;  // m/s, > 0 lengthening
+  b.add_force(-(ks * (length - rest_length) + kd * stretch_velocity), u);
+  if (!hessian) return true;
+  // ks u u^T along the spring; across it ks (1 - l0 / l), kept only while the spring is longer
+  // than at rest (compressed, that term is negative and a Newton step could go uphill).
+  const double across = ks * std::max(0.0, 1.0 - rest_length * inv_length);
+  b.add_identity(across);
+  b.add_outer(ks - across + kd / h, u);
+  return true;
+}
+
+// Which of particle i's springs a block takes, and whether with their Hessians.
+enum class SpringTerms { all, forces_only };
+
+void add_springs(const VbdProblem& p, std::int64_t i, const double* x, SpringTerms terms,
+                 Block& b) {
   const VbdSprings& s = p.springs;
-  const double* xi = x + 3 * i;
   for (std::int32_t e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
     const std::int64_t j = s.other[e];
-    if (pinned_only && p.inverse_mass[j] != 0.0) continue;
-    const double* xj = x + 3 * j;
-    double u[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
-    const double length = std::sqrt(dot(u, u));
-    if (!(length > 0.0)) continue;  // coincident ends have no direction: the spring is skipped
-    const double inv_length = 1.0 / length;
-    u[0] *= inv_length;
-    u[1] *= inv_length;
-    u[2] *= inv_length;
-    const double* sj = p.start + 3 * j;
-    const double rel[3] = {move_i[0] - (xj[0] - sj[0]), move_i[1] - (xj[1] - sj[1]),
-                           move_i[2] - (xj[2] - sj[2])};
-    const double stretch_velocity = dot(rel, u) / p.h;  // m/s, > 0 lengthening
-    b.add_force(-(s.ks[e] * (length - s.rest_length[e]) + s.kd[e] * stretch_velocity), u);
-    // ks u u^T along the spring; across it ks (1 - l0 / l), kept only while the spring is longer
-    // than at rest (compressed, that term is negative and a Newton step could go uphill).
-    const double across = s.ks[e] * std::max(0.0, 1.0 - s.rest_length[e] * inv_length);
-    b.add_identity(across);
-    b.add_outer(s.ks[e] - across + s.kd[e] / p.h, u);
+    add_spring(x + 3 * i, p.start + 3 * i, x + 3 * j, p.start + 3 * j, s.rest_length[e], s.ks[e],
+               s.kd[e], p.h, terms == SpringTerms::all, b);
   }
 }
 
@@ -159,9 +167,9 @@ void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, Block&
   }
 }
 
-// Particle i's force f = -dG/dx_i and block H; `pinned_only` as add_springs, and then without the
-// contacts between particles (the caller takes them whole).
-void particle_block(const VbdProblem& p, std::int64_t i, const double* x, bool pinned_only,
+// Particle i's force f = -dG/dx_i and block H = d2G/dx_i2, with the springs' Hessians only when
+// `terms` says so.
+void particle_block(const VbdProblem& p, std::int64_t i, const double* x, SpringTerms terms,
                     Block& b) {
   const double* xi = x + 3 * i;
   const double* si = p.start + 3 * i;
@@ -172,16 +180,16 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, bool p
   const double drag = p.air_damping * p.mass[i] / p.h;  // N/m
   for (int d = 0; d < 3; ++d) b.f[d] = -inertia * (xi[d] - yi[d]) - drag * move_i[d];
   b.add_identity(inertia + drag);
-  add_springs(p, i, x, move_i, pinned_only, b);
+  add_springs(p, i, x, terms, b);
   if (p.planes.count) add_planes(p, i, xi, move_i, b);
-  if (p.couplings.offsets && !pinned_only) add_couplings(p, i, xi, b);
+  if (p.couplings.offsets) add_couplings(p, i, xi, b);
 }
 
 // Particle i's Newton step; returns how far it moved (m).
 double solve_particle(const VbdProblem& p, std::int64_t i, double* x) {
   if (p.inverse_mass[i] == 0.0) return 0.0;  // pinned
   Block b;
-  particle_block(p, i, x, false, b);
+  particle_block(p, i, x, SpringTerms::all, b);
   double move[3];
   if (!b.solve(move)) return 0.0;
   double* xi = x + 3 * i;
@@ -205,47 +213,34 @@ double vbd_sweep(const VbdProblem& problem, double* x) {
   return largest;
 }
 
-double vbd_translate(const VbdProblem& p, double* x) {
-  // Summed over the free particles in index order on one thread, so the bits do not depend on the
-  // thread count: the springs between free particles cancel, so each particle costs its inertia,
-  // contacts and springs to pins only.
-  Block total;
-  for (std::int64_t i = 0; i < p.n; ++i) {
-    if (p.inverse_mass[i] == 0.0) continue;
-    Block b;
-    particle_block(p, i, x, true, b);
-    for (int d = 0; d < 3; ++d) total.f[d] += b.f[d];
-    for (int d = 0; d < 6; ++d) total.h[d] += b.h[d];
-  }
-  // A contact between particles moves with the cloth as a whole when its weights sum to zero (the
-  // cloth against itself); one against a collider's edge pushes the cloth by its weights' sum.
-  const VbdCouplings& c = p.couplings;
-  for (std::int64_t contact = 0; c.offsets && contact < c.count; ++contact) {
-    const double* n = c.normal + 3 * contact;
-    double along = 0.0, sum = 0.0;
-    for (int s = 0; s < 4; ++s) {
-      const std::int64_t j = c.particle[4 * contact + s];
-      if (j < 0 || p.inverse_mass[j] == 0.0) continue;
-      const double d[3] = {x[3 * j] - p.start[3 * j], x[3 * j + 1] - p.start[3 * j + 1],
-                           x[3 * j + 2] - p.start[3 * j + 2]};
-      along += c.weight[4 * contact + s] * dot(d, n);
-      sum += c.weight[4 * contact + s];
+void vbd_coarse_terms(const VbdProblem& p, const double* x, const VbdAggregates& aggregates,
+                      const VbdSpringList& crossing, double* force, double* diagonal,
+                      double* spring_blocks) {
+  // Each particle's whole force, and its block without the springs, summed over its aggregate's
+  // members in order by the one thread that takes the aggregate (the bits do not depend on the
+  // thread count).
+#pragma omp parallel for schedule(static) if (p.n >= 2048)
+  for (std::int64_t a = 0; a < aggregates.count; ++a) {
+    Block total;
+    for (std::int32_t k = aggregates.offsets[a]; k < aggregates.offsets[a + 1]; ++k) {
+      Block b;
+      particle_block(p, aggregates.members[k], x, SpringTerms::forces_only, b);
+      for (int d = 0; d < 3; ++d) total.f[d] += b.f[d];
+      for (int d = 0; d < 6; ++d) total.h[d] += b.h[d];
     }
-    const double fn =
-        c.stiffness[contact] * (c.depth[contact] - along) - c.damping[contact] * along / p.h;  // N
-    if (fn <= 0.0 || sum == 0.0) continue;
-    total.add_force(sum * fn, n);
-    total.add_outer(sum * sum * (c.stiffness[contact] + c.damping[contact] / p.h), n);
+    std::copy(total.f, total.f + 3, force + 3 * a);
+    std::copy(total.h, total.h + 6, diagonal + 6 * a);
   }
-  double move[3];
-  if (!total.solve(move)) return 0.0;
-  for (std::int64_t i = 0; i < p.n; ++i) {
-    if (p.inverse_mass[i] == 0.0) continue;
-    x[3 * i] += move[0];
-    x[3 * i + 1] += move[1];
-    x[3 * i + 2] += move[2];
+  // The springs between aggregates (and to pins): a spring inside one aggregate does not stretch
+  // when the aggregate translates.
+#pragma omp parallel for schedule(static) if (crossing.count >= 2048)
+  for (std::int64_t e = 0; e < crossing.count; ++e) {
+    const std::int64_t i = crossing.v0[e], j = crossing.v1[e];
+    Block b;
+    add_spring(x + 3 * i, p.start + 3 * i, x + 3 * j, p.start + 3 * j, crossing.rest_length[e],
+               crossing.ks[e], crossing.kd[e], p.h, true, b);
+    std::copy(b.h, b.h + 6, spring_blocks + 6 * e);
   }
-  return std::sqrt(dot(move, move));
 }
 
 }  // namespace drapelab::kernels

@@ -40,7 +40,6 @@ struct VbdPlanes {
 // step's start: the contact's depth is depth - n . sum_j w_j (x_j - x_j(n)). Particle i's entries
 // are rows offsets[i] to offsets[i + 1] - 1 of (contact, slot) pairs.
 struct VbdCouplings {
-  std::int64_t count = 0;  // contacts
   const std::int32_t* offsets = nullptr;
   const std::int32_t* contact = nullptr;
   const std::int32_t* slot = nullptr;
@@ -75,10 +74,31 @@ struct VbdProblem {
 // x in place and returns the largest distance one particle moved (m).
 double vbd_sweep(const VbdProblem& problem, double* x);
 
-// The coarse correction of the sweeps: one Newton step on G over a rigid translation of every free
-// particle together, the cloth's slowest mode for the sweeps (each particle's own step moves it
-// against its neighbours, so a move of the whole cloth, as in a fall, spreads one colour at a
-// time). Updates x and returns the length of the translation (m).
-double vbd_translate(const VbdProblem& problem, double* x);
+// Springs as a list, each once.
+struct VbdSpringList {
+  std::int64_t count = 0;
+  const std::int32_t* v0 = nullptr;
+  const std::int32_t* v1 = nullptr;
+  const double* rest_length = nullptr;  // m
+  const double* ks = nullptr;           // N/m
+  const double* kd = nullptr;           // N*s/m
+};
+
+// Aggregates of free particles: aggregate a's members are members[offsets[a]] to
+// members[offsets[a + 1] - 1].
+struct VbdAggregates {
+  std::int64_t count = 0;
+  const std::int32_t* offsets = nullptr;
+  const std::int32_t* members = nullptr;
+};
+
+// The terms of the coarse correction, a Newton step on G over the translations of the aggregates:
+// each aggregate's summed force (N, 3 per aggregate) and summed block of everything but the springs
+// (N/m, the 6 entries xx, yy, zz, xy, xz, yz per aggregate), and the block (6 entries) of each
+// spring of `crossing`, the springs whose ends lie in different aggregates or at a pin. A crossing
+// spring's block B joins the aggregates' as K_aa += B, K_bb += B, K_ab = K_ba -= B.
+void vbd_coarse_terms(const VbdProblem& problem, const double* x, const VbdAggregates& aggregates,
+                      const VbdSpringList& crossing, double* force, double* diagonal,
+                      double* spring_blocks);
 
 }  // namespace drapelab::kernels

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <cstdint>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "drapelab/contact_model.hpp"
 #include "drapelab/vertex_block_descent.hpp"
 #include "drapelab/weighted_contact.hpp"
+#include "integrators/vbd/vbd_loops.hpp"
 
 namespace drapelab {
 
@@ -19,6 +22,10 @@ namespace drapelab {
 // index order, each taking the lowest colour none of its neighbours has. Returns each colour's
 // particles in increasing order.
 std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model);
+
+// Aggregates of at most `size` free particles joined by springs, grown breadth first from the
+// lowest free particle not yet taken: each particle's aggregate, -1 for a pinned particle.
+std::vector<std::int32_t> aggregate_particles(const ClothModel& model, int size);
 
 // What one step needs besides the state.
 struct VbdStepInput {
@@ -55,6 +62,14 @@ class VertexBlockDescent {
   // `x`: the positions x(n) the contacts were found at.
   void index_couplings(int n, const std::vector<WeightedContact>& couplings,
                        const Eigen::Matrix3Xd& x);
+  // A Newton step on G over the aggregates' translations, solved exactly (sparse Cholesky): the
+  // sweeps move each particle against its neighbours, so a motion of a whole region of the cloth
+  // against stiff springs (a fall, a skirt swinging off a collider) spreads one colour at a time.
+  // `refactor`: assemble and factor the matrix at this iterate (the step's first iteration); the
+  // later iterations of the step reuse it with their own forces (a chord Newton step).
+  void coarse_step(const kernels::VbdProblem& problem, bool refactor, Eigen::Matrix3Xd& x);
+  void factor_coarse_matrix();
+  void build_coarse_system(const ClothModel& model);
   void record_contact_totals(const Eigen::Matrix3Xd& x, double h,
                              std::vector<ColliderContactTotals>& totals) const;
 
@@ -70,6 +85,19 @@ class VertexBlockDescent {
   std::vector<std::int32_t> spring_offsets_, spring_other_;
   std::vector<double> spring_rest_, spring_ks_, spring_kd_;
   std::vector<std::int32_t> color_offsets_, color_particles_;
+  // The coarse step: the aggregates, the springs that cross between them, the matrix (its pattern
+  // fixed when the solver is built, with the value slots of every block) and its solve.
+  std::vector<std::int32_t> aggregate_of_, aggregate_offsets_, aggregate_members_;
+  std::vector<std::int32_t> crossing_v0_, crossing_v1_;
+  std::vector<double> crossing_rest_, crossing_ks_, crossing_kd_;
+  kernels::VbdAggregates aggregates_;
+  kernels::VbdSpringList crossing_;
+  std::vector<std::int32_t> diagonal_slots_;  // 9 per aggregate
+  std::vector<std::int32_t> crossing_slots_;  // 36 per crossing spring: (a,a), (b,b), (a,b), (b,a)
+  std::vector<double> coarse_force_, coarse_diagonal_, crossing_blocks_;
+  Eigen::SparseMatrix<double> coarse_matrix_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarse_solver_;
+  bool coarse_factored_ = false;
   // Contact planes, kPlaneSlots per particle.
   std::vector<std::int32_t> plane_count_, plane_collider_;
   std::vector<double> plane_point_, plane_normal_, plane_surface_move_, plane_kinetic_,
