@@ -47,9 +47,10 @@ TEST(ImplicitEuler, StiffClothAtASixtiethOfASecondStaysFiniteAndSettles) {
   EXPECT_LT(solver.state().x.row(1).mean(), 0.8);       // and it hangs below the pins
   EXPECT_EQ(solver.implicit_stats()->unconverged, 0);
 
-  // Every explicit scheme explodes at that step on this cloth within a second.
+  // Every explicit scheme explodes at that step on this cloth within a second. vbd is left out: it
+  // is backward Euler too, unconditionally stable (test_vbd.cpp runs a stiff sheet at this step).
   for (Integrator integrator : all_integrators()) {
-    if (integrator == Integrator::implicit_euler) continue;
+    if (integrator == Integrator::implicit_euler || integrator == Integrator::vbd) continue;
     SpringDamperSettings explicit_settings;
     explicit_settings.integrator = integrator;
     SpringDamperSolver explicit_solver("stiff", model, initial_grid_state(*model, spec, 1e-3, 1),

@@ -60,8 +60,9 @@ TEST(StepAllocations, CounterSeesAnAllocation) {
   EXPECT_GT(g_allocations.load(), before);  // the counter works, so the next test can fail
 }
 
-// Every explicit scheme. Implicit Euler is left out: Eigen's conjugate gradient allocates its work
-// vectors on each solve (a few 3N vectors per step, small beside the solve itself).
+// Every explicit scheme, and vbd (its buffers are sized when the solver is built). Implicit Euler
+// is left out: Eigen's conjugate gradient allocates its work vectors on each solve (a few 3N
+// vectors per step, small beside the solve itself).
 TEST(StepAllocations, StepAllocatesNothingForEveryExplicitIntegrator) {
   if (!DRAPELAB_COUNT_ALLOCATIONS)
     GTEST_SKIP() << "allocation counting is off under AddressSanitizer";

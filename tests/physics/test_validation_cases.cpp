@@ -28,13 +28,16 @@ std::unique_ptr<SpringDamperSolver> make_solver(const GridClothSpec& spec,
 }
 
 // V1: a free particle from rest drops, after n steps, exactly g h^2 n(n-1)/2 (explicit Euler),
-// g h^2 n(n+1)/2 (symplectic and implicit Euler) or g h^2 n^2/2 (midpoint, RK4, Verlet, leapfrog).
+// g h^2 n(n+1)/2 (symplectic and implicit Euler, and vbd, whose descent on a free particle's
+// quadratic variational form is exact in its first Newton step) or g h^2 n^2/2 (midpoint, RK4,
+// Verlet, leapfrog).
 double discrete_free_fall_steps(Integrator integrator, double n) {
   switch (integrator) {
     case Integrator::explicit_euler:
       return n * (n - 1) / 2;
     case Integrator::symplectic_euler:
     case Integrator::implicit_euler:
+    case Integrator::vbd:
       return n * (n + 1) / 2;
     default:
       return n * n / 2;
@@ -73,13 +76,12 @@ TEST(V2HangingChain, RestsAtTheStaticsOfHookesLaw) {
     settings.integrator = integrator;
     settings.air_damping = 5.0;  // 1/s: the slowest mode decays like exp(-2.5 t)
     auto solver = make_solver(spec, settings);
-    // Explicit Euler and midpoint are stable only below kd / ks = 5e-4 s; implicit Euler at any
-    // step.
+    // Explicit Euler and midpoint are stable only below kd / ks = 5e-4 s; implicit Euler and vbd
+    // at any step.
     const bool needs_damping =
         integrator == Integrator::explicit_euler || integrator == Integrator::midpoint;
-    const double h = needs_damping                              ? 2e-4
-                     : integrator == Integrator::implicit_euler ? 1e-2
-                                                                : 1e-3;  // s
+    const bool implicit = integrator == Integrator::implicit_euler || integrator == Integrator::vbd;
+    const double h = needs_damping ? 2e-4 : implicit ? 1e-2 : 1e-3;  // s
     for (int k = 0; k < static_cast<int>(30.0 / h); ++k) solver->step(h);
     ASSERT_EQ(solver->status(), SolverStatus::ok);
     const double m = 0.01, g = 9.81, k = 100.0, L = 0.05;
@@ -166,7 +168,7 @@ TEST(V3DampedOscillator, PeriodAndDecrementMatchTheClosedForm) {
 // Implicit Euler multiplies each oscillation mode by mu = 1 / (1 - h lambda) per step, lambda =
 // omega0 (-zeta + i sqrt(1 - zeta^2)): its period is 2 pi h / arg(mu) and its decrement
 // -ln|mu| 2 pi / arg(mu). The numerical damping adds about omega0 h / 2 to zeta
-// (docs/validation.md, "V3 Damped oscillator").
+// (docs/validation.md, "V3 Damped oscillator"). vbd solves the same backward Euler step.
 TEST(V3DampedOscillator, ImplicitEulerMatchesItsDiscreteFormAndAddsDampingOfHalfOmegaH) {
   const double omega0 = 10.0, zeta = 0.05, h = 0.05 / omega0;
   const std::complex<double> lambda =
@@ -174,13 +176,16 @@ TEST(V3DampedOscillator, ImplicitEulerMatchesItsDiscreteFormAndAddsDampingOfHalf
   const std::complex<double> mu = 1.0 / (1.0 - h * lambda);
   const double period = 2.0 * std::numbers::pi * h / std::arg(mu);
   const double decrement = -std::log(std::abs(mu)) * 2.0 * std::numbers::pi / std::arg(mu);
-  const OscillatorTrace trace = trace_oscillator(Integrator::implicit_euler, h);
-  EXPECT_NEAR(trace.period, period, 1e-3 * period);
-  EXPECT_NEAR(trace.decrement, decrement, 1e-2 * decrement);
-  const double true_decrement = 0.31455;
-  const double added_zeta = 0.05 / 2.0;  // omega0 h / 2
-  EXPECT_NEAR(trace.decrement - true_decrement, 2.0 * std::numbers::pi * added_zeta,
-              0.2 * 2.0 * std::numbers::pi * added_zeta);
+  for (Integrator integrator : {Integrator::implicit_euler, Integrator::vbd}) {
+    SCOPED_TRACE(integrator_name(integrator));
+    const OscillatorTrace trace = trace_oscillator(integrator, h);
+    EXPECT_NEAR(trace.period, period, 1e-3 * period);
+    EXPECT_NEAR(trace.decrement, decrement, 1e-2 * decrement);
+    const double true_decrement = 0.31455;
+    const double added_zeta = 0.05 / 2.0;  // omega0 h / 2
+    EXPECT_NEAR(trace.decrement - true_decrement, 2.0 * std::numbers::pi * added_zeta,
+                0.2 * 2.0 * std::numbers::pi * added_zeta);
+  }
 }
 
 TEST(V3DampedOscillator, ExplicitEulerAtTheSymplecticStepVisiblyLosesDamping) {

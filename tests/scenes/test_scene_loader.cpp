@@ -97,7 +97,8 @@ TEST(SceneLoader, MinimalSceneGetsTheContractDefaults) {
 }
 
 // Without dt, the step is 0.9 of the integrator's stable step estimate (0.1 of the symplectic bound
-// when the estimate is zero), implicit Euler's is 1/240 s, rounded down to whole steps per frame.
+// when the estimate is zero), implicit Euler's is 1/240 s and vbd's 1/120 s (neither has a stable
+// step to follow), rounded down to whole steps per frame.
 TEST(SceneLoader, AutomaticDtIsBelowTheStableStepAndDividesTheFrame) {
   for (const std::string& integrator : drapelab::integrator_names()) {
     SCOPED_TRACE(integrator);
@@ -116,6 +117,10 @@ TEST(SceneLoader, AutomaticDtIsBelowTheStableStepAndDividesTheFrame) {
     }
     if (solver.integrator == drapelab::Integrator::implicit_euler) {
       bound = 1.0 / 240.0;
+      factor = 1.0;
+    }
+    if (solver.integrator == drapelab::Integrator::vbd) {
+      bound = 1.0 / 120.0;
       factor = 1.0;
     }
     ASSERT_GT(solver.steps_per_frame, 0);
