@@ -52,9 +52,6 @@ Simulation make_simulation(const GridClothSpec& spec, std::vector<Collider> coll
   settings.contacts = s.contacts;
   settings.integrator = integrator;
   settings.adaptive_substeps = adaptive;
-  // vbd converges a patch sliding as one body slowly (test_vbd.cpp, V9): V9's 2 % needs 1000
-  // sweeps per step at 1/240 s (10 sweeps: 21 % of the acceleration, 100: 92 %).
-  if (integrator == Integrator::vbd) settings.vbd.iterations = 1000;
   s.h = integrator == Integrator::implicit_euler || integrator == Integrator::vbd
             ? 1.0 / 240.0
             : 0.8 * stable_step_estimate(*s.model, air_damping,
