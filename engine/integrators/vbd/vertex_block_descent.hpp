@@ -98,6 +98,7 @@ class VertexBlockDescent {
   Eigen::SparseMatrix<double> coarse_matrix_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarse_solver_;
   bool coarse_factored_ = false;
+  double coarse_reach_ = 0.0;  // m: the longest move of an aggregate in one coarse step
   // Contact planes, kPlaneSlots per particle.
   std::vector<std::int32_t> plane_count_, plane_collider_;
   std::vector<double> plane_point_, plane_normal_, plane_surface_move_, plane_kinetic_,
