@@ -153,6 +153,7 @@ std::string resolved_scene_yaml(const Scene& s) {
       out << "    vbd: {iterations: " << solver.vbd.iterations << ", order: " << solver.vbd.order
           << ", chebyshev_rho: " << format_number(solver.vbd.chebyshev_rho)
           << ", friction_velocity: " << format_number(solver.vbd.friction_velocity)
+          << ", coarse: " << (solver.vbd.coarse_correction ? "true" : "false")
           << "}  # sweeps per step\n";
     if (solver.type == SolverType::spring_damper && solver.integrator == Integrator::implicit_euler)
       out << "    implicit: {tolerance: " << format_number(solver.implicit.tolerance)

@@ -116,7 +116,7 @@ class SolverReader {
       return;
     }
     MapReader vbd(r_, solver.get("vbd"), solver.path_of("vbd"),
-                  {"iterations", "order", "chebyshev_rho", "friction_velocity"});
+                  {"iterations", "order", "chebyshev_rho", "friction_velocity", "coarse"});
     if (!vbd.valid()) return;
     const VbdSettings defaults;
     spec.vbd.iterations =
@@ -124,6 +124,8 @@ class SolverReader {
                              .value_or(defaults.iterations));
     spec.vbd.order = static_cast<int>(
         vbd.integer("order", {1.0, true, 2.0, true}, defaults.order).value_or(defaults.order));
+    spec.vbd.coarse_correction =
+        vbd.boolean("coarse", defaults.coarse_correction).value_or(defaults.coarse_correction);
     spec.vbd.chebyshev_rho =
         vbd.number("chebyshev_rho", {0.0, true, 1.0, false}, defaults.chebyshev_rho)
             .value_or(defaults.chebyshev_rho);
