@@ -47,7 +47,9 @@ if [[ "$mode" != "--no-sanitizers" ]]; then
     -DCMAKE_CXX_COMPILER=clang++ -DDRAPELAB_SANITIZE=ON -DDRAPELAB_FUZZ=ON \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG -Wno-pass-failed" >/dev/null
   cmake --build build-sanitize -j "$jobs" --target tests_fast_physics fuzzers
+  # The stacked-sheets case runs in the Release build only: under the sanitizers it takes about
+  # two minutes of CI's 30, and its code paths are the other self-collision cases' too.
   "${sanitizer_env[@]}" ctest --test-dir build-sanitize -j "$jobs" -L 'fast|physics|fuzz' \
-    --output-on-failure
+    -E 'StackedSheetsRestOneThicknessApartAndNeverCross' --output-on-failure
 fi
 echo "== all tests passed"
