@@ -2,6 +2,10 @@
 #include "cloth/cloth_building.hpp"
 
 #include <Eigen/Geometry>
+#include <memory>
+#include <stdexcept>
+
+#include "drapelab/continuum.hpp"
 
 namespace drapelab::building {
 
@@ -26,6 +30,16 @@ Eigen::VectorXd vertex_areas(const Eigen::Matrix3Xd& rest, const Eigen::Matrix3X
     area[c] += third;
   }
   return area;
+}
+
+void attach_continuum(const ClothPhysicsSpec& spec, ClothModel& model) {
+  if (!spec.continuum) return;
+  if (model.triangles.cols() == 0)
+    throw std::invalid_argument(
+        "model: continuum needs a two-dimensional cloth (a chain has no "
+        "triangles)");
+  model.continuum = std::make_shared<const ContinuumElements>(
+      build_continuum_elements(model.rest_positions, model.triangles, *spec.continuum));
 }
 
 }  // namespace drapelab::building

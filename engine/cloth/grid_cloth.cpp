@@ -221,6 +221,7 @@ ClothModel build_grid_cloth(const GridClothSpec& spec) {
     if (picked.empty()) throw std::invalid_argument("pin selector: " + error);
     for (int k : picked) model.inverse_mass[k] = 0.0;
   }
+  building::attach_continuum(spec, model);
   return model;
 }
 

@@ -136,6 +136,7 @@ ClothModel build_mesh_cloth(const MeshClothSpec& spec) {
                                   std::to_string(count - 1));
     model.inverse_mass[k] = 0.0;
   }
+  building::attach_continuum(spec, model);
   return model;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "drapelab/continuum.hpp"
 #include "forces/spring_jacobian.hpp"
 #include "integrators/coupled_matrix.hpp"
 #include "integrators/weighted_couplings.hpp"
@@ -25,6 +26,35 @@ void add_block_triplets(std::vector<Eigen::Triplet<double>>& triplets, int row, 
     for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * row + r, 3 * col + c, 0.0);
 }
 
+// Every (row, column) corner pair of every continuum element in a fixed order: per triangle its
+// 3 x 3 pairs, then per hinge its 4 x 4, row-major. Nothing for a spring cloth.
+template <typename Visit>
+void for_each_element_pair(const ClothModel& model, Visit visit) {
+  if (!model.uses_continuum()) return;
+  const ContinuumElements& c = *model.continuum;
+  for (const auto& corners : c.triangle)
+    for (std::int32_t a : corners)
+      for (std::int32_t b : corners) visit(a, b);
+  for (const auto& corners : c.hinge)
+    for (std::int32_t a : corners)
+      for (std::int32_t b : corners) visit(a, b);
+}
+
+// Adds a continuum element's terms: (h alpha + h^2) H into the matrix (H its projected Hessian,
+// alpha the Rayleigh time: D = -alpha H, K = -H) on the rows of moving corners, and K v0 = -H v0.
+template <int Corners, typename AddBlock>
+void add_element(const std::array<std::int32_t, Corners>& corners,
+                 const Eigen::Matrix<double, 3 * Corners, 3 * Corners>& hessian, double weight,
+                 const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& stiffness_times_velocity,
+                 AddBlock add_block) {
+  for (int k = 0; k < Corners; ++k)
+    for (int l = 0; l < Corners; ++l) {
+      const Eigen::Matrix3d block = hessian.template block<3, 3>(3 * k, 3 * l);
+      add_block(k, l, weight * block);
+      stiffness_times_velocity.col(corners[k]) -= block * v.col(corners[l]);
+    }
+}
+
 }  // namespace
 
 void record_solve(ImplicitSolveStats& stats, int iterations, double relative_residual,
@@ -41,7 +71,10 @@ void record_solve(ImplicitSolveStats& stats, int iterations, double relative_res
 ImplicitEulerSystem::ImplicitEulerSystem(const ClothModel& model, ImplicitSolveSettings settings)
     : settings_(settings) {
   const int n = model.particle_count();
-  const SpringSet& s = model.springs;
+  // A continuum cloth's elements replace its springs in the system (their Hessians couple every
+  // pair of an element's corners); the springs then stay out of it.
+  const SpringSet no_springs;
+  const SpringSet& s = model.uses_continuum() ? no_springs : model.springs;
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(static_cast<std::size_t>(n) * kSlotsPerBlock + s.size() * kSlotsPerSpring);
   for (int i = 0; i < n; ++i) add_block_triplets(triplets, i, i);
@@ -49,6 +82,7 @@ ImplicitEulerSystem::ImplicitEulerSystem(const ClothModel& model, ImplicitSolveS
     add_block_triplets(triplets, s.v0[e], s.v1[e]);
     add_block_triplets(triplets, s.v1[e], s.v0[e]);
   }
+  for_each_element_pair(model, [&](int a, int b) { add_block_triplets(triplets, a, b); });
   matrix_.resize(3 * n, 3 * n);
   matrix_.setFromTriplets(triplets.begin(), triplets.end());
   matrix_.makeCompressed();
@@ -69,6 +103,8 @@ ImplicitEulerSystem::ImplicitEulerSystem(const ClothModel& model, ImplicitSolveS
     block_slots(s.v0[e], s.v1[e]);
     block_slots(s.v1[e], s.v0[e]);
   }
+  element_base_ = slots_.size();
+  for_each_element_pair(model, [&](int a, int b) { block_slots(a, b); });
   free_.resize(n);
   for (int i = 0; i < n; ++i) free_[i] = model.is_pinned(i) ? 0.0 : 1.0;
   rhs_ = Eigen::VectorXd::Zero(3 * n);
@@ -85,6 +121,29 @@ void ImplicitEulerSystem::add_block(std::size_t first, const Eigen::Matrix3d& bl
   double* values = matrix_.valuePtr();
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) values[slots_[first + 3 * r + c]] += block(r, c);
+}
+
+void ImplicitEulerSystem::add_continuum_terms(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                                              const Eigen::Matrix3Xd& v, double h) {
+  const ContinuumElements& c = *model.continuum;
+  const double weight = h * c.params.damping + h * h;
+  std::size_t first = element_base_;
+  const auto moving = [&](int i) { return free_[static_cast<std::size_t>(i)] != 0.0; };
+  // A block lands only on a moving corner's row, and off the diagonal only between moving corners
+  // (a pinned particle's row and column stay the identity's).
+  const auto block_adder = [&](const auto& corners) {
+    return [&, corners](int k, int l, const Eigen::Matrix3d& block) {
+      if (moving(corners[k]) && moving(corners[l]))
+        add_block(first + static_cast<std::size_t>(kSlotsPerBlock) * (corners.size() * k + l),
+                  block);
+    };
+  };
+  for (std::size_t t = 0; t < c.triangle_count(); ++t, first += 9 * kSlotsPerBlock)
+    add_element<3>(c.triangle[t], triangle_terms(c, t, x).hessian, weight, v,
+                   stiffness_times_velocity_, block_adder(c.triangle[t]));
+  for (std::size_t e = 0; e < c.hinge_count(); ++e, first += 16 * kSlotsPerBlock)
+    add_element<4>(c.hinge[e], hinge_terms(c, e, x).hessian, weight, v, stiffness_times_velocity_,
+                   block_adder(c.hinge[e]));
 }
 
 void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x,
@@ -122,6 +181,7 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
     stiffness_times_velocity_.col(a) += kv;
     stiffness_times_velocity_.col(b) -= kv;
   }
+  if (model.uses_continuum()) add_continuum_terms(model, x, v, h);
   // Pushing contacts: a spring k and damper c along the normal, tied to the (moving) collider.
   for (const ActiveContact& touch : contacts) {
     const Eigen::Matrix3d along = touch.normal * touch.normal.transpose();

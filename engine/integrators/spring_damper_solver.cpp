@@ -11,6 +11,7 @@
 #include "contact/contact_pass.hpp"
 #include "contact/edge_contact.hpp"
 #include "drapelab/stability.hpp"
+#include "forces/continuum_arrays.hpp"
 #include "forces/forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/family_implicit.hpp"
@@ -80,7 +81,12 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   coordinate_inverse_mass_ = model_->inverse_mass.transpose().replicate(3, 1);
   weight_ = settings_.gravity * model_->mass.transpose();
   if (settings_.contacts) contact_totals_.resize(settings_.contacts->size());
-  if (settings_.fast_springs) spring_families_ = SpringFamilies::build(*model_);
+  // The spring-family fast path serves springs only; the continuum's elements have their own loops.
+  if (settings_.fast_springs && !model_->uses_continuum())
+    spring_families_ = SpringFamilies::build(*model_);
+  if (model_->uses_continuum())
+    continuum_element_force_.resize(9 * model_->continuum->triangle_count() +
+                                    12 * model_->continuum->hinge_count());
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
     case Integrator::symplectic_euler:
@@ -130,6 +136,10 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
     if (settings_.integrator != Integrator::symplectic_euler)
       throw std::invalid_argument(std::string("adaptive substeps need symplectic_euler, not ") +
                                   integrator_name(settings_.integrator));
+    if (model_->uses_continuum())
+      throw std::invalid_argument(
+          "adaptive substeps bound the springs' stiffness; the continuum model has no springs to "
+          "bound (give the solver a fixed dt)");
     if (!(settings_.substep_safety > 0.0 && settings_.substep_safety <= 1.0))
       throw std::invalid_argument("substep_safety must be in (0, 1]");
   }
@@ -181,7 +191,11 @@ void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x,
                              settings_.air_damping, v.data(), force_.data());
   }
   PhaseTimer timer(stats_, StepPhase::springs);
-  add_spring_forces(*model_, x, v, force_);
+  if (model_->uses_continuum())
+    kernels::add_continuum_forces(continuum_arrays(*model_->continuum), x.data(), v.data(),
+                                  continuum_element_force_.data(), force_.data());
+  else
+    add_spring_forces(*model_, x, v, force_);
 }
 
 std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x,

@@ -6,30 +6,60 @@
 #include <limits>
 #include <vector>
 
+#include "drapelab/continuum.hpp"
 #include "integrators/shape_bound.hpp"
 #include "integrators/shape_bound_loops.hpp"
 
 namespace drapelab {
 
+namespace {
+
+// The continuum elements' Gershgorin radii at the rest shape: per particle, the largest absolute
+// row sum (N/m) of the projected Hessians of its elements over its three coordinate rows.
+Eigen::VectorXd continuum_row_radii(const ClothModel& model) {
+  const ContinuumElements& c = *model.continuum;
+  Eigen::Matrix3Xd row_sums = Eigen::Matrix3Xd::Zero(3, model.particle_count());
+  for (std::size_t t = 0; t < c.triangle_count(); ++t) {
+    const auto hessian = triangle_terms(c, t, model.rest_positions).hessian;
+    for (int r = 0; r < 9; ++r)
+      row_sums(r % 3, c.triangle[t][r / 3]) += hessian.row(r).cwiseAbs().sum();
+  }
+  for (std::size_t e = 0; e < c.hinge_count(); ++e) {
+    const auto hessian = hinge_terms(c, e, model.rest_positions).hessian;
+    for (int r = 0; r < 12; ++r)
+      row_sums(r % 3, c.hinge[e][r / 3]) += hessian.row(r).cwiseAbs().sum();
+  }
+  return row_sums.colwise().maxCoeff().transpose();
+}
+
+}  // namespace
+
 NetworkRates network_rate_bounds(const ClothModel& model, double air_damping,
                                  ContactRates contact) {
   // Row i of the stiffness matrix holds sum_j k_ij on the diagonal and -k_ij (times a direction
   // projector) off it, so its Gershgorin disc reaches 2 sum_j k_ij; the damping matrix likewise.
+  // A continuum cloth's discs are its elements' Hessian rows at rest, and its damping is alpha
+  // times its stiffness (Rayleigh).
   const int count = model.particle_count();
   Eigen::VectorXd row_stiffness = Eigen::VectorXd::Zero(count);  // N/m
   Eigen::VectorXd row_damping = Eigen::VectorXd::Zero(count);    // N*s/m
-  const SpringSet& s = model.springs;
-  for (std::size_t e = 0; e < s.size(); ++e) {
-    row_stiffness[s.v0[e]] += s.ks[e];
-    row_stiffness[s.v1[e]] += s.ks[e];
-    row_damping[s.v0[e]] += s.kd[e];
-    row_damping[s.v1[e]] += s.kd[e];
+  if (model.uses_continuum()) {
+    row_stiffness = continuum_row_radii(model);
+    row_damping = model.continuum->params.damping * row_stiffness;
+  } else {
+    const SpringSet& s = model.springs;
+    for (std::size_t e = 0; e < s.size(); ++e) {
+      row_stiffness[s.v0[e]] += 2.0 * s.ks[e];
+      row_stiffness[s.v1[e]] += 2.0 * s.ks[e];
+      row_damping[s.v0[e]] += 2.0 * s.kd[e];
+      row_damping[s.v1[e]] += 2.0 * s.kd[e];
+    }
   }
   NetworkRates rates;
   for (int i = 0; i < count; ++i) {
     const double w = model.inverse_mass[i];  // 1/kg, 0 when pinned
-    rates.stiffness = std::max(rates.stiffness, (2.0 * row_stiffness[i] + contact.stiffness) * w);
-    rates.damping = std::max(rates.damping, (2.0 * row_damping[i] + contact.damping) * w);
+    rates.stiffness = std::max(rates.stiffness, (row_stiffness[i] + contact.stiffness) * w);
+    rates.damping = std::max(rates.damping, (row_damping[i] + contact.damping) * w);
   }
   rates.damping += air_damping;
   return rates;
@@ -119,7 +149,10 @@ double step_from_rates(const NetworkRates& rates, Integrator integrator, double 
 
 double damping_ratio_step(const ClothModel& model, ContactRates contact) {
   double smallest = std::numeric_limits<double>::infinity();  // s
-  const SpringSet& s = model.springs;
+  // Rayleigh damping gives every continuum mode the same ratio c / w^2 = alpha.
+  if (model.uses_continuum()) smallest = model.continuum->params.damping;
+  const SpringSet no_springs;
+  const SpringSet& s = model.uses_continuum() ? no_springs : model.springs;
   for (std::size_t e = 0; e < s.size(); ++e) {
     if (s.ks[e] <= 0.0) continue;
     if (model.is_pinned(s.v0[e]) && model.is_pinned(s.v1[e])) continue;  // never moves

@@ -5,10 +5,13 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace drapelab {
+
+struct ContinuumElements;  // continuum.hpp
 
 // The role a spring plays in the network; each kind has its own ks and kd in a scene.
 enum class SpringKind : std::uint8_t {
@@ -48,11 +51,16 @@ struct ClothModel {
   SpringSet springs;
   GridLayout grid;           // nx = ny = 0 for a non-grid cloth
   double thickness = 0.005;  // m, contact distance kept from colliders
+  // cloth.model: continuum: the membrane and hinge elements our solver uses in place of `springs`.
+  // The springs are still built (from the same fabric properties) for the Bullet cloths, the
+  // stretch metrics and the explicit step bound's springs-equivalent estimate.
+  std::shared_ptr<const ContinuumElements> continuum;
 
   int particle_count() const { return static_cast<int>(rest_positions.cols()); }
   bool is_pinned(int i) const { return inverse_mass[i] == 0.0; }
   double total_mass() const { return mass.sum(); }
   double rest_area() const { return vertex_area.sum(); }
+  bool uses_continuum() const { return continuum != nullptr; }
   // "particle 17 (i=2, j=0)" on a grid, "particle 17" otherwise.
   std::string describe_particle(int i) const;
 };

@@ -9,6 +9,7 @@
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
+#include "drapelab/continuum.hpp"
 
 namespace drapelab {
 
@@ -47,6 +48,9 @@ struct ClothPhysicsSpec {
   SpringParams stretch{2000.0, 1.0};
   SpringParams shear{200.0, 0.5};
   SpringParams bend{20.0, 0.1};
+  // cloth.model: continuum when set: the builder adds the membrane and hinge elements
+  // (continuum.hpp); the springs above stay for the Bullet cloths.
+  std::optional<ContinuumParams> continuum;
 };
 
 struct GridClothSpec : ClothPhysicsSpec {

@@ -211,6 +211,9 @@ class SpringDamperSolver final : public Solver {
   std::unique_ptr<FamilyImplicitSystem> family_implicit_;
   std::unique_ptr<SpringFamilies> spring_families_;  // null: the plain edge-list loop
   std::unique_ptr<VertexBlockDescent> vbd_;          // null unless the integrator is vbd
+  // cloth.model: continuum: each element's force before the per-particle sums (9 per triangle, 12
+  // per hinge, N); empty for springs.
+  std::vector<double> continuum_element_force_;
   // The fast path's unit-stride copy of the state equals state_.x and state_.v: set by the Euler
   // update with colliders (which splits each block as it updates it) and by a force evaluation at
   // the solver's state; cleared by every other change of the state.

@@ -181,6 +181,14 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
   for (int d = 0; d < 3; ++d) b.f[d] = -inertia * (xi[d] - yi[d]) - drag * move_i[d];
   b.add_identity(inertia + drag);
   add_springs(p, i, x, terms, b);
+  if (p.continuum) {
+    // The coarse step models the stiffness between aggregates with the cloth's springs; it takes
+    // only the elements' forces here (an element inside an aggregate does not deform when the
+    // aggregate translates).
+    double unused[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    continuum_particle_terms(*p.continuum, i, x, p.start, p.h, b.f,
+                             terms == SpringTerms::all ? b.h : unused);
+  }
   if (p.planes.count) add_planes(p, i, xi, move_i, b);
   if (p.couplings.offsets) add_couplings(p, i, xi, b);
 }

@@ -8,6 +8,8 @@
 
 #include <cstdint>
 
+#include "forces/continuum_loops.hpp"
+
 namespace drapelab::kernels {
 
 // Each particle's springs, as compressed rows: particle i's are entries offsets[i] to
@@ -62,6 +64,8 @@ struct VbdProblem {
   const double* inertia = nullptr;       // m: y = x(n) + h v(n) + h^2 a
   const double* sweep_start = nullptr;   // m: the positions at the start of the sweep
   VbdSprings springs;
+  const ContinuumArrays* continuum =
+      nullptr;  // cloth.model: continuum (its springs are then empty)
   VbdPlanes planes;
   VbdCouplings couplings;  // offsets null: none
   // Colour c's particles are color_particles[color_offsets[c]] to [color_offsets[c + 1] - 1].

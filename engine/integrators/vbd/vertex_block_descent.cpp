@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <numeric>
 
+#include "forces/continuum_arrays.hpp"
 #include "integrators/particle_loops.hpp"
 #include "integrators/vbd/vbd_loops.hpp"
 
@@ -36,13 +37,32 @@ void store(double* to, const Eigen::Vector3d& value) {
 
 }  // namespace
 
-std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model) {
+std::vector<std::vector<std::int32_t>> particle_neighbours(const ClothModel& model) {
   const int n = model.particle_count();
   std::vector<std::vector<std::int32_t>> neighbours(static_cast<std::size_t>(n));
+  const auto join = [&](std::int32_t a, std::int32_t b) {
+    if (a == b) return;
+    neighbours[static_cast<std::size_t>(a)].push_back(b);
+  };
   for (std::size_t e = 0; e < model.springs.size(); ++e) {
-    neighbours[static_cast<std::size_t>(model.springs.v0[e])].push_back(model.springs.v1[e]);
-    neighbours[static_cast<std::size_t>(model.springs.v1[e])].push_back(model.springs.v0[e]);
+    join(model.springs.v0[e], model.springs.v1[e]);
+    join(model.springs.v1[e], model.springs.v0[e]);
   }
+  if (model.uses_continuum()) {
+    const ContinuumElements& c = *model.continuum;
+    for (const auto& corners : c.triangle)
+      for (std::int32_t a : corners)
+        for (std::int32_t b : corners) join(a, b);
+    for (const auto& corners : c.hinge)
+      for (std::int32_t a : corners)
+        for (std::int32_t b : corners) join(a, b);
+  }
+  return neighbours;
+}
+
+std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model) {
+  const int n = model.particle_count();
+  const auto neighbours = particle_neighbours(model);
   std::vector<int> color(static_cast<std::size_t>(n), -1);
   std::vector<std::vector<std::int32_t>> colors;
   std::vector<char> taken;
@@ -60,11 +80,7 @@ std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model) 
 
 std::vector<std::int32_t> aggregate_particles(const ClothModel& model, int size) {
   const int n = model.particle_count();
-  std::vector<std::vector<std::int32_t>> neighbours(static_cast<std::size_t>(n));
-  for (std::size_t e = 0; e < model.springs.size(); ++e) {
-    neighbours[static_cast<std::size_t>(model.springs.v0[e])].push_back(model.springs.v1[e]);
-    neighbours[static_cast<std::size_t>(model.springs.v1[e])].push_back(model.springs.v0[e]);
-  }
+  const auto neighbours = particle_neighbours(model);
   std::vector<std::int32_t> aggregate(static_cast<std::size_t>(n), -1);
   std::int32_t next = 0;
   std::vector<std::int32_t> members;
@@ -89,7 +105,11 @@ VertexBlockDescent::VertexBlockDescent(const ClothModel& model, VbdSettings sett
     : settings_(settings) {
   build_coarse_system(model);
   const int n = model.particle_count();
-  const SpringSet& springs = model.springs;
+  // A continuum cloth's sweeps take its elements instead of its springs; the springs, built from
+  // the same fabric properties, stay the coarse step's model of the stiffness between aggregates.
+  const SpringSet no_springs;
+  const SpringSet& springs = model.uses_continuum() ? no_springs : model.springs;
+  if (model.uses_continuum()) continuum_ = continuum_arrays(*model.continuum);
   // Springs per particle, as compressed rows: count, then place each spring at both its ends.
   spring_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
   for (std::size_t e = 0; e < springs.size(); ++e) {
@@ -265,6 +285,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   problem.sweep_start = sweep_start_.data();
   problem.springs = {spring_offsets_.data(), spring_other_.data(), spring_rest_.data(),
                      spring_ks_.data(), spring_kd_.data()};
+  if (continuum_) problem.continuum = &*continuum_;
   stats_.contacts_last = std::accumulate(plane_count_.begin(), plane_count_.end(), std::int64_t{0});
   if (input.contacts && !input.contacts->empty()) {
     const ContactParameters& k = input.contacts->parameters();

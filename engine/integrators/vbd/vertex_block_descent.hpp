@@ -8,22 +8,28 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/vertex_block_descent.hpp"
 #include "drapelab/weighted_contact.hpp"
+#include "forces/continuum_loops.hpp"
 #include "integrators/vbd/vbd_loops.hpp"
 
 namespace drapelab {
 
-// Greedy colouring of the particles so that no two joined by a spring share a colour: particles in
+// Each particle's neighbours: the particles a spring joins it to, and for a continuum cloth those
+// sharing a triangle or a hinge with it.
+std::vector<std::vector<std::int32_t>> particle_neighbours(const ClothModel& model);
+
+// Greedy colouring of the particles so that no two neighbours share a colour: particles in
 // index order, each taking the lowest colour none of its neighbours has. Returns each colour's
 // particles in increasing order.
 std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model);
 
-// Aggregates of at most `size` free particles joined by springs, grown breadth first from the
+// Aggregates of at most `size` free neighbouring particles, grown breadth first from the
 // lowest free particle not yet taken: each particle's aggregate, -1 for a pinned particle.
 std::vector<std::int32_t> aggregate_particles(const ClothModel& model, int size);
 
@@ -92,7 +98,8 @@ class VertexBlockDescent {
   std::vector<double> crossing_rest_, crossing_ks_, crossing_kd_;
   kernels::VbdAggregates aggregates_;
   kernels::VbdSpringList crossing_;
-  std::vector<std::int32_t> diagonal_slots_;  // 9 per aggregate
+  std::optional<kernels::ContinuumArrays> continuum_;  // cloth.model: continuum
+  std::vector<std::int32_t> diagonal_slots_;           // 9 per aggregate
   std::vector<std::int32_t> crossing_slots_;  // 36 per crossing spring: (a,a), (b,b), (a,b), (b,a)
   std::vector<double> coarse_force_, coarse_diagonal_, crossing_blocks_;
   Eigen::SparseMatrix<double> coarse_matrix_;

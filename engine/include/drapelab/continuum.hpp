@@ -1,0 +1,100 @@
+// The continuum cloth (cloth.model: continuum): a membrane of linear triangles and hinge bending on
+// every interior edge, in place of the spring network for our solver. docs/physics.md, "The
+// continuum model", gives the equations; in short, with E_t the energy of triangle t and E_e that
+// of the hinge on interior edge e:
+//
+//   membrane (St. Venant-Kirchhoff, plane stress): F = [x1 - x0, x2 - x0] Dm^-1 (3 x 2),
+//     G = (F^T F - I) / 2,  E_t = A_t (mu |G|^2 + lambda tr(G)^2 / 2),
+//     mu = Y / (2 (1 + nu)),  lambda = Y nu / (1 - nu^2)   (Y: stretch modulus, N/m; nu: Poisson)
+//   bending (discrete shells):  E_e = k_e (theta_e - rest_theta_e)^2,
+//     k_e = B |e|^2 / (2 (A_1 + A_2))   (B: bending rigidity, N*m; A_1, A_2: the rest triangles)
+//   damping (stiffness-proportional): f_damp = -alpha H v, H the projected Hessian below.
+//
+// Every Hessian the solvers use is positive semidefinite by construction: the membrane's geometric
+// term uses the second Piola-Kirchhoff stress S with its negative eigenvalues set to zero (a
+// compressed direction stores no stiffness), and the hinge keeps its Gauss-Newton term
+// 2 k grad(theta) grad(theta)^T (the curvature of theta itself is dropped).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace drapelab {
+
+// The fabric's properties in physical units (scene keys cloth.continuum.*).
+struct ContinuumParams {
+  double stretch_modulus = 300.0;    // N/m: Young's modulus times thickness
+  double poisson = 0.3;              // [0, 0.5)
+  double bending_rigidity = 1.0e-5;  // N*m
+  double damping = 0.01;             // s: Rayleigh beta of membrane and bending alike
+};
+
+// Plane-stress Lame parameters of the membrane (N/m).
+struct MembraneLame {
+  double mu = 0.0;
+  double lambda = 0.0;
+};
+MembraneLame membrane_lame(const ContinuumParams& params);
+
+// The elements as built, immutable. Indices into the cloth's particles.
+struct ContinuumElements {
+  ContinuumParams params;
+  MembraneLame lame;
+  // Triangles, in the order of ClothModel::triangles.
+  std::vector<std::array<std::int32_t, 3>> triangle;
+  // Per triangle the gradients of the deformation map F = sum_k x_k g_k^T: the three 2-vectors
+  // g_0, g_1, g_2 (1/m; they sum to zero), 6 numbers per triangle.
+  std::vector<double> shape_gradient;
+  std::vector<double> rest_area;  // m^2 per triangle
+  // Hinges: particles {a, b, c, d}, (a, b) the shared edge, c opposite it in the first triangle
+  // (a, b, c) counter-clockwise, d in the second.
+  std::vector<std::array<std::int32_t, 4>> hinge;
+  std::vector<double> hinge_stiffness;  // N*m: k_e above
+  std::vector<double> rest_angle;       // rad: the rest shape's dihedral angle, signed
+  // Per particle its triangles and hinges (compressed rows), with the particle's slot in each.
+  std::vector<std::int32_t> triangle_offsets, triangle_of, triangle_slot;
+  std::vector<std::int32_t> hinge_offsets, hinge_of, hinge_slot;
+
+  std::size_t triangle_count() const { return triangle.size(); }
+  std::size_t hinge_count() const { return hinge.size(); }
+};
+
+// Builds the elements of a cloth from its rest positions (m, 3 x N) and triangles. Throws
+// std::invalid_argument for out-of-range parameters or a degenerate rest triangle.
+ContinuumElements build_continuum_elements(const Eigen::Matrix3Xd& rest,
+                                           const Eigen::Matrix3Xi& triangles,
+                                           const ContinuumParams& params);
+
+// The elastic energy at positions x (J): membranes plus hinges.
+double continuum_energy(const ContinuumElements& elements, const Eigen::Matrix3Xd& x);
+double membrane_energy(const ContinuumElements& elements, const Eigen::Matrix3Xd& x);
+double bending_energy(const ContinuumElements& elements, const Eigen::Matrix3Xd& x);
+
+// Adds every element's force at (x, v) to `force` (N, 3 x N): -dE/dx - alpha H v. Summed per
+// particle in a fixed order, so the bits do not depend on the thread count.
+void add_continuum_forces(const ContinuumElements& elements, const Eigen::Matrix3Xd& x,
+                          const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
+
+// One element's force (-dE/dx, N, stacked per corner) and projected Hessian (N/m) at x, for the
+// implicit solve and for tests; `exact_geometric` keeps the membrane's stress unclamped (its true
+// Hessian, possibly indefinite).
+struct TriangleTerms {
+  Eigen::Matrix<double, 9, 1> force;
+  Eigen::Matrix<double, 9, 9> hessian;
+};
+TriangleTerms triangle_terms(const ContinuumElements& elements, std::size_t t,
+                             const Eigen::Matrix3Xd& x, bool exact_geometric = false);
+struct HingeTerms {
+  Eigen::Matrix<double, 12, 1> force;
+  Eigen::Matrix<double, 12, 12> hessian;  // Gauss-Newton: 2 k grad(theta) grad(theta)^T
+  double angle = 0.0;                     // rad
+};
+HingeTerms hinge_terms(const ContinuumElements& elements, std::size_t e, const Eigen::Matrix3Xd& x);
+
+// The signed dihedral angle (rad) of the hinge {a, b, c, d} at x: 0 when flat, positive when the
+// triangles fold towards their normals' side.
+double hinge_angle(const Eigen::Matrix3Xd& x, const std::array<std::int32_t, 4>& hinge);
+
+}  // namespace drapelab
