@@ -163,7 +163,9 @@ void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd&
     add_block(static_cast<std::size_t>(kSlotsPerBlock) * i, diagonal * Eigen::Matrix3d::Identity());
   }
   // Springs: A gets -(h D + h^2 K) on the two diagonal blocks and its negative off the diagonal.
-  const SpringSet& s = model.springs;
+  // (A continuum cloth's springs are for the Bullet cloths; its elements take their place.)
+  const SpringSet no_springs;
+  const SpringSet& s = model.uses_continuum() ? no_springs : model.springs;
   const std::size_t spring_base = static_cast<std::size_t>(kSlotsPerBlock) * n;
   for (std::size_t e = 0; e < s.size(); ++e) {
     const int a = s.v0[e], b = s.v1[e];
