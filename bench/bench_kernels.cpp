@@ -1,5 +1,6 @@
 // Google Benchmark micro-benchmarks of the step's kernels: the spring phase (plain edge list and
-// the spring-family fast path, per spring), the whole step with contacts on 1 and 2 threads, the
+// the spring-family fast path, per spring), the continuum model's forces and a whole step of either
+// model (per particle), the whole step with contacts on 1 and 2 threads, the
 // contact phase alone (per contact), the adaptive substeps' shape bound (per particle), and a step
 // of implicit Euler with the assembled or the matrix-free solve (with its CG iterations), and the
 // per-frame mesh audits (self-intersections, triangle penetration). They measure; nothing here
@@ -14,12 +15,14 @@
 
 #include "contact/contact_pass.hpp"
 #include "drapelab/contact_model.hpp"
+#include "drapelab/continuum.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/self_intersections.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
 #include "drapelab/triangle_penetration.hpp"
+#include "forces/continuum_arrays.hpp"
 #include "forces/forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/shape_bound.hpp"
@@ -87,6 +90,56 @@ BENCHMARK(SpringsFamilies)
     ->Args({257, 1})
     ->Args({129, 2})
     ->Args({257, 2});
+
+// The continuum model's forces (membranes, hinges and Rayleigh damping) on the same sheet, with a
+// cotton-like fabric: args are the particles per side and the threads. ns_per_particle compares
+// with SpringsFamilies' (whose per-particle cost is ns_per_spring times about 6 springs).
+ContinuumParams bench_fabric() {
+  ContinuumParams params;
+  params.stretch_modulus = 1000.0;
+  params.poisson = 0.3;
+  params.bending_rigidity = 1e-5;
+  params.damping = 1e-4;
+  return params;
+}
+
+void ContinuumForces(benchmark::State& bench) {
+  Sheet sheet(static_cast<int>(bench.range(0)));
+  kernels::set_thread_count(static_cast<int>(bench.range(1)));
+  const ContinuumElements elements =
+      build_continuum_elements(sheet.model.rest_positions, sheet.model.triangles, bench_fabric());
+  const kernels::ContinuumArrays arrays = continuum_arrays(elements);
+  std::vector<double> scratch(9 * elements.triangle_count() + 12 * elements.hinge_count());
+  for (auto _ : bench) {
+    kernels::add_continuum_forces(arrays, sheet.state.x.data(), sheet.state.v.data(),
+                                  scratch.data(), sheet.force.data());
+    benchmark::DoNotOptimize(sheet.force.data());
+  }
+  bench.counters["ns_per_particle"] =
+      nanoseconds_per(static_cast<double>(sheet.model.particle_count()));
+}
+BENCHMARK(ContinuumForces)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2});
+
+// A whole step of our solver on a free sheet, springs (arg 2 = 0) or continuum (1): symplectic
+// Euler (arg 1 = 0) or vbd at 1/120 s with its default sweeps (1). Per particle, so the two models
+// compare directly.
+void ElasticStep(benchmark::State& bench) {
+  GridClothSpec spec = square_sheet(static_cast<int>(bench.range(0)));
+  if (bench.range(2) != 0) spec.continuum = bench_fabric();
+  const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  SpringDamperSettings settings;
+  settings.integrator = bench.range(1) != 0 ? Integrator::vbd : Integrator::symplectic_euler;
+  SpringDamperSolver solver("bench", model, initial_grid_state(*model, spec, 1e-3, 1), settings);
+  const double h = bench.range(1) != 0 ? 1.0 / 120.0 : 1e-5;
+  for (auto _ : bench) solver.step(h);
+  bench.counters["ns_per_particle"] = nanoseconds_per(static_cast<double>(model->particle_count()));
+}
+BENCHMARK(ElasticStep)
+    ->Args({65, 0, 0})
+    ->Args({65, 0, 1})
+    ->Args({65, 1, 0})
+    ->Args({65, 1, 1})
+    ->Unit(benchmark::kMicrosecond);
 
 // A sheet laid over a sphere: the particles above the ball's cap (about a fifth of them) start on
 // its surface, sunk into the contact radius by their weight's sag, the rest of the sheet level with
