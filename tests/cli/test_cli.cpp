@@ -770,6 +770,37 @@ TEST_F(Cli, ValidateBadSceneIsExit2WithFileAndLine) {
   EXPECT_NE(bad_set.output.find("--set duration=-1"), std::string::npos) << bad_set.output;
 }
 
+// validate states the cloth model; for the continuum, its parameters and its elements.
+TEST_F(Cli, ValidateStatesTheClothModel) {
+  const auto springs = run_drapelab({"validate", scene("small.yaml", kSmall).string()});
+  EXPECT_EQ(springs.exit_code, 0) << all_output(springs);
+  EXPECT_NE(springs.output.find("cloth model: springs"), std::string::npos) << springs.output;
+
+  std::string text = kSmall;  // lines 10 to 13, the springs, become the continuum's keys
+  const std::size_t first = text.find("  springs:"), last = text.find("  pins:");
+  text.replace(first, last - first,
+               "  model: continuum\n"
+               "  continuum: {stretch_modulus: 400, poisson: 0.25, bending_rigidity: 2e-5, "
+               "damping: 0.005}\n");
+  const fs::path file = scene("membrane.yaml", text);
+  const auto continuum = run_drapelab({"validate", file.string()});
+  EXPECT_EQ(continuum.exit_code, 0) << all_output(continuum);
+  // 2 x 8 x 8 triangles; a hinge on each of the 8 x 9 + 9 x 8 + 64 - 4 x 8 = 176 interior edges.
+  EXPECT_NE(continuum.output.find("cloth model: continuum (stretch modulus 400 N/m, Poisson ratio "
+                                  "0.25, bending rigidity 2e-05 N*m, damping 0.005 s): " +
+                                  std::to_string(kTriangles) + " membrane triangles, 176 hinges"),
+            std::string::npos)
+      << continuum.output;
+
+  const auto bad =
+      run_drapelab({"validate", file.string(), "--set", "cloth.continuum.poisson=0.5"});
+  EXPECT_EQ(bad.exit_code, 2) << all_output(bad);
+  EXPECT_NE(bad.output.find("--set cloth.continuum.poisson=0.5: cloth.continuum.poisson must be < "
+                            "0.5"),
+            std::string::npos)
+      << bad.output;
+}
+
 TEST_F(Cli, ValidatePrintResolvedGivesALoadableScene) {
   const fs::path file = scene("small.yaml", kSmall);
   const auto result =

@@ -1,8 +1,9 @@
 // The continuum model on the Cusick drape test (scenes/cusick.yaml with overrides): its drape
 // coefficient converges as the disc is refined (a 20-ring and a 40-ring disc agree within 0.03;
 // the springs' change is reported beside it), and the silk preset drapes below DC 0.5, as real silk
-// does (0.2 to 0.4 measured). Our solver only, vbd at 1/120 s, self-collision off (the folds touch
-// but the drape coefficient does not depend on it to 0.01 here, and it would split every step).
+// does (0.2 to 0.4 measured). Our solver only, implicit Euler at 1/240 s, which brings this light
+// cloth to rest by 0.6 s (vbd at 1/120 s does not settle it: its skirt keeps drifting, see
+// docs/physics.md), self-collision off (the folds touch; it would split every step).
 // Label `drape`: minutes in Release, outside the sanitizer run.
 #include <gtest/gtest.h>
 
@@ -30,12 +31,13 @@ struct Drape {
   int nodes = -1;
 };
 
-// scenes/cusick.yaml, our solver alone by vbd, for 3 s, with `overrides` after these.
+// scenes/cusick.yaml, our solver alone by implicit Euler, for 1.5 s, with `overrides` after these.
 Drape cusick(int rings, const std::vector<std::string>& overrides) {
   std::vector<std::string> all = {
-      "duration=3.0", "frame_rate=10", "cloth.rings=" + std::to_string(rings),
+      "duration=1.5", "frame_rate=10", "cloth.rings=" + std::to_string(rings),
       "cloth.self_collision.enabled=false",
-      "solvers=[{name: ours, type: spring_damper, integrator: vbd, dt: 0.008333333333333333}]"};
+      "solvers=[{name: ours, type: spring_damper, integrator: implicit_euler, dt: "
+      "0.004166666666666667}]"};
   all.insert(all.end(), overrides.begin(), overrides.end());
   const auto loaded =
       scene::load_scene_file(std::string(DRAPELAB_SOURCE_DIR) + "/scenes/cusick.yaml", all);
@@ -61,8 +63,11 @@ TEST(ContinuumDrape, CottonsDrapeCoefficientConvergesFromTwentyToFortyRings) {
   RecordProperty("continuum_dc_40_rings", number(fine.coefficient));
   RecordProperty("continuum_nodes_20_40",
                  std::to_string(coarse.nodes) + " " + std::to_string(fine.nodes));
-  // The springs on the same discs, for comparison (not asserted: their bend springs' stiffness
-  // per unit of curvature changes with the spacing).
+}
+
+TEST(ContinuumDrape, SpringsOnTheSameDiscsForComparison) {
+  // Measured, not asserted: the bend springs' stiffness per unit of curvature changes with the
+  // spacing, so their drape need not converge.
   const Drape springs_coarse = cusick(20, {});
   const Drape springs_fine = cusick(40, {});
   RecordProperty("springs_dc_20_rings", number(springs_coarse.coefficient));

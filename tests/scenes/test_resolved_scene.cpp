@@ -16,6 +16,7 @@ namespace {
 using namespace drapelab::fixtures;      // fixtures/scene_text.hpp
 using namespace drapelab::loader_tests;  // base_scene.hpp
 
+using drapelab::GridClothSpec;
 using drapelab::scene::resolved_scene_yaml;
 using drapelab::scene::Scene;
 
@@ -45,7 +46,19 @@ void ExpectRoundTrip(const std::string& text, const std::vector<std::string>& ov
   EXPECT_EQ(a.cloth.grid.areal_density, b.cloth.grid.areal_density);
   EXPECT_EQ(a.cloth.grid.thickness, b.cloth.grid.thickness);
   EXPECT_EQ(a.cloth.grid.stretch.ks, b.cloth.grid.stretch.ks);
+  EXPECT_EQ(a.cloth.grid.stretch.kd, b.cloth.grid.stretch.kd);
+  EXPECT_EQ(a.cloth.grid.shear.ks, b.cloth.grid.shear.ks);
+  EXPECT_EQ(a.cloth.grid.shear.kd, b.cloth.grid.shear.kd);
+  EXPECT_EQ(a.cloth.grid.bend.ks, b.cloth.grid.bend.ks);
   EXPECT_EQ(a.cloth.grid.bend.kd, b.cloth.grid.bend.kd);
+  ASSERT_EQ(a.cloth.grid.continuum.has_value(), b.cloth.grid.continuum.has_value());
+  if (a.cloth.grid.continuum) {
+    EXPECT_EQ(a.cloth.grid.continuum->stretch_modulus, b.cloth.grid.continuum->stretch_modulus);
+    EXPECT_EQ(a.cloth.grid.continuum->poisson, b.cloth.grid.continuum->poisson);
+    EXPECT_EQ(a.cloth.grid.continuum->bending_rigidity, b.cloth.grid.continuum->bending_rigidity);
+    EXPECT_EQ(a.cloth.grid.continuum->damping, b.cloth.grid.continuum->damping);
+  }
+  EXPECT_EQ(a.cloth.material, b.cloth.material);
   EXPECT_EQ(a.cloth.grid.pins.size(), b.cloth.grid.pins.size());
   EXPECT_EQ(a.cloth.perturbation, b.cloth.perturbation);
   EXPECT_EQ(a.cloth.air_damping, b.cloth.air_damping);
@@ -71,6 +84,47 @@ TEST(ResolvedScene, ChainWithArealDensityAndOverridesRoundTrips) {
                   {"gravity=[0,-1.62,0]", "cloth.plane=xy", "cloth.pins=[top_corners, {index: 1}]",
                    "output.meshes=both"});
   ExpectRoundTrip(with_line(kBase, 10, "  resolution: [1, 4]"));
+}
+
+// The base scene's springs (lines 17 to 20) replaced by the continuum model.
+std::string continuum_base(const std::string& continuum_lines) {
+  return with_line(without_lines(kBase, 18, 20), 17, "  model: continuum" + continuum_lines);
+}
+
+TEST(ResolvedScene, ContinuumRoundTrips) {
+  ExpectRoundTrip(continuum_base(""));
+  ExpectRoundTrip(continuum_base(
+      "\n  continuum: {stretch_modulus: 750, poisson: 0.15, bending_rigidity: 3.3e-6, damping: "
+      "0.001}"));
+  // A preset's values with an explicit key, and overrides.
+  ExpectRoundTrip(
+      with_line(continuum_base("\n  continuum: {poisson: 0.45}"), 13, "  material: silk"),
+      {"cloth.resolution=[7,5]", "cloth.continuum.damping=0.003"});
+  // A disc, whose springs are derived at its ring spacing.
+  ExpectRoundTrip(
+      "name: disc\nduration: 0.1\ncloth:\n  shape: disc\n  radius: 0.2\n  rings: 6\n"
+      "  material: denim\n  model: continuum\n  pins: [center]\n"
+      "solvers: [{type: spring_damper}, {type: bullet_softbody}]\n");
+}
+
+TEST(ResolvedScene, ContinuumIsWrittenWithItsDerivedSpringsAsAComment) {
+  const auto result = load(continuum_base(""));
+  ASSERT_LOADS(result);
+  const std::string text = resolved_scene_yaml(*result.scene);
+  const GridClothSpec& g = result.scene->cloth.grid;
+  const std::vector<std::string> expectations = {
+      "  model: continuum",
+      "  continuum:\n    stretch_modulus: 300",
+      "    poisson: 0.3",
+      "    bending_rigidity: 1e-05",
+      "    damping: 0.01",
+      "  #   stretch: {ks: 300, kd: " + drapelab::format_number(g.stretch.kd) + "}",
+      "  #   shear: {ks: " + drapelab::format_number(g.shear.ks),
+      "  #   bend: {ks: " + drapelab::format_number(g.bend.ks)};
+  for (const auto& expected : expectations)
+    EXPECT_NE(text.find(expected), std::string::npos) << "missing [" << expected << "] in:\n"
+                                                      << text;
+  EXPECT_EQ(text.find("\n  springs:"), std::string::npos) << "the springs are derived:\n" << text;
 }
 
 TEST(ResolvedScene, RoundedDtRoundTrips) {
@@ -105,6 +159,7 @@ TEST(ResolvedScene, DefaultsAreFilledIn) {
       "thickness: 0.005",
       "perturbation: 0",
       "air_damping: 0",
+      "model: springs",
       "stretch: {ks: 2000, kd: 1}",
       "shear: {ks: 200, kd: 0.5}",
       "bend: {ks: 20, kd: 0.1}",
@@ -124,6 +179,7 @@ TEST(ResolvedScene, DefaultsAreFilledIn) {
     EXPECT_NE(text.find(expected), std::string::npos) << "missing [" << expected << "] in:\n"
                                                       << text;
   EXPECT_EQ(text.find("areal_density"), std::string::npos);  // only the one given
+  EXPECT_EQ(text.find("continuum"), std::string::npos);      // only with model: continuum
 }
 
 TEST(ResolvedScene, OverridesAppearInTheResolvedScene) {

@@ -1,6 +1,7 @@
 // drapelab validate SCENE: load and check a scene, print what it describes, run nothing.
 #include <iostream>
 
+#include "drapelab/continuum.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_loader.hpp"
@@ -47,11 +48,25 @@ int validate_verb(const ValidateArguments& arguments) {
             << "  cloth: " << model.particle_count() << " particles ("
             << (model.inverse_mass.array() == 0.0).count() << " pinned), " << model.springs.size()
             << " springs, " << model.triangles.cols() << " triangles, " << model.total_mass()
-            << " kg\n"
-            << "  colliders: " << s.colliders.size() << "\n"
-            << "  stable symplectic step (Gershgorin bound of springs and dampers; the contact, "
-               "taken at the step's end, does not bound it): "
-            << stable_step << " s\n";
+            << " kg\n";
+  if (model.continuum) {
+    const ContinuumParams& c = model.continuum->params;
+    std::cout << "  cloth model: continuum (stretch modulus " << format_number(c.stretch_modulus)
+              << " N/m, Poisson ratio " << format_number(c.poisson) << ", bending rigidity "
+              << format_number(c.bending_rigidity) << " N*m, damping " << format_number(c.damping)
+              << " s): " << model.continuum->triangle_count() << " membrane triangles, "
+              << model.continuum->hinge_count()
+              << " hinges; our solver uses them in place of the springs, which are derived from "
+                 "them for the Bullet cloths and the metrics\n";
+  } else {
+    std::cout << "  cloth model: springs (the spring-damper network)\n";
+  }
+  std::cout << "  colliders: " << s.colliders.size() << "\n"
+            << "  stable symplectic step (Gershgorin bound of "
+            << (model.continuum ? "the membrane and hinges at rest, with their damping"
+                                : "springs and dampers")
+            << "; the contact, taken at the step's end, does not bound it): " << stable_step
+            << " s\n";
   for (const auto& solver : s.solvers) {
     std::cout << "  solver " << solver.name << ": " << solver_type_name(solver.type);
     if (solver.type == SolverType::spring_damper)

@@ -14,9 +14,10 @@
 namespace drapelab::scene {
 namespace {
 
-const std::vector<std::string> kCommonKeys = {
-    "shape",     "center",       "rotation", "material",    "mass", "areal_density",
-    "thickness", "perturbation", "springs",  "air_damping", "pins", "self_collision"};
+const std::vector<std::string> kCommonKeys = {"shape", "center",        "rotation",  "material",
+                                              "mass",  "areal_density", "thickness", "perturbation",
+                                              "model", "springs",       "continuum", "air_damping",
+                                              "pins",  "self_collision"};
 
 std::vector<std::string> keys_for(const std::string& shape) {
   std::vector<std::string> keys = kCommonKeys;
@@ -78,7 +79,7 @@ void ClothReader::read(const YAML::Node& node) {
   spec.perturbation = cloth.number("perturbation", perturbation_range(), 0.0).value_or(0.0);
   spec.air_damping =
       cloth.number("air_damping", air_damping_range(), spec.air_damping).value_or(spec.air_damping);
-  if (cloth.has("springs")) read_springs(cloth.get("springs"));
+  read_model(cloth);
   if (cloth.has("pins")) read_pins(cloth.get("pins"));
   read_self_collision(cloth);
 }
@@ -204,8 +205,10 @@ double ClothReader::particle_spacing() const {
 void ClothReader::apply_material(MapReader& cloth) {
   if (!cloth.has("material")) return;
   const auto name = cloth.choice("material", material_names(), std::nullopt);
-  if (!name || !geometry_ok_) return;
+  if (!name) return;
   const Material material = *find_material(*name);
+  preset_continuum_ = material_continuum(material);
+  if (!geometry_ok_) return;
   ClothSpec& spec = scene_.cloth;
   spec.material = *name;
   const MaterialSprings springs = material_springs(material, particle_spacing());
@@ -238,6 +241,61 @@ void ClothReader::read_mass(MapReader& cloth) {
         "mass",
         "total kg (for example 0.25), or cloth.areal_density in kg/m^2, or a cloth.material");
   }
+}
+
+void ClothReader::read_model(MapReader& cloth) {
+  const auto model = cloth.choice("model", {"springs", "continuum"}, "springs");
+  ClothSpec& spec = scene_.cloth;
+  // The fabric's continuum parameters: the preset's values (or the defaults), then the explicit
+  // keys, key by key. A springs cloth keeps them for its solvers with model: continuum.
+  ContinuumParams params = preset_continuum_.value_or(ContinuumParams{});
+  if (cloth.has("continuum")) {
+    spec.continuum_given = true;
+    MapReader map(r_, cloth.get("continuum"), "cloth.continuum",
+                  {"stretch_modulus", "poisson", "bending_rigidity", "damping"});
+    if (map.valid()) {
+      params.stretch_modulus =
+          map.number("stretch_modulus", stretch_modulus_range(), params.stretch_modulus)
+              .value_or(params.stretch_modulus);
+      params.poisson =
+          map.number("poisson", poisson_range(), params.poisson).value_or(params.poisson);
+      params.bending_rigidity =
+          map.number("bending_rigidity", bending_rigidity_range(), params.bending_rigidity)
+              .value_or(params.bending_rigidity);
+      params.damping =
+          map.number("damping", continuum_damping_range(), params.damping).value_or(params.damping);
+    }
+  }
+  spec.continuum = params;
+  if (model != "continuum") {
+    if (cloth.has("springs")) read_springs(cloth.get("springs"));
+    return;
+  }
+  if (cloth.has("springs"))
+    r_.error(at_key(), "cloth.springs",
+             "cannot be given with model: continuum: a continuum cloth's springs (for the Bullet "
+             "cloths, the stretch metrics and solvers with model: springs) are derived from "
+             "cloth.continuum; remove cloth.springs and give the fabric in cloth.continuum "
+             "(stretch_modulus, poisson, bending_rigidity, damping)");
+  spec.grid.continuum = params;
+  if (!geometry_ok_) return;
+  const GridClothSpec& grid = spec.grid;
+  if (spec.shape == "grid" && (grid.nx == 1 || grid.ny == 1)) {
+    r_.error(cloth.get("model"), "cloth.model",
+             "is continuum, which needs a two-dimensional cloth, but cloth.resolution [" +
+                 std::to_string(grid.nx) + ", " + std::to_string(grid.ny) +
+                 "] is a chain, with no triangles; use model: springs, or at least 2 particles "
+                 "along each side");
+    return;
+  }
+  // The springs the Bullet cloths, the metrics and solvers with model: springs use, at the cloth's
+  // own particle spacing. A preset keeps its own shear rigidity G there: woven fabric shears far
+  // more easily than the isotropic membrane, and the springs can say so.
+  MaterialSprings springs = continuum_springs(params, particle_spacing());
+  if (preset_continuum_) springs.shear = spec.grid.shear;  // the preset's, set by apply_material
+  spec.grid.stretch = springs.stretch;
+  spec.grid.shear = springs.shear;
+  spec.grid.bend = springs.bend;
 }
 
 void ClothReader::read_springs(const YAML::Node& node) {

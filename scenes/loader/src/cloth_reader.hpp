@@ -27,6 +27,9 @@ class ClothReader {
   void read_mesh(MapReader& cloth);
   void apply_material(MapReader& cloth);
   void read_mass(MapReader& cloth);
+  // cloth.model and, by it, cloth.springs (springs) or cloth.continuum (continuum: the params, a
+  // preset's first, and the springs derived from them).
+  void read_model(MapReader& cloth);
   void read_springs(const YAML::Node& node);
   void read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range,
                         SpringParams& out);
@@ -34,7 +37,10 @@ class ClothReader {
   // cloth.self_collision, resolved: thickness defaults to the cloth's, static_friction to friction.
   void read_self_collision(MapReader& cloth);
   std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path);
-  double particle_spacing() const;  // m, for material presets
+  double particle_spacing() const;  // m, for material presets and the continuum's springs
+  // An undefined node: an error about a whole map-valued key of the cloth is placed at the key's
+  // own line (SceneReader::where), not at the map's first entry.
+  static YAML::Node at_key() { return YAML::Node(YAML::NodeType::Undefined); }
   void check_disc_size();
 
   SceneReader& r_;
@@ -45,6 +51,8 @@ class ClothReader {
   YAML::Node rings_node_;               // a disc's rings (undefined when left out)
   std::vector<YAML::Node> pin_nodes_;   // one per selector in scene_.cloth.grid.pins, for messages
   std::vector<std::string> pin_paths_;  // ... and its key path (cloth.pins.K)
+  // The material's continuum parameters (cloth.material), the defaults of cloth.continuum.
+  std::optional<ContinuumParams> preset_continuum_;
 };
 
 }  // namespace drapelab::scene

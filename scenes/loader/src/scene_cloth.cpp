@@ -90,12 +90,8 @@ ClothModel build_scene_cloth(const Scene& scene) {
   if (cloth.shape == "grid") return build_grid_cloth(cloth.grid);
   MeshClothSpec spec;
   spec.mesh = shape_mesh(cloth);
-  spec.mass = cloth.grid.mass;
-  spec.areal_density = cloth.grid.areal_density;
-  spec.thickness = cloth.grid.thickness;
-  spec.stretch = cloth.grid.stretch;
-  spec.shear = cloth.grid.shear;
-  spec.bend = cloth.grid.bend;
+  // Mass or density, thickness, springs and the continuum's parameters: every shape's physics.
+  static_cast<ClothPhysicsSpec&>(spec) = static_cast<const ClothPhysicsSpec&>(cloth.grid);
   for (const auto& selector : cloth.grid.pins) {
     std::string error;
     const auto picked = select_on_mesh(cloth, spec.mesh, selector, &error);
@@ -109,6 +105,22 @@ ClothState initial_scene_state(const Scene& scene, const ClothModel& model) {
   if (scene.cloth.shape == "grid")
     return initial_grid_state(model, scene.cloth.grid, scene.cloth.perturbation, scene.seed);
   return initial_mesh_state(model, scene.cloth.perturbation, scene.seed);
+}
+
+std::shared_ptr<const ClothModel> cloth_for_solver(const Scene& scene, const SolverSpec& solver,
+                                                   std::shared_ptr<const ClothModel> cloth) {
+  const bool wants_continuum = solver.type == SolverType::spring_damper && solver.continuum;
+  if (wants_continuum == cloth->uses_continuum()) return cloth;
+  auto own = std::make_shared<ClothModel>(*cloth);
+  if (wants_continuum) {
+    if (own->triangles.cols() == 0)
+      throw std::invalid_argument("model: continuum needs a two-dimensional cloth");
+    own->continuum = std::make_shared<const ContinuumElements>(
+        build_continuum_elements(own->rest_positions, own->triangles, scene.cloth.continuum));
+  } else {
+    own->continuum.reset();
+  }
+  return own;
 }
 
 }  // namespace drapelab::scene

@@ -214,6 +214,19 @@ class SceneBuilder {
       const YAML::Node defaults = YAML::Load("[{type: spring_damper}, {type: bullet_softbody}]");
       scene_.solvers = scene::read_solvers(r_, defaults, scene_, model.get(), notes);
     }
+    check_continuum_is_used();
+  }
+
+  // cloth.continuum on a springs cloth serves the solvers with model: continuum. With none it acts
+  // on nothing, which a note says (the scene may still be meant for them: --set solvers=...).
+  void check_continuum_is_used() {
+    if (!scene_.cloth.continuum_given || scene_.cloth.grid.continuum) return;
+    for (const SolverSpec& solver : scene_.solvers)
+      if (solver.type == SolverType::spring_damper && solver.continuum) return;
+    notes.push_back(
+        "cloth.continuum acts on no solver: the cloth is model: springs and no spring_damper "
+        "solver "
+        "has model: continuum (add model: continuum to the cloth or to a solver)");
   }
 
   SceneReader& r_;

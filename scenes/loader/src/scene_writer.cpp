@@ -2,6 +2,7 @@
 // stable, numbers round-trip exactly and units sit beside the values.
 #include "drapelab/scene/scene_writer.hpp"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -106,11 +107,40 @@ std::string resolved_scene_yaml(const Scene& s) {
     out << "  areal_density: " << format_number(*g.areal_density) << "  # kg/m^2\n";
   out << "  thickness: " << format_number(g.thickness) << "  # m\n"
       << "  perturbation: " << format_number(s.cloth.perturbation) << "  # m\n"
-      << "  air_damping: " << format_number(s.cloth.air_damping) << "  # 1/s\n"
-      << "  springs:  # ks in N/m, kd in N*s/m, per spring\n"
-      << "    stretch: " << spring_text(g.stretch) << "\n"
-      << "    shear: " << spring_text(g.shear) << "\n"
-      << "    bend: " << spring_text(g.bend) << "\n";
+      << "  air_damping: " << format_number(s.cloth.air_damping) << "  # 1/s\n";
+  if (g.continuum) {
+    // The springs are derived from these at load, so they are written as a comment only.
+    const ContinuumParams& c = *g.continuum;
+    out << "  model: continuum  # triangle membrane and hinge bending\n"
+        << "  continuum:\n"
+        << "    stretch_modulus: " << format_number(c.stretch_modulus)
+        << "  # N/m, Young's modulus x thickness\n"
+        << "    poisson: " << format_number(c.poisson) << "\n"
+        << "    bending_rigidity: " << format_number(c.bending_rigidity) << "  # N*m\n"
+        << "    damping: " << format_number(c.damping) << "  # s, stiffness-proportional\n"
+        << "  # springs derived from the continuum for the Bullet cloths and the metrics:\n"
+        << "  #   stretch: " << spring_text(g.stretch) << "\n"
+        << "  #   shear: " << spring_text(g.shear) << "\n"
+        << "  #   bend: " << spring_text(g.bend) << "\n";
+  } else {
+    out << "  model: springs  # the spring-damper network\n"
+        << "  springs:  # ks in N/m, kd in N*s/m, per spring\n"
+        << "    stretch: " << spring_text(g.stretch) << "\n"
+        << "    shear: " << spring_text(g.shear) << "\n"
+        << "    bend: " << spring_text(g.bend) << "\n";
+    // The fabric of the solvers with model: continuum on this springs cloth.
+    const bool used = std::any_of(s.solvers.begin(), s.solvers.end(), [](const SolverSpec& v) {
+      return v.type == SolverType::spring_damper && v.continuum;
+    });
+    if (used) {
+      const ContinuumParams& c = s.cloth.continuum;
+      out << "  continuum:  # for the solvers with model: continuum\n"
+          << "    stretch_modulus: " << format_number(c.stretch_modulus) << "  # N/m\n"
+          << "    poisson: " << format_number(c.poisson) << "\n"
+          << "    bending_rigidity: " << format_number(c.bending_rigidity) << "  # N*m\n"
+          << "    damping: " << format_number(c.damping) << "  # s\n";
+    }
+  }
   if (g.pins.empty()) {
     out << "  pins: []\n";
   } else {
@@ -145,6 +175,7 @@ std::string resolved_scene_yaml(const Scene& s) {
         << "    type: " << solver_type_name(solver.type) << "\n";
     if (solver.type == SolverType::spring_damper)
       out << "    integrator: " << integrator_name(solver.integrator) << "\n"
+          << "    model: " << (solver.continuum ? "continuum" : "springs") << "\n"
           << "    host: " << (solver.bullet_host ? "bullet" : "none")
           << "  # a plugin in a Bullet world, or bare\n"
           << "    adaptive_substeps: " << (solver.adaptive_substeps ? "true" : "false")

@@ -20,8 +20,8 @@ constexpr double kVbdDefaultStep = 1.0 / 120.0;  // s
 
 const std::vector<std::string> kCommonKeys = {"name",     "type",      "dt",
                                               "round_dt", "max_speed", "runaway_stretch"};
-const std::vector<std::string> kSpringDamperKeys = {"integrator", "host", "implicit", "vbd",
-                                                    "adaptive_substeps"};
+const std::vector<std::string> kSpringDamperKeys = {"integrator", "host",  "implicit",
+                                                    "vbd",        "model", "adaptive_substeps"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size",
                                                       "collider_margin", "kLST"};
 const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", "collider_margin"};
@@ -58,6 +58,15 @@ class SolverReader {
       r_.error(solver.get("name"), path + ".name", *problem);
     if (type == SolverType::spring_damper) {
       read_integrator(solver, path, spec);
+      const bool cloth_continuum = scene_.cloth.grid.continuum.has_value();
+      spec.continuum =
+          solver
+              .choice("model", {"springs", "continuum"}, cloth_continuum ? "continuum" : "springs")
+              .value_or(cloth_continuum ? "continuum" : "springs") == "continuum";
+      if (spec.continuum && model_ && model_->triangles.cols() == 0)
+        r_.error(solver.get("model"), path + ".model",
+                 "is continuum, which needs a two-dimensional cloth; this cloth is a chain, with "
+                 "no triangles: use model: springs");
       // A plugin in a Bullet world (default), or stepped bare, without Bullet.
       spec.bullet_host =
           solver.choice("host", {"bullet", "none"}, "bullet").value_or("bullet") == "bullet";
@@ -135,7 +144,9 @@ class SolverReader {
   }
 
   // Adaptive substeps follow symplectic Euler's stable step as the shape changes: its damped
-  // stability condition is exact, where the other schemes' differ (SpringDamperSettings).
+  // stability condition is exact, where the other schemes' differ (SpringDamperSettings). The
+  // bound is built from the springs, so the continuum model, which our solver uses in their place,
+  // has none.
   void read_adaptive_substeps(MapReader& solver, const std::string& path, SolverSpec& spec) {
     spec.adaptive_substeps = solver.boolean("adaptive_substeps", false).value_or(false);
     if (spec.adaptive_substeps && spec.integrator != Integrator::symplectic_euler)
@@ -144,6 +155,11 @@ class SolverReader {
                "(this solver "
                "uses " +
                    std::string(integrator_name(spec.integrator)) + ")");
+    else if (spec.adaptive_substeps && spec.continuum)
+      r_.error(solver.get("adaptive_substeps"), path + ".adaptive_substeps",
+               "cannot be used with the continuum model: the shape's stable step is built from "
+               "the springs, which this solver does not use; set adaptive_substeps: false, with a "
+               "fixed dt or none (the automatic step), or give the solver model: springs");
   }
 
   // Bullet's cloths: soft margin = thickness, voxel small enough
@@ -179,7 +195,11 @@ class SolverReader {
   double automatic_step(SolverSpec& spec) {
     const double frame_period = scene_.frame_period();
     if (!model_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
-    const ClothModel& model = *model_;
+    // The cloth as this solver runs it: with or without the continuum's elements.
+    const std::shared_ptr<const ClothModel> own = cloth_for_solver(
+        scene_, spec,
+        std::shared_ptr<const ClothModel>(std::shared_ptr<const ClothModel>(), model_));
+    const ClothModel& model = *own;
     double target = frame_period;
     std::string reason;
     if (spec.type == SolverType::bullet_softbody) {

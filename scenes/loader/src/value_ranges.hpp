@@ -45,6 +45,12 @@ inline Range spring_ks_range() { return {0.0, true, 1e12, true}; }      // N/m: 
 inline Range spring_kd_range() { return {0.0, true, 1e9, true}; }       // N*s/m
 inline Range pin_radius_range() { return {0.0, false, 1e5, true}; }     // m
 
+// The continuum model (cloth.continuum).
+inline Range stretch_modulus_range() { return {0.0, false, 1e12, true}; }   // N/m
+inline Range poisson_range() { return {0.0, true, 0.5, false}; }            // [0, 0.5)
+inline Range bending_rigidity_range() { return {0.0, true, 1e3, true}; }    // N*m
+inline Range continuum_damping_range() { return {0.0, true, 10.0, true}; }  // s
+
 // Colliders and contact.
 inline Range collider_size_range() { return {1e-6, true, 1e4, true}; }     // m
 inline Range velocity_range() { return {-1e3, true, 1e3, true}; }          // m/s

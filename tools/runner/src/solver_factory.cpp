@@ -84,6 +84,9 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
                                     std::shared_ptr<const ClothModel> model,
                                     const ClothState& initial,
                                     std::shared_ptr<const ContactModel> contacts) {
+  // The cloth as this solver runs it: the continuum's elements for our solver with model:
+  // continuum, the springs for the others.
+  model = scene::cloth_for_solver(scene, spec, std::move(model));
   switch (spec.type) {
     case SolverType::spring_damper:
       return make_spring_damper(scene, spec, std::move(model), initial, std::move(contacts));

@@ -40,6 +40,11 @@ struct ClothSpec {
   double air_damping = 0.0;   // 1/s
   // cloth.self_collision, resolved (thickness and static_friction filled in).
   SelfCollisionSettings self_collision;
+  // The fabric's continuum parameters, resolved (cloth.continuum over the preset over the
+  // defaults) whatever cloth.model is: a solver with model: continuum uses them (grid.continuum is
+  // set only when the cloth itself is model: continuum).
+  ContinuumParams continuum;
+  bool continuum_given = false;  // the scene has a cloth.continuum block
 };
 
 // metrics.drape_support: the support disc of the drape coefficient.
@@ -62,6 +67,9 @@ struct SolverSpec {
   std::string name;  // label in every output; defaults to the type
   SolverType type = SolverType::spring_damper;
   Integrator integrator = Integrator::symplectic_euler;
+  // spring_damper only: the solver's cloth model (solvers.N.model; default cloth.model). Bullet's
+  // cloths always take the springs.
+  bool continuum = false;
   double dt = 0.0;                // s, internal step; a frame is steps_per_frame steps
   bool round_dt = false;          // round dt down to a whole number of steps per frame
   int steps_per_frame = 0;        // derived: frame period / dt
@@ -124,6 +132,12 @@ struct Scene {
 // scenes' golden files rest on does not depend on how vertex normals round; other shapes use their
 // vertex normals (initial_mesh_state).
 ClothModel build_scene_cloth(const Scene& scene);
+// The cloth as `solver` runs it: `cloth` itself when the solver's model is the cloth's; otherwise a
+// copy with the continuum's elements added (from scene.cloth.continuum) or taken away (a spring
+// solver on a continuum cloth, and the Bullet cloths, run its springs). Throws
+// std::invalid_argument when the elements cannot be built (a chain).
+std::shared_ptr<const ClothModel> cloth_for_solver(const Scene& scene, const SolverSpec& solver,
+                                                   std::shared_ptr<const ClothModel> cloth);
 ClothState initial_scene_state(const Scene& scene, const ClothModel& model);
 
 // Named pin sets of the scene's cloth shape (grid: corners, ...; disc: center, rim; mesh: center).
