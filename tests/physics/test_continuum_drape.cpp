@@ -68,8 +68,8 @@ TEST(ContinuumDrape, CottonsDrapeCoefficientConvergesFromTwentyToFortyRings) {
 TEST(ContinuumDrape, SpringsOnTheSameDiscsForComparison) {
   // Measured, not asserted: the bend springs' stiffness per unit of curvature changes with the
   // spacing, so their drape need not converge.
-  const Drape springs_coarse = cusick(20, {});
-  const Drape springs_fine = cusick(40, {});
+  const Drape springs_coarse = cusick(20, {"cloth.model=springs"});
+  const Drape springs_fine = cusick(40, {"cloth.model=springs"});
   RecordProperty("springs_dc_20_rings", number(springs_coarse.coefficient));
   RecordProperty("springs_dc_40_rings", number(springs_fine.coefficient));
 }
