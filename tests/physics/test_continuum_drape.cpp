@@ -8,23 +8,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "drapelab/runner/scene_setup.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/measured.hpp"
 
 namespace drapelab {
 namespace {
 
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(4);
-  text << value;
-  return text.str();
-}
+std::string number(double value) { return fixtures::measured(value, 4); }
 
 struct Drape {
   double coefficient = -1.0;

@@ -7,28 +7,24 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <numbers>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "drapelab/continuum.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/loop_threads.hpp"
+#include "fixtures/measured.hpp"
 #include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
 
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(5);
-  text << value;
-  return text.str();
-}
+std::string number(double value) { return fixtures::measured(value, 5); }
 
 // An n x n horizontal grid sheet, `size` m wide, with the continuum model of `params`.
 ClothModel continuum_sheet(int n, double size, const ContinuumParams& params) {
@@ -247,6 +243,22 @@ TEST(ContinuumElements, ForcesAreMinusTheEnergysGradient) {
   }
 }
 
+// Minus the derivative of an element's stacked corner forces by central differences: column q
+// is -(force(x + step e_q) - force(x - step e_q)) / (2 step), e_q the q-th corner coordinate.
+template <int Corners, typename ForceOf>
+Eigen::Matrix<double, 3 * Corners, 3 * Corners> force_differences(
+    const std::array<std::int32_t, Corners>& corners, const Eigen::Matrix3Xd& x, ForceOf force_of) {
+  Eigen::Matrix<double, 3 * Corners, 3 * Corners> differences;
+  const double step = 1e-7;  // m
+  for (int q = 0; q < 3 * Corners; ++q) {
+    Eigen::Matrix3Xd plus = x, minus = x;
+    plus(q % 3, corners[q / 3]) += step;
+    minus(q % 3, corners[q / 3]) -= step;
+    differences.col(q) = -(force_of(plus) - force_of(minus)) / (2 * step);
+  }
+  return differences;
+}
+
 TEST(ContinuumElements, MembraneHessianIsTheForcesDerivative) {
   const ClothModel model = continuum_sheet(4, 0.3, stiff_params());
   const ContinuumElements& c = *model.continuum;
@@ -254,16 +266,9 @@ TEST(ContinuumElements, MembraneHessianIsTheForcesDerivative) {
     const Eigen::Matrix3Xd x = deformed(model, compress);
     for (std::size_t t = 0; t < c.triangle_count(); t += 5) {
       const TriangleTerms exact = triangle_terms(c, t, x, true);
-      Eigen::Matrix<double, 9, 9> differences;
-      const double step = 1e-7;
-      for (int q = 0; q < 9; ++q) {
-        Eigen::Matrix3Xd plus = x, minus = x;
-        plus(q % 3, c.triangle[t][q / 3]) += step;
-        minus(q % 3, c.triangle[t][q / 3]) -= step;
-        // H = -d force / dx
-        differences.col(q) =
-            -(triangle_terms(c, t, plus).force - triangle_terms(c, t, minus).force) / (2 * step);
-      }
+      const auto differences = force_differences<3>(
+          c.triangle[t], x,
+          [&](const Eigen::Matrix3Xd& at) { return triangle_terms(c, t, at).force; });
       EXPECT_LT((exact.hessian - differences).cwiseAbs().maxCoeff(),
                 1e-5 * exact.hessian.cwiseAbs().maxCoeff())
           << "triangle " << t;
@@ -313,15 +318,8 @@ TEST(ContinuumElements, HingeHessianIsTheForcesDerivativeAtItsRestAngle) {
       Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix() * bent;
   for (std::size_t e = 0; e < c.hinge_count(); ++e) {
     const HingeTerms terms = hinge_terms(c, e, x);
-    Eigen::Matrix<double, 12, 12> differences;
-    const double step = 1e-7;
-    for (int q = 0; q < 12; ++q) {
-      Eigen::Matrix3Xd plus = x, minus = x;
-      plus(q % 3, c.hinge[e][q / 3]) += step;
-      minus(q % 3, c.hinge[e][q / 3]) -= step;
-      differences.col(q) =
-          -(hinge_terms(c, e, plus).force - hinge_terms(c, e, minus).force) / (2 * step);
-    }
+    const auto differences = force_differences<4>(
+        c.hinge[e], x, [&](const Eigen::Matrix3Xd& at) { return hinge_terms(c, e, at).force; });
     EXPECT_LT((terms.hessian - differences).cwiseAbs().maxCoeff(),
               1e-5 * terms.hessian.cwiseAbs().maxCoeff())
         << "hinge " << e;

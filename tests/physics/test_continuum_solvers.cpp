@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "drapelab/continuum.hpp"
@@ -14,17 +13,13 @@
 #include "drapelab/integrators.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
+#include "fixtures/measured.hpp"
 #include "fixtures/sheets.hpp"
 
 namespace drapelab {
 namespace {
 
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(4);
-  text << value;
-  return text.str();
-}
+std::string number(double value) { return fixtures::measured(value, 4); }
 
 // A vertical 9 x 9 sheet of 0.1 kg held at its top corners, with a cotton-like continuum.
 GridClothSpec hanging_continuum(int n, double stretch_modulus) {

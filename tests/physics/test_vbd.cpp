@@ -9,7 +9,6 @@
 #include <cstring>
 #include <memory>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +20,7 @@
 #include "drapelab/spring_damper_solver.hpp"
 #include "fixtures/chains.hpp"
 #include "fixtures/colliders.hpp"
+#include "fixtures/measured.hpp"
 #include "fixtures/sheets.hpp"
 
 namespace drapelab {
@@ -28,13 +28,7 @@ namespace {
 
 constexpr double kGravity = 9.81;  // m/s^2
 
-// A measured value for the test report (RecordProperty), to four significant digits.
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(4);
-  text << value;
-  return text.str();
-}
+std::string number(double value) { return fixtures::measured(value, 4); }
 
 SpringDamperSettings vbd_settings(int iterations) {
   SpringDamperSettings settings;
