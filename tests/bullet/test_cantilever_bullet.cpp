@@ -9,41 +9,23 @@
 
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <string>
 
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
-#include "fixtures/cantilever.hpp"
+#include "fixtures/cantilever_run.hpp"
+#include "fixtures/measured.hpp"
 
 namespace drapelab {
 namespace {
 
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(5);
-  text << value;
-  return text.str();
-}
-
-// The fixture's simulation: the run pipeline's, as `drapelab run` steps the solver.
-std::string simulate(const scene::Scene& scene, const scene::SolverSpec& solver,
-                     const std::shared_ptr<const ClothModel>& model,
-                     const fixtures::StripObserver& observe) {
-  const runner::SceneSetup setup = runner::build_scene_setup(scene, model);
-  runner::SimulationOptions options;
-  options.on_frame = [&](int, const ClothState& state, const ClothMetrics&) { observe(state.x); };
-  const runner::SimulationResult result = runner::simulate_solver(scene, solver, setup, options);
-  if (result.status == SolverStatus::ok) return "";
-  return result.message.empty() ? std::string("the solver stopped") : result.message;
-}
+std::string number(double value) { return fixtures::measured(value, 5); }
 
 void measure(const std::string& solver) {
   fixtures::CantileverSetup setup;
   setup.scene_file = std::string(DRAPELAB_SOURCE_DIR) + "/scenes/cantilever.yaml";
   setup.solver = solver;
   setup.spacing = 0.005;
-  const fixtures::CantileverResult r = fixtures::measure_cantilever(setup, simulate);
+  const fixtures::CantileverResult r =
+      fixtures::measure_cantilever(setup, fixtures::simulate_strip);
   testing::Test::RecordProperty("expected_c_m", number(r.expected_bending_length));
   testing::Test::RecordProperty("c_m", number(r.bending_length));
   testing::Test::RecordProperty("peirce_c_m", number(r.peirce_bending_length));

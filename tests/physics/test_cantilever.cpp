@@ -9,34 +9,15 @@
 
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <string>
 
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
-#include "fixtures/cantilever.hpp"
+#include "fixtures/cantilever_run.hpp"
+#include "fixtures/measured.hpp"
 
 namespace drapelab {
 namespace {
 
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(5);
-  text << value;
-  return text.str();
-}
-
-// The fixture's simulation: the run pipeline's, as `drapelab run` steps the solver.
-std::string simulate(const scene::Scene& scene, const scene::SolverSpec& solver,
-                     const std::shared_ptr<const ClothModel>& model,
-                     const fixtures::StripObserver& observe) {
-  const runner::SceneSetup setup = runner::build_scene_setup(scene, model);
-  runner::SimulationOptions options;
-  options.on_frame = [&](int, const ClothState& state, const ClothMetrics&) { observe(state.x); };
-  const runner::SimulationResult result = runner::simulate_solver(scene, solver, setup, options);
-  if (result.status == SolverStatus::ok) return "";
-  return result.message.empty() ? std::string("the solver stopped") : result.message;
-}
+std::string number(double value) { return fixtures::measured(value, 5); }
 
 fixtures::CantileverSetup strip(const std::string& solver, double spacing) {
   fixtures::CantileverSetup setup;
@@ -97,7 +78,7 @@ TEST(Cantilever, ContinuumBendingLengthApproachesTheFabricsAsTheSpacingHalves) {
   for (const double spacing : {0.005, 0.0025}) {
     SCOPED_TRACE("spacing " + number(spacing) + " m");
     const fixtures::CantileverResult r =
-        fixtures::measure_cantilever(strip("ours_implicit", spacing), simulate);
+        fixtures::measure_cantilever(strip("ours_implicit", spacing), fixtures::simulate_strip);
     const bool coarse = spacing > 0.004;
     const std::string prefix = std::string("continuum_") + (coarse ? "coarse" : "fine");
     record(prefix, r);
@@ -123,7 +104,7 @@ TEST(Cantilever, SpringsBendingLengthIsMeasured) {
   for (const double spacing : {0.005, 0.0025}) {
     SCOPED_TRACE("spacing " + number(spacing) + " m");
     const fixtures::CantileverResult r =
-        fixtures::measure_cantilever(strip("ours_springs", spacing), simulate);
+        fixtures::measure_cantilever(strip("ours_springs", spacing), fixtures::simulate_strip);
     record(std::string("springs_") + (spacing > 0.004 ? "coarse" : "fine"), r);
     EXPECT_TRUE(r.error.empty() || r.converged) << r.error;
   }
