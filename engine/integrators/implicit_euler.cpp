@@ -26,18 +26,10 @@ void add_block_triplets(std::vector<Eigen::Triplet<double>>& triplets, int row, 
     for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * row + r, 3 * col + c, 0.0);
 }
 
-// Every (row, column) corner pair of every continuum element in a fixed order: per triangle its
-// 3 x 3 pairs, then per hinge its 4 x 4, row-major. Nothing for a spring cloth.
+// Every corner pair of a continuum cloth's elements (for_each_corner_pair); nothing for springs.
 template <typename Visit>
 void for_each_element_pair(const ClothModel& model, Visit visit) {
-  if (!model.uses_continuum()) return;
-  const ContinuumElements& c = *model.continuum;
-  for (const auto& corners : c.triangle)
-    for (std::int32_t a : corners)
-      for (std::int32_t b : corners) visit(a, b);
-  for (const auto& corners : c.hinge)
-    for (std::int32_t a : corners)
-      for (std::int32_t b : corners) visit(a, b);
+  if (model.uses_continuum()) for_each_corner_pair(*model.continuum, visit);
 }
 
 // Adds a continuum element's terms: (h alpha + h^2) H into the matrix (H its projected Hessian,

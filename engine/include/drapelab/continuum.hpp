@@ -61,6 +61,19 @@ struct ContinuumElements {
   std::size_t hinge_count() const { return hinge.size(); }
 };
 
+// Calls visit(a, b) for every ordered pair of corners (a == b included) of every element: per
+// triangle its 3 x 3 pairs, then per hinge its 4 x 4, row-major. The implicit system's block
+// pattern and vbd's colouring both follow it.
+template <typename Visit>
+void for_each_corner_pair(const ContinuumElements& elements, Visit visit) {
+  for (const auto& corners : elements.triangle)
+    for (std::int32_t a : corners)
+      for (std::int32_t b : corners) visit(a, b);
+  for (const auto& corners : elements.hinge)
+    for (std::int32_t a : corners)
+      for (std::int32_t b : corners) visit(a, b);
+}
+
 // Builds the elements of a cloth from its rest positions (m, 3 x N) and triangles. Throws
 // std::invalid_argument for out-of-range parameters or a degenerate rest triangle.
 ContinuumElements build_continuum_elements(const Eigen::Matrix3Xd& rest,

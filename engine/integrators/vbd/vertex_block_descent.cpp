@@ -48,15 +48,7 @@ std::vector<std::vector<std::int32_t>> particle_neighbours(const ClothModel& mod
     join(model.springs.v0[e], model.springs.v1[e]);
     join(model.springs.v1[e], model.springs.v0[e]);
   }
-  if (model.uses_continuum()) {
-    const ContinuumElements& c = *model.continuum;
-    for (const auto& corners : c.triangle)
-      for (std::int32_t a : corners)
-        for (std::int32_t b : corners) join(a, b);
-    for (const auto& corners : c.hinge)
-      for (std::int32_t a : corners)
-        for (std::int32_t b : corners) join(a, b);
-  }
+  if (model.uses_continuum()) for_each_corner_pair(*model.continuum, join);
   return neighbours;
 }
 
