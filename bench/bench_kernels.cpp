@@ -91,7 +91,7 @@ BENCHMARK(SpringsFamilies)
     ->Args({129, 2})
     ->Args({257, 2});
 
-// The continuum model's forces (membranes, hinges and Rayleigh damping) on the same sheet, with a
+// The continuum model's forces (membranes, hinges and their damping) on the same sheet, with a
 // cotton-like fabric: args are the particles per side and the threads. ns_per_particle compares
 // with SpringsFamilies' (whose per-particle cost is ns_per_spring times about 6 springs).
 ContinuumParams bench_fabric() {
@@ -109,7 +109,7 @@ void ContinuumForces(benchmark::State& bench) {
   const ContinuumElements elements =
       build_continuum_elements(sheet.model.rest_positions, sheet.model.triangles, bench_fabric());
   const kernels::ContinuumArrays arrays = continuum_arrays(elements);
-  std::vector<double> scratch(9 * elements.triangle_count() + 12 * elements.hinge_count());
+  std::vector<double> scratch(elements.force_scratch_size());
   for (auto _ : bench) {
     kernels::add_continuum_forces(arrays, sheet.state.x.data(), sheet.state.v.data(),
                                   scratch.data(), sheet.force.data());
@@ -118,7 +118,13 @@ void ContinuumForces(benchmark::State& bench) {
   bench.counters["ns_per_particle"] =
       nanoseconds_per(static_cast<double>(sheet.model.particle_count()));
 }
-BENCHMARK(ContinuumForces)->Args({65, 1})->Args({65, 2})->Args({129, 1})->Args({129, 2});
+BENCHMARK(ContinuumForces)
+    ->Args({65, 1})
+    ->Args({65, 2})
+    ->Args({129, 1})
+    ->Args({129, 2})
+    ->Args({257, 1})
+    ->Args({257, 2});
 
 // A whole step of our solver on a free sheet, springs (arg 2 = 0) or continuum (1): symplectic
 // Euler (arg 1 = 0) or vbd at 1/120 s with its default sweeps (1). Per particle, so the two models

@@ -38,8 +38,8 @@ void attach_continuum(const ClothPhysicsSpec& spec, ClothModel& model) {
     throw std::invalid_argument(
         "model: continuum needs a two-dimensional cloth (a chain has no "
         "triangles)");
-  model.continuum = std::make_shared<const ContinuumElements>(
-      build_continuum_elements(model.rest_positions, model.triangles, *spec.continuum));
+  model.continuum = std::make_shared<const ContinuumElements>(build_continuum_elements(
+      model.rest_positions, model.triangles, *spec.continuum, held_particles(model)));
 }
 
 }  // namespace drapelab::building

@@ -59,15 +59,19 @@ SpringSet build_grid_springs(const GridClothSpec& spec, const Eigen::Matrix3Xd& 
   return springs;
 }
 
-// Two triangles per cell, split along the same diagonal (i, j)-(i+1, j+1) everywhere, so every
-// interior particle touches six triangles and gets exactly one cell of vertex area (an alternating
-// diagonal would give 4/3 and 2/3 of a cell in a checkerboard, and so uneven masses with
-// areal_density). Wound counter-clockwise about the sheet normal.
+// Two triangles per cell, wound counter-clockwise about the sheet normal. With springs every cell
+// is split along the same diagonal (i, j)-(i+1, j+1). With the continuum model the diagonal turns
+// from one row of cells to the next: on a single diagonal direction the hinges couple bending to
+// twist (a sheet bent along x twists, and a strip bends as if 0.8 times as rigid at most), and
+// turning it every row cancels that coupling while every interior particle still touches six
+// triangles and gets one cell of vertex area (a checkerboard of diagonals would give 4/3 and 2/3
+// of a cell, and bends strips measurably softer than rows do: docs/physics.md).
 Eigen::Matrix3Xi build_grid_triangles(const GridClothSpec& spec, const Eigen::Matrix3Xd& rest) {
   const int nx = spec.nx, ny = spec.ny;
   const int cells = std::max(0, nx - 1) * std::max(0, ny - 1);
   Eigen::Matrix3Xi triangles(3, 2 * cells);
   const Eigen::Vector3d normal = euler_rotation(spec.rotation) * sheet_normal(spec.plane);
+  const bool turn_by_row = spec.continuum.has_value();
   int t = 0;
   auto emit = [&](int a, int b, int c) {
     const Eigen::Vector3d n = (rest.col(b) - rest.col(a)).cross(rest.col(c) - rest.col(a));
@@ -78,8 +82,13 @@ Eigen::Matrix3Xi build_grid_triangles(const GridClothSpec& spec, const Eigen::Ma
     for (int i = 0; i + 1 < nx; ++i) {
       const int k00 = grid_index(nx, i, j), k10 = grid_index(nx, i + 1, j);
       const int k01 = grid_index(nx, i, j + 1), k11 = grid_index(nx, i + 1, j + 1);
-      emit(k00, k10, k11);
-      emit(k00, k11, k01);
+      if (turn_by_row && j % 2 == 1) {  // the other diagonal, (i+1, j)-(i, j+1)
+        emit(k00, k10, k01);
+        emit(k10, k11, k01);
+      } else {
+        emit(k00, k10, k11);
+        emit(k00, k11, k01);
+      }
     }
   return triangles;
 }

@@ -8,7 +8,9 @@
 #include <string>
 #include <tuple>
 
+#include "drapelab/cloth_model.hpp"
 #include "forces/continuum_arrays.hpp"
+#include "forces/continuum_families.hpp"
 
 namespace drapelab {
 namespace {
@@ -72,12 +74,21 @@ MembraneLame membrane_lame(const ContinuumParams& params) {
 
 ContinuumElements build_continuum_elements(const Eigen::Matrix3Xd& rest,
                                            const Eigen::Matrix3Xi& triangles,
-                                           const ContinuumParams& params) {
+                                           const ContinuumParams& params,
+                                           const std::vector<bool>& held) {
   check_params(params);
   ContinuumElements out;
   out.params = params;
   out.lame = membrane_lame(params);
   const int particles = static_cast<int>(rest.cols());
+  if (!held.empty() && held.size() != static_cast<std::size_t>(particles))
+    throw std::invalid_argument("continuum: the held mask must have one entry per particle");
+  auto held_whole = [&](std::int32_t t) {
+    if (held.empty()) return false;
+    for (std::int32_t corner : out.triangle[static_cast<std::size_t>(t)])
+      if (!held[static_cast<std::size_t>(corner)]) return false;
+    return true;
+  };
   // Membranes.
   for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
     const Eigen::Vector3i v = triangles.col(t);
@@ -115,17 +126,65 @@ ContinuumElements build_continuum_elements(const Eigen::Matrix3Xd& rest,
       const std::int32_t a = from, b = from == low ? high : low, d = std::get<4>(second);
       const std::array<std::int32_t, 4> h{a, b, c, d};
       const double length2 = (rest.col(a) - rest.col(b)).squaredNorm();
-      const double areas = out.rest_area[static_cast<std::size_t>(t1)] +
-                           out.rest_area[static_cast<std::size_t>(std::get<2>(second))];
+      const std::int32_t t2 = std::get<2>(second);
+      const double area1 = out.rest_area[static_cast<std::size_t>(t1)];
+      const double area2 = out.rest_area[static_cast<std::size_t>(t2)];
+      // The hinge stands for the strip of a third of its triangles about the edge. On a clamped
+      // edge (one triangle held whole) the held half of that strip cannot bend: the turn happens
+      // over the free half, twice the curvature over half the width, so twice the energy of an
+      // interior hinge of the same turn. Second order at the clamp instead of first (a discrete
+      // cantilever of 7 cells: bending length 0.992 of the continuum's instead of 0.905).
+      const bool clamped = held_whole(t1) != held_whole(t2);
+      const double areas = clamped ? (held_whole(t1) ? area2 : area1) : area1 + area2;
       out.hinge.push_back(h);
+      out.hinge_triangle.push_back({t1, t2});
+      // The second triangle runs b -> a when both windings agree (its own `from` is b).
+      out.hinge_second_sign.push_back(std::get<3>(second) == b ? 1.0 : -1.0);
       out.hinge_stiffness.push_back(params.bending_rigidity * length2 / (2.0 * areas));
       out.rest_angle.push_back(hinge_angle(rest, h));
     }
     s = end;
   }
+  for (std::size_t t = 0; t < out.triangle.size(); ++t) {
+    for (int k = 0; k < 3; ++k) out.columns.triangle_corner[k].push_back(out.triangle[t][k]);
+    for (int k = 0; k < 4; ++k)
+      out.columns.gradient[k].push_back(out.shape_gradient[6 * t + 2 + k]);
+  }
+  for (std::size_t e = 0; e < out.hinge.size(); ++e) {
+    for (int k = 0; k < 4; ++k) out.columns.hinge_corner[k].push_back(out.hinge[e][k]);
+    for (int k = 0; k < 2; ++k) out.columns.hinge_triangle[k].push_back(out.hinge_triangle[e][k]);
+  }
+  kernels::ElementLists lists;
+  lists.particles = particles;
+  lists.triangle = out.triangle.empty() ? nullptr : out.triangle.front().data();
+  for (int k = 0; k < 4; ++k) lists.gradient[k] = out.columns.gradient[k].data();
+  lists.area = out.rest_area.data();
+  lists.triangles = static_cast<std::int64_t>(out.triangle.size());
+  lists.hinge = out.hinge.empty() ? nullptr : out.hinge.front().data();
+  lists.hinge_triangle = out.hinge_triangle.empty() ? nullptr : out.hinge_triangle.front().data();
+  lists.second_sign = out.hinge_second_sign.data();
+  lists.stiffness = out.hinge_stiffness.data();
+  lists.rest_angle = out.rest_angle.data();
+  lists.hinges = static_cast<std::int64_t>(out.hinge.size());
+  auto families = std::make_shared<kernels::ContinuumFamilies>();
+  // A grid forms 2 to 4 triangle and 3 to 6 hinge families; more is not worth a pass each.
+  if (build_continuum_families(lists, 8, *families)) out.families = std::move(families);
   incidence(out.triangle, particles, out.triangle_offsets, out.triangle_of, out.triangle_slot);
   incidence(out.hinge, particles, out.hinge_offsets, out.hinge_of, out.hinge_slot);
   return out;
+}
+
+std::size_t ContinuumElements::force_scratch_size() const {
+  if (families) return static_cast<std::size_t>(families->scratch_size());
+  const std::size_t particles = triangle_offsets.empty() ? 0 : triangle_offsets.size() - 1;
+  return 6 * particles + 12 * triangle.size() + 12 * hinge.size();
+}
+
+std::vector<bool> held_particles(const ClothModel& model) {
+  std::vector<bool> held(static_cast<std::size_t>(model.particle_count()));
+  for (int i = 0; i < model.particle_count(); ++i)
+    held[static_cast<std::size_t>(i)] = model.is_pinned(i);
+  return held;
 }
 
 double continuum_energy(const ContinuumElements& elements, const Eigen::Matrix3Xd& x) {
@@ -146,7 +205,7 @@ double bending_energy(const ContinuumElements& elements, const Eigen::Matrix3Xd&
 
 void add_continuum_forces(const ContinuumElements& elements, const Eigen::Matrix3Xd& x,
                           const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force) {
-  std::vector<double> scratch(9 * elements.triangle_count() + 12 * elements.hinge_count());
+  std::vector<double> scratch(elements.force_scratch_size());
   kernels::add_continuum_forces(continuum_arrays(elements), x.data(), v.data(), scratch.data(),
                                 force.data());
 }
@@ -154,10 +213,11 @@ void add_continuum_forces(const ContinuumElements& elements, const Eigen::Matrix
 TriangleTerms triangle_terms(const ContinuumElements& elements, std::size_t t,
                              const Eigen::Matrix3Xd& x, bool exact_geometric) {
   TriangleTerms terms;
-  Eigen::Matrix<double, 9, 9, Eigen::RowMajor> hessian;
+  Eigen::Matrix<double, 9, 9, Eigen::RowMajor> hessian, material;
   kernels::membrane_element(continuum_arrays(elements), static_cast<std::int64_t>(t), x.data(),
-                            exact_geometric, terms.force.data(), hessian.data());
+                            exact_geometric, terms.force.data(), hessian.data(), material.data());
   terms.hessian = hessian;
+  terms.damping_hessian = material;
   return terms;
 }
 

@@ -32,17 +32,20 @@ void for_each_element_pair(const ClothModel& model, Visit visit) {
   if (model.uses_continuum()) for_each_corner_pair(*model.continuum, visit);
 }
 
-// Adds a continuum element's terms: (h alpha + h^2) H into the matrix (H its projected Hessian,
-// alpha the Rayleigh time: D = -alpha H, K = -H) on the rows of moving corners, and K v0 = -H v0.
+// Adds a continuum element's terms: h^2 H + h alpha H_m into the matrix (H its projected Hessian,
+// H_m the part the damping acts through: K = -H, D = -alpha H_m) on the rows of moving corners, and
+// K v0 = -H v0.
 template <int Corners, typename AddBlock>
 void add_element(const std::array<std::int32_t, Corners>& corners,
-                 const Eigen::Matrix<double, 3 * Corners, 3 * Corners>& hessian, double weight,
-                 const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& stiffness_times_velocity,
-                 AddBlock add_block) {
+                 const Eigen::Matrix<double, 3 * Corners, 3 * Corners>& hessian,
+                 const Eigen::Matrix<double, 3 * Corners, 3 * Corners>& damping_hessian, double h,
+                 double alpha, const Eigen::Matrix3Xd& v,
+                 Eigen::Matrix3Xd& stiffness_times_velocity, AddBlock add_block) {
   for (int k = 0; k < Corners; ++k)
     for (int l = 0; l < Corners; ++l) {
       const Eigen::Matrix3d block = hessian.template block<3, 3>(3 * k, 3 * l);
-      add_block(k, l, weight * block);
+      add_block(k, l,
+                (h * h) * block + (h * alpha) * damping_hessian.template block<3, 3>(3 * k, 3 * l));
       stiffness_times_velocity.col(corners[k]) -= block * v.col(corners[l]);
     }
 }
@@ -118,7 +121,7 @@ void ImplicitEulerSystem::add_block(std::size_t first, const Eigen::Matrix3d& bl
 void ImplicitEulerSystem::add_continuum_terms(const ClothModel& model, const Eigen::Matrix3Xd& x,
                                               const Eigen::Matrix3Xd& v, double h) {
   const ContinuumElements& c = *model.continuum;
-  const double weight = h * c.params.damping + h * h;
+  const double alpha = c.params.damping;
   std::size_t first = element_base_;
   const auto moving = [&](int i) { return free_[static_cast<std::size_t>(i)] != 0.0; };
   // A block lands only on a moving corner's row, and off the diagonal only between moving corners
@@ -130,12 +133,17 @@ void ImplicitEulerSystem::add_continuum_terms(const ClothModel& model, const Eig
                   block);
     };
   };
-  for (std::size_t t = 0; t < c.triangle_count(); ++t, first += 9 * kSlotsPerBlock)
-    add_element<3>(c.triangle[t], triangle_terms(c, t, x).hessian, weight, v,
+  for (std::size_t t = 0; t < c.triangle_count(); ++t, first += 9 * kSlotsPerBlock) {
+    const TriangleTerms terms = triangle_terms(c, t, x);
+    add_element<3>(c.triangle[t], terms.hessian, terms.damping_hessian, h, alpha, v,
                    stiffness_times_velocity_, block_adder(c.triangle[t]));
-  for (std::size_t e = 0; e < c.hinge_count(); ++e, first += 16 * kSlotsPerBlock)
-    add_element<4>(c.hinge[e], hinge_terms(c, e, x).hessian, weight, v, stiffness_times_velocity_,
+  }
+  for (std::size_t e = 0; e < c.hinge_count(); ++e, first += 16 * kSlotsPerBlock) {
+    // The hinge's Gauss-Newton Hessian has no geometric term: its damping acts through all of it.
+    const HingeTerms terms = hinge_terms(c, e, x);
+    add_element<4>(c.hinge[e], terms.hessian, terms.hessian, h, alpha, v, stiffness_times_velocity_,
                    block_adder(c.hinge[e]));
+  }
 }
 
 void ImplicitEulerSystem::solve(const ClothModel& model, const Eigen::Matrix3Xd& x,

@@ -85,8 +85,7 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   if (settings_.fast_springs && !model_->uses_continuum())
     spring_families_ = SpringFamilies::build(*model_);
   if (model_->uses_continuum())
-    continuum_element_force_.resize(9 * model_->continuum->triangle_count() +
-                                    12 * model_->continuum->hinge_count());
+    continuum_element_force_.resize(model_->continuum->force_scratch_size());
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
     case Integrator::symplectic_euler:

@@ -39,7 +39,7 @@ NetworkRates network_rate_bounds(const ClothModel& model, double air_damping,
   // Row i of the stiffness matrix holds sum_j k_ij on the diagonal and -k_ij (times a direction
   // projector) off it, so its Gershgorin disc reaches 2 sum_j k_ij; the damping matrix likewise.
   // A continuum cloth's discs are its elements' Hessian rows at rest, and its damping is alpha
-  // times its stiffness (Rayleigh).
+  // times its stiffness (at rest the stress is zero, so the Hessian is all material part).
   const int count = model.particle_count();
   Eigen::VectorXd row_stiffness = Eigen::VectorXd::Zero(count);  // N/m
   Eigen::VectorXd row_damping = Eigen::VectorXd::Zero(count);    // N*s/m
@@ -149,7 +149,7 @@ double step_from_rates(const NetworkRates& rates, Integrator integrator, double 
 
 double damping_ratio_step(const ClothModel& model, ContactRates contact) {
   double smallest = std::numeric_limits<double>::infinity();  // s
-  // Rayleigh damping gives every continuum mode the same ratio c / w^2 = alpha.
+  // Stiffness-proportional damping gives every continuum mode the same ratio c / w^2 = alpha.
   if (model.uses_continuum()) smallest = model.continuum->params.damping;
   const SpringSet no_springs;
   const SpringSet& s = model.uses_continuum() ? no_springs : model.springs;

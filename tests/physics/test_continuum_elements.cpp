@@ -2,7 +2,8 @@
 // differences: membrane patch tests (a uniformly stretched sheet's stress for Poisson ratios 0 and
 // 0.3), rigid motions that store no energy, a sheet bent into a cylinder, forces against the
 // energy's differences, Hessians against the forces' differences, the projection's positive
-// semidefiniteness, Rayleigh damping as -alpha H v, and the same bits on 1 and 2 threads.
+// semidefiniteness, damping as -alpha H_m v and none for rigid motions, and the same bits on 1 and
+// 2 threads.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -350,7 +351,7 @@ TEST(ContinuumElements, HingeAngleGradientMatchesDifferences) {
   }
 }
 
-TEST(ContinuumElements, RayleighDampingIsMinusAlphaTimesTheHessianTimesVelocity) {
+TEST(ContinuumElements, DampingIsMinusAlphaTimesTheMaterialHessianTimesVelocity) {
   ContinuumParams params = stiff_params();
   params.damping = 0.02;
   const ClothModel model = continuum_sheet(5, 0.3, params);
@@ -366,7 +367,7 @@ TEST(ContinuumElements, RayleighDampingIsMinusAlphaTimesTheHessianTimesVelocity)
   add_continuum_forces(c, x, zero, still);
   Eigen::Matrix3Xd expected = zero;  // -alpha H v, element by element
   for (std::size_t t = 0; t < c.triangle_count(); ++t) {
-    const auto h = triangle_terms(c, t, x).hessian;
+    const auto h = triangle_terms(c, t, x).damping_hessian;
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l)
         expected.col(c.triangle[t][k]) -=
@@ -383,22 +384,147 @@ TEST(ContinuumElements, RayleighDampingIsMinusAlphaTimesTheHessianTimesVelocity)
             1e-9 * expected.cwiseAbs().maxCoeff());
 }
 
+// Kelvin-Voigt damping resists strain rates only: a stretched, bent sheet spinning and drifting as
+// a rigid body feels no damping force, however stressed (Rayleigh's -alpha H v with the geometric
+// term would brake the spin of a stretched sheet).
+TEST(ContinuumElements, DampingIgnoresRigidMotionsOfAStressedSheet) {
+  ContinuumParams params = stiff_params();
+  params.damping = 0.05;
+  const ClothModel model = continuum_sheet(9, 0.3, params);
+  Eigen::Matrix3Xd x = deformed(model, 1.05);
+  for (Eigen::Index i = 0; i < x.cols(); ++i) x(1, i) += 0.4 * x(0, i) * x(0, i);  // bent
+  const Eigen::Vector3d spin(0.3, -1.2, 2.0), drift(0.5, 0.1, -0.7);               // rad/s, m/s
+  Eigen::Matrix3Xd v(3, x.cols());
+  for (Eigen::Index i = 0; i < x.cols(); ++i)
+    v.col(i) = spin.cross(Eigen::Vector3d(x.col(i))) + drift;
+  const Eigen::Matrix3Xd zero = Eigen::Matrix3Xd::Zero(3, x.cols());
+  Eigen::Matrix3Xd moving = zero, still = zero;
+  add_continuum_forces(*model.continuum, x, v, moving);
+  add_continuum_forces(*model.continuum, x, zero, still);
+  ASSERT_GT(still.cwiseAbs().maxCoeff(), 1.0);  // N: the sheet is stressed
+  EXPECT_LT((moving - still).cwiseAbs().maxCoeff(), 1e-12 * still.cwiseAbs().maxCoeff());
+}
+
+// A grid's elements form dense families (the force loop's fast path reads corners at fixed
+// offsets); the same forces come out of the index lists every other mesh uses.
+TEST(ContinuumElements, FamiliesAndIndexListsGiveTheSameForces) {
+  ContinuumParams params = stiff_params();
+  params.damping = 0.01;
+  for (const int n : {8, 33, 65}) {
+    SCOPED_TRACE(std::to_string(n) + " x " + std::to_string(n));
+    const ClothModel model = continuum_sheet(n, 1.0, params);
+    ASSERT_NE(model.continuum->families, nullptr);
+    ContinuumElements listed = *model.continuum;
+    listed.families.reset();
+    const Eigen::Matrix3Xd x = deformed(model, 1.02);
+    const Eigen::Matrix3Xd v = 0.1 * (x - model.rest_positions);
+    Eigen::Matrix3Xd by_family = Eigen::Matrix3Xd::Zero(3, x.cols()), by_list = by_family;
+    add_continuum_forces(*model.continuum, x, v, by_family);
+    add_continuum_forces(listed, x, v, by_list);
+    EXPECT_LT((by_family - by_list).cwiseAbs().maxCoeff(), 1e-12 * by_list.cwiseAbs().maxCoeff());
+  }
+}
+
+// Both force loops thread: the index lists from 2,048 particles, the families from 32,768.
 TEST(ContinuumElements, OneAndTwoThreadsGiveTheSameBits) {
   ContinuumParams params = stiff_params();
   params.damping = 0.01;
-  const ClothModel model = continuum_sheet(65, 1.0, params);  // 4225 particles: threaded loops
+  const ClothModel model = continuum_sheet(182, 1.0, params);  // 33,124 particles
+  ASSERT_NE(model.continuum->families, nullptr);
+  ContinuumElements listed = *model.continuum;
+  listed.families.reset();
   const Eigen::Matrix3Xd x = deformed(model, 1.02);
   const Eigen::Matrix3Xd v = 0.1 * (x - model.rest_positions);
   const int threads_before = kernels::thread_count();
-  std::vector<Eigen::Matrix3Xd> forces;
-  for (int threads : {1, 2}) {
-    kernels::set_thread_count(threads);
-    Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, x.cols());
-    add_continuum_forces(*model.continuum, x, v, force);
-    forces.push_back(force);
+  const ContinuumElements* both[] = {model.continuum.get(), &listed};
+  for (const ContinuumElements* elements : both) {
+    SCOPED_TRACE(elements->families ? "families" : "index lists");
+    std::vector<Eigen::Matrix3Xd> forces;
+    for (int threads : {1, 2}) {
+      kernels::set_thread_count(threads);
+      Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, x.cols());
+      add_continuum_forces(*elements, x, v, force);
+      forces.push_back(force);
+    }
+    EXPECT_EQ(std::memcmp(forces[0].data(), forces[1].data(), sizeof(double) * forces[0].size()),
+              0);
   }
   kernels::set_thread_count(threads_before);
-  EXPECT_EQ(std::memcmp(forces[0].data(), forces[1].data(), sizeof(double) * forces[0].size()), 0);
+}
+
+// The kernels' dihedral angle (a vectorisable atan2) against the library's, all the way round
+// to the fold onto itself: one hinge of two unit right triangles, the second turned by phi.
+TEST(ContinuumElements, HingeAngleIsTheDihedralAngleAllTheWayRound) {
+  Eigen::Matrix3Xd rest(3, 4);
+  rest << 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 1, -1;  // a, b on the x axis; c at z = 1, d at z = -1
+  Eigen::Matrix3Xi triangles(3, 2);
+  triangles << 0, 1, 1, 0, 2, 3;  // (a, b, c) and (b, a, d)
+  const ContinuumElements c = build_continuum_elements(rest, triangles, ContinuumParams{});
+  ASSERT_EQ(c.hinge_count(), 1u);
+  double worst = 0.0;
+  for (int step = -1799; step <= 1799; ++step) {
+    const double phi = step * std::acos(-1.0) / 1800.0;
+    Eigen::Matrix3Xd x = rest;
+    x.col(3) << 1.0, -std::sin(phi), -std::cos(phi);
+    const double angle = hinge_terms(c, 0, x).angle;
+    worst = std::max(worst, std::fabs(angle - hinge_angle(x, c.hinge[0])));
+    ASSERT_NEAR(std::fabs(angle), std::fabs(phi), 1e-12) << "phi " << phi;
+  }
+  EXPECT_LT(worst, 2e-15);
+  RecordProperty("angle_worst_difference_rad", number(worst));
+}
+
+// A hinge one of whose triangles is pinned whole is a clamped edge: its stiffness counts only the
+// free triangle's area, twice an interior hinge's on equal triangles; the others keep theirs.
+TEST(ContinuumElements, HingesOnAClampedEdgeCountTheirFreeTriangleAlone) {
+  const ClothModel model = continuum_sheet(4, 0.3, ContinuumParams{});
+  std::vector<bool> held(static_cast<std::size_t>(model.particle_count()), false);
+  for (int i = 0; i < 4; ++i) held[static_cast<std::size_t>(i)] = held[4 + i] = true;  // 2 rows
+  const ContinuumElements free =
+      build_continuum_elements(model.rest_positions, model.triangles, ContinuumParams{});
+  const ContinuumElements clamped =
+      build_continuum_elements(model.rest_positions, model.triangles, ContinuumParams{}, held);
+  ASSERT_EQ(free.hinge_count(), clamped.hinge_count());
+  int doubled = 0;
+  for (std::size_t e = 0; e < free.hinge_count(); ++e) {
+    auto whole = [&](std::int32_t t) {
+      for (std::int32_t p : free.triangle[static_cast<std::size_t>(t)])
+        if (!held[static_cast<std::size_t>(p)]) return false;
+      return true;
+    };
+    const bool one_held = whole(free.hinge_triangle[e][0]) != whole(free.hinge_triangle[e][1]);
+    doubled += one_held ? 1 : 0;
+    EXPECT_NEAR(clamped.hinge_stiffness[e], (one_held ? 2.0 : 1.0) * free.hinge_stiffness[e],
+                1e-15 * free.hinge_stiffness[e])
+        << "hinge " << e;
+  }
+  EXPECT_EQ(doubled, 3);  // the three edges of the second row between its cells
+}
+
+// On a single diagonal direction the hinges couple bending to twist (a strip bent along x lowers
+// its energy by twisting); the continuum grid turns its diagonal every row, which cancels the
+// coupling: bending and twisting together store the sum of what each stores alone, and every
+// particle keeps one cell of vertex area.
+TEST(ContinuumElements, GridCellsTurnTheirDiagonalEveryRowSoBendingDoesNotCoupleToTwist) {
+  const ClothModel model = continuum_sheet(21, 0.2, ContinuumParams{});
+  const double cell = 0.01 * 0.01;  // m^2
+  for (int j = 1; j + 1 < 21; ++j)
+    for (int i = 1; i + 1 < 21; ++i)
+      ASSERT_NEAR(model.vertex_area[j * 21 + i], cell, 1e-12 * cell) << i << ", " << j;
+  const ContinuumElements& c = *model.continuum;
+  // w = p x^2 / 2 + q x z about the sheet's centre (1/m curvatures), over the rest positions
+  auto shaped = [&](double p, double q) {
+    Eigen::Matrix3Xd x = model.rest_positions;
+    for (Eigen::Index k = 0; k < x.cols(); ++k)
+      x(1, k) += 0.5 * p * x(0, k) * x(0, k) + q * x(0, k) * x(2, k);
+    return x;
+  };
+  const double p = 0.5, q = 0.5;
+  const double bend = bending_energy(c, shaped(p, 0.0)), twist = bending_energy(c, shaped(0.0, q));
+  const double both = bending_energy(c, shaped(p, q)), opposite = bending_energy(c, shaped(p, -q));
+  RecordProperty("coupling", number((both - bend - twist) / bend));
+  EXPECT_NEAR(both, bend + twist, 0.01 * bend);
+  EXPECT_NEAR(opposite, bend + twist, 0.01 * bend);
 }
 
 TEST(ContinuumElements, BadParametersAndDegenerateTrianglesAreRefused) {

@@ -75,7 +75,8 @@ std::vector<int> select_pins(const GridClothSpec& spec, const PinSelector& selec
 // sheet's rotation about its centre.
 Eigen::Vector3d grid_rest_position(const GridClothSpec& spec, int i, int j);
 
-// Builds the immutable model: particles, triangles (two per cell, split along one diagonal), UVs,
+// Builds the immutable model: particles, triangles (two per cell: along one diagonal everywhere,
+// or, with the continuum model, along diagonals that turn every row of cells), UVs,
 // stretch/shear/bend springs with rest lengths, masses, vertex areas and pins. Preconditions
 // (checked by the scene loader): nx, ny >= 1, nx * ny >= 2, a size within cloth_limits.hpp, exactly
 // one of mass and areal_density, every pin selector valid. Throws std::invalid_argument otherwise.

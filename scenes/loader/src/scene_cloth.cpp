@@ -111,12 +111,18 @@ std::shared_ptr<const ClothModel> cloth_for_solver(const Scene& scene, const Sol
                                                    std::shared_ptr<const ClothModel> cloth) {
   const bool wants_continuum = solver.type == SolverType::spring_damper && solver.continuum;
   if (wants_continuum == cloth->uses_continuum()) return cloth;
+  if (wants_continuum && scene.cloth.shape == "grid") {
+    // A continuum grid splits its cells differently (build_grid_triangles): build it as one.
+    GridClothSpec spec = scene.cloth.grid;
+    spec.continuum = scene.cloth.continuum;
+    return std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  }
   auto own = std::make_shared<ClothModel>(*cloth);
   if (wants_continuum) {
     if (own->triangles.cols() == 0)
       throw std::invalid_argument("model: continuum needs a two-dimensional cloth");
-    own->continuum = std::make_shared<const ContinuumElements>(
-        build_continuum_elements(own->rest_positions, own->triangles, scene.cloth.continuum));
+    own->continuum = std::make_shared<const ContinuumElements>(build_continuum_elements(
+        own->rest_positions, own->triangles, scene.cloth.continuum, held_particles(*own)));
   } else {
     own->continuum.reset();
   }
