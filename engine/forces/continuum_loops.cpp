@@ -524,6 +524,18 @@ struct FamilyPass {
   for (int r = 0; r < 12; ++r) p.out[r][i] = forces[r];
 }
 
+// Calls slot(p, i) for every slot of a family's runs ([begin, end) pairs), the runs split among
+// the threads, each run in vector lanes.
+template <typename Slot>
+[[gnu::always_inline]] inline void over_runs(const std::vector<std::int64_t>& runs,
+                                             const FamilyPass p, Slot slot) {
+#pragma omp for schedule(static) nowait
+  for (std::size_t r = 0; r < runs.size(); r += 2) {
+#pragma omp simd
+    for (std::int64_t i = runs[r]; i < runs[r + 1]; ++i) slot(p, i);
+  }
+}
+
 // Every element by families; called inside a parallel region. Every loop runs over the particles
 // (or slots) with the same static schedule, so each thread keeps the same range from loop to loop
 // and the sums need no barrier between them.
@@ -545,12 +557,7 @@ void family_forces(const ContinuumArrays& c, const ContinuumFamilies& fam, const
     std::copy(in, in + 5, p.in);
     for (int q = 0; q < 12; ++q)
       p.out[q] = s.triangle_column(static_cast<std::int64_t>(f), q) + pad;
-    const std::vector<std::int64_t>& runs = tf.runs;
-#pragma omp for schedule(static) nowait
-    for (std::size_t r = 0; r < runs.size(); r += 2) {
-#pragma omp simd
-      for (std::int64_t i = runs[r]; i < runs[r + 1]; ++i) triangle_family_slot(p, i);
-    }
+    over_runs(tf.runs, p, [](const FamilyPass q, std::int64_t i) { triangle_family_slot(q, i); });
   }
 #pragma omp barrier
   for (std::size_t f = 0; f < fam.hinges.size(); ++f) {
@@ -564,12 +571,7 @@ void family_forces(const ContinuumArrays& c, const ContinuumFamilies& fam, const
     p.in[0] = hf.stiffness.data();
     p.in[1] = hf.rest_angle.data();
     for (int q = 0; q < 12; ++q) p.out[q] = s.hinge_column(static_cast<std::int64_t>(f), q) + pad;
-    const std::vector<std::int64_t>& runs = hf.runs;
-#pragma omp for schedule(static) nowait
-    for (std::size_t r = 0; r < runs.size(); r += 2) {
-#pragma omp simd
-      for (std::int64_t i = runs[r]; i < runs[r + 1]; ++i) hinge_family_slot(p, i);
-    }
+    over_runs(hf.runs, p, [](const FamilyPass q, std::int64_t i) { hinge_family_slot(q, i); });
   }
 #pragma omp barrier
   // Each particle sums its shares family by family, corner by corner: a fixed order.
