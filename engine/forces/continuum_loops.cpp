@@ -10,9 +10,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "forces/continuum_families.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace drapelab::kernels {
 namespace {
@@ -334,13 +339,16 @@ namespace {
   const double n1_2 = dot3(n1, n1), n2_2 = dot3(n2, n2);
   // A collapsed triangle or edge has no direction: no force.
   const bool sound = length > 0.0 && n1_2 > 0.0 && n2_2 > 0.0;
+  // Two divisions for the hinge: 1 / |e|^2 and 1 / (|n1|^2 |n2|^2).
   const double inverse_length2 = sound ? 1.0 / length2 : 0.0;
+  const double inverse_normals = sound ? 1.0 / (n1_2 * n2_2) : 0.0;
   double n1xn2[3];
   cross3(n1, n2, n1xn2);
-  const double sine = sound ? dot3(n1xn2, edge) / length : 0.0;  // |n1||n2| sin(theta)
+  const double sine = dot3(n1xn2, edge) * length * inverse_length2;  // |n1||n2| sin(theta)
   const double angle = angle_of(sine, dot3(n1, n2));
   const double tc = dot3(to_c, edge) * inverse_length2, td = dot3(to_d, edge) * inverse_length2;
-  const double scale_c = sound ? -length / n1_2 : 0.0, scale_d = sound ? -length / n2_2 : 0.0;
+  const double scale_c = -length * n2_2 * inverse_normals;  // -|e| / |n1|^2
+  const double scale_d = -length * n1_2 * inverse_normals;  // -|e| / |n2|^2
   double grad[12];
   for (int a = 0; a < 3; ++a) {
     const double gc = scale_c * n1[a], gd = scale_d * n2[a];
@@ -524,6 +532,17 @@ struct FamilyPass {
   for (int r = 0; r < 12; ++r) p.out[r][i] = forces[r];
 }
 
+// This thread's block of [0, n) in a parallel region (all of it outside one): n split evenly in
+// thread order.
+std::pair<std::int64_t, std::int64_t> own_block(std::int64_t n) {
+#ifdef _OPENMP
+  const std::int64_t threads = omp_get_num_threads(), me = omp_get_thread_num();
+#else
+  const std::int64_t threads = 1, me = 0;
+#endif
+  return {n * me / threads, n * (me + 1) / threads};
+}
+
 // Calls slot(p, i) for every slot of a family's runs ([begin, end) pairs), the runs split among
 // the threads, each run in vector lanes.
 template <typename Slot>
@@ -574,34 +593,45 @@ void family_forces(const ContinuumArrays& c, const ContinuumFamilies& fam, const
     over_runs(hf.runs, p, [](const FamilyPass q, std::int64_t i) { hinge_family_slot(q, i); });
   }
 #pragma omp barrier
-  // Each particle sums its shares family by family, corner by corner: a fixed order.
+  // Each particle sums its shares family by family, corner by corner: a fixed order. A family's
+  // corner k reaches only the particles of its runs moved by offset k (every other row on a grid
+  // whose diagonal turns by row), and each thread sums its own block of particles, so no two
+  // threads touch one sum.
   double *sx = s.sum[0], *sy = s.sum[1], *sz = s.sum[2];
-#pragma omp for simd schedule(static) nowait
-  for (std::int64_t i = 0; i < n; ++i) sx[i] = sy[i] = sz[i] = 0.0;
-  auto add_share = [&](const double* cx, const double* cy, const double* cz) {
-#pragma omp for simd schedule(static) nowait
-    for (std::int64_t i = 0; i < n; ++i) {
-      sx[i] += cx[i];
-      sy[i] += cy[i];
-      sz[i] += cz[i];
+  const auto [mine_from, mine_to] = own_block(n);
+  for (std::int64_t i = mine_from; i < mine_to; ++i) sx[i] = sy[i] = sz[i] = 0.0;
+  auto add_share = [&](const std::vector<std::int64_t>& runs, std::int64_t offset, const double* cx,
+                       const double* cy, const double* cz) {
+    for (std::size_t r = 0; r < runs.size(); r += 2) {
+      const std::int64_t from = std::max(runs[r] + offset, mine_from);
+      const std::int64_t to = std::min(runs[r + 1] + offset, mine_to);
+#pragma omp simd
+      for (std::int64_t i = from; i < to; ++i) {
+        sx[i] += cx[i];
+        sy[i] += cy[i];
+        sz[i] += cz[i];
+      }
     }
   };
   for (std::size_t f = 0; f < fam.triangles.size(); ++f)
     for (int k = 0; k < 3; ++k) {
-      const std::int64_t shift = pad - fam.triangles[f].offset[static_cast<std::size_t>(k)];
-      add_share(s.triangle_column(static_cast<std::int64_t>(f), 3 + 3 * k) + shift,
-                s.triangle_column(static_cast<std::int64_t>(f), 4 + 3 * k) + shift,
-                s.triangle_column(static_cast<std::int64_t>(f), 5 + 3 * k) + shift);
+      const std::int64_t offset = fam.triangles[f].offset[static_cast<std::size_t>(k)];
+      const auto column = [&](int q) {
+        return s.triangle_column(static_cast<std::int64_t>(f), q) + pad - offset;
+      };
+      add_share(fam.triangles[f].runs, offset, column(3 + 3 * k), column(4 + 3 * k),
+                column(5 + 3 * k));
     }
   for (std::size_t f = 0; f < fam.hinges.size(); ++f)
     for (int k = 0; k < 4; ++k) {
-      const std::int64_t shift = pad - fam.hinges[f].offset[static_cast<std::size_t>(k)];
-      add_share(s.hinge_column(static_cast<std::int64_t>(f), 3 * k) + shift,
-                s.hinge_column(static_cast<std::int64_t>(f), 3 * k + 1) + shift,
-                s.hinge_column(static_cast<std::int64_t>(f), 3 * k + 2) + shift);
+      const std::int64_t offset = fam.hinges[f].offset[static_cast<std::size_t>(k)];
+      const auto column = [&](int q) {
+        return s.hinge_column(static_cast<std::int64_t>(f), q) + pad - offset;
+      };
+      add_share(fam.hinges[f].runs, offset, column(3 * k), column(3 * k + 1), column(3 * k + 2));
     }
-#pragma omp for simd schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
+#pragma omp simd
+  for (std::int64_t i = mine_from; i < mine_to; ++i) {
     force[3 * i] += sx[i];
     force[3 * i + 1] += sy[i];
     force[3 * i + 2] += sz[i];
