@@ -598,7 +598,8 @@ void family_forces(const ContinuumArrays& c, const ContinuumFamilies& fam, const
   // whose diagonal turns by row), and each thread sums its own block of particles, so no two
   // threads touch one sum.
   double *sx = s.sum[0], *sy = s.sum[1], *sz = s.sum[2];
-  const auto [mine_from, mine_to] = own_block(n);
+  const std::pair<std::int64_t, std::int64_t> mine = own_block(n);
+  const std::int64_t mine_from = mine.first, mine_to = mine.second;
   for (std::int64_t i = mine_from; i < mine_to; ++i) sx[i] = sy[i] = sz[i] = 0.0;
   auto add_share = [&](const std::vector<std::int64_t>& runs, std::int64_t offset, const double* cx,
                        const double* cy, const double* cz) {
