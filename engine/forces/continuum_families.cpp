@@ -120,19 +120,17 @@ bool build_continuum_families(const ElementLists& e, int max_families, Continuum
     for (std::int32_t o : family.offset) padding = std::max(padding, o);
     for (std::int32_t shift : family.wing_shift) padding = std::max(padding, std::abs(shift));
   }
-  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
-    std::vector<bool> occupied(size, false);
-    for (const auto& [family, slot] : taken)
-      if (family == static_cast<std::int32_t>(f)) occupied[static_cast<std::size_t>(slot)] = true;
-    out.triangles[f].runs = occupied_runs(occupied);
-  }
-  for (std::size_t f = 0; f < out.hinges.size(); ++f) {
-    std::vector<bool> occupied(size, false);
-    for (const auto& [family, slot] : taken)
-      if (family == -1 - static_cast<std::int32_t>(f))
-        occupied[static_cast<std::size_t>(slot)] = true;
-    out.hinges[f].runs = occupied_runs(occupied);
-  }
+  // Each family's occupied slots, from one pass over them all (hinge family f is -1 - f in taken).
+  std::vector<std::vector<bool>> occupied(out.triangles.size() + out.hinges.size(),
+                                          std::vector<bool>(size, false));
+  const auto triangle_families = static_cast<std::int32_t>(out.triangles.size());
+  for (const auto& [family, slot] : taken)
+    occupied[static_cast<std::size_t>(family >= 0 ? family : triangle_families - 1 - family)]
+            [static_cast<std::size_t>(slot)] = true;
+  for (std::size_t f = 0; f < out.triangles.size(); ++f)
+    out.triangles[f].runs = occupied_runs(occupied[f]);
+  for (std::size_t f = 0; f < out.hinges.size(); ++f)
+    out.hinges[f].runs = occupied_runs(occupied[out.triangles.size() + f]);
   out.particles = n;
   out.padding = padding;
   return true;

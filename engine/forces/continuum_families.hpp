@@ -36,13 +36,11 @@ struct ContinuumFamilies {
   std::vector<TriangleFamily> triangles;
   std::vector<HingeFamily> hinges;
   // Scratch doubles the family force loop needs (zeroed once, as the padding must read zeros): the
-  // state split into 6 columns, per triangle family its normal and 3 corner forces, per hinge
-  // family 4 corner forces, and 3 sums, each column span() long.
+  // state split into 6 columns, 12 sums (3 components for each of 4 corner numbers) and per
+  // triangle family its normal, each column span() long.
   std::int64_t span() const { return particles + 2 * padding; }
   std::int64_t scratch_size() const {
-    return (6 + 12 * static_cast<std::int64_t>(triangles.size()) +
-            12 * static_cast<std::int64_t>(hinges.size()) + 3) *
-           span();
+    return (18 + 3 * static_cast<std::int64_t>(triangles.size())) * span();
   }
 };
 

@@ -53,22 +53,37 @@ inline void deformation(const double* g, const double* e1, const double* e2, dou
   }
 }
 
-// atan2(y, x) in (-pi, pi] without a library call, so that the hinge loop vectorises: the angle of
-// (|x|, |y|) is twice atan(|y| / (r + |x|)) (in [0, pi/4] for the atan), two more halvings
-// (tan(u / 2) = t / (1 + sqrt(1 + t^2))) bring the argument below tan(pi/16) = 0.199, where 13
-// terms of the odd series atan(t) = t - t^3/3 + t^5/5 - ... leave less than 1e-17 relative; then
-// the quadrant. (0, 0) gives 0.
+// atan2(y, x) in (-pi, pi] without a library call, so that the hinge loop vectorises, and with
+// one division: the angle of (|x|, |y|) is that of (max, min) or pi/2 minus it, in [0, pi/4];
+// subtracting the nearest of the angles j pi/16 (tan(a - b) = (tan a - tan b) / (1 + tan a tan b),
+// one quotient of min and max) leaves an angle within pi/32, whose tangent u <= 0.0985 needs 8
+// terms of the odd series atan(u) = u - u^3/3 + u^5/5 - ... for less than 1e-17 relative; then
+// the octant and the quadrant. (0, 0) gives 0.
 [[gnu::always_inline]] inline double angle_of(double y, double x) {
   const double ax = std::fabs(x), ay = std::fabs(y);
-  const double r = std::sqrt(ax * ax + ay * ay);
-  const double denominator = r + ax;
-  double t = denominator > 0.0 ? ay / denominator : 0.0;  // tan(phi / 2), phi = atan2(|y|, |x|)
-  t = t / (1.0 + std::sqrt(1.0 + t * t));                 // tan(phi / 4)
-  t = t / (1.0 + std::sqrt(1.0 + t * t));                 // tan(phi / 8) <= 0.199
-  const double z = t * t;
-  double series = 1.0 / 25.0;
-  for (int n = 11; n >= 0; --n) series = 1.0 / (2 * n + 1) - z * series;
-  double phi = 8.0 * t * series;
+  const double low = std::min(ax, ay), high = std::max(ax, ay);
+  // The nearest j pi/16 to atan(low / high): compare with the midpoints' tangents tan((2j+1)
+  // pi/32).
+  double tangent = 0.0, base = 0.0;  // tan(j pi/16) and j pi/16 (rad)
+  tangent = low > 0.09849140335716425 * high ? 0.198912367379658 : tangent;
+  base = low > 0.09849140335716425 * high ? 0.19634954084936207 : base;
+  tangent = low > 0.3033466836073424 * high ? 0.41421356237309503 : tangent;
+  base = low > 0.3033466836073424 * high ? 0.39269908169872414 : base;
+  tangent = low > 0.5345111359507916 * high ? 0.6681786379192989 : tangent;
+  base = low > 0.5345111359507916 * high ? 0.5890486225480862 : base;
+  tangent = low > 0.8206787908286602 * high ? 1.0 : tangent;
+  base = low > 0.8206787908286602 * high ? 0.25 * kPi : base;
+  const double denominator = high + tangent * low;
+  const double u = denominator > 0.0 ? (low - tangent * high) / denominator : 0.0;
+  const double z = u * u, z2 = z * z, z4 = z2 * z2;
+  // 1 - z/3 + z^2/5 - ... - z^7/15 in Estrin's pairs, so the terms do not wait on each other
+  // (the coefficients as constants: a division by 3 is a division, a product by 1/3 is not)
+  constexpr double c1 = 1.0 / 3, c2 = 1.0 / 5, c3 = 1.0 / 7, c4 = 1.0 / 9, c5 = 1.0 / 11,
+                   c6 = 1.0 / 13, c7 = 1.0 / 15;
+  const double series =
+      (1.0 - c1 * z) + z2 * (c2 - c3 * z) + z4 * ((c4 - c5 * z) + z2 * (c6 - c7 * z));
+  double phi = base + u * series;
+  phi = ay > ax ? 0.5 * kPi - phi : phi;
   phi = x < 0.0 ? kPi - phi : phi;
   return y < 0.0 ? -phi : phi;
 }
@@ -462,31 +477,28 @@ void indexed_forces(const ContinuumArrays& c, const double* x, const double* v, 
 
 // The family loop's scratch (continuum_families.hpp): columns of particles + 2 padding each; the
 // state's values sit at [0, particles), the families' slot s at padding + s, and the padding on
-// either side is never written, so it reads as zeros.
+// either side is never written, so it reads as zeros. The elements add their corners' forces
+// straight into the particles' sums, one set of sums per corner number k (0..3): within a family
+// two slots never share a particle at the same corner number, so the lanes of a vector never add
+// to one sum, which they could do through different corners (a and b of a hinge are neighbours).
 struct FamilyColumns {
   FamilyColumns(const ContinuumFamilies& f, double* scratch) : span(f.span()) {
     for (int k = 0; k < 3; ++k) {
       x[k] = scratch + k * span;
       v[k] = scratch + (3 + k) * span;
-      sum[k] = scratch + (6 + k) * span;
     }
-    triangles = scratch + 9 * span;
-    hinges = triangles + 12 * static_cast<std::int64_t>(f.triangles.size()) * span;
+    for (int q = 0; q < 12; ++q) sum[q] = scratch + (6 + q) * span + f.padding;
+    normals = scratch + 18 * span;
   }
-  // Column q of triangle family f: q = 0..2 the normal, 3 + 3 k + a corner k's force.
-  double* triangle_column(std::int64_t family, int q) const {
-    return triangles + (12 * family + q) * span;
-  }
-  // Column 3 k + a of hinge family f: corner k's force.
-  double* hinge_column(std::int64_t family, int q) const {
-    return hinges + (12 * family + q) * span;
+  // Component a of the normals of triangle family f (m^2), which the hinges read later.
+  double* normal_column(std::int64_t family, int a) const {
+    return normals + (3 * family + a) * span;
   }
   std::int64_t span;
   double* x[3];
   double* v[3];
-  double* sum[3];
-  double* triangles;
-  double* hinges;
+  double* sum[12];  // N: corner number k's component a in sum[3 k + a], indexed by particle
+  double* normals;
 };
 
 // The arrays a family's loop reads and writes, as plain pointers (passed by value so that the
@@ -499,7 +511,8 @@ struct FamilyPass {
   const double* n1[3];  // hinges: their triangles' normals, shifted to the hinge's slot
   const double* n2[3];
   double sign, mu, lambda, alpha;
-  double* out[12];
+  double* out[3];   // triangles: their normals
+  double* sum[12];  // the sums of corner number k's forces, component a in 3 k + a (N)
 };
 
 [[gnu::always_inline]] inline void triangle_family_slot(const FamilyPass p, std::int64_t i) {
@@ -512,7 +525,8 @@ struct FamilyPass {
   membrane_slot(e1, e2, w1, w2, p.in[0][i], p.in[1][i], p.in[2][i], p.in[3][i], p.in[4][i], p.mu,
                 p.lambda, p.alpha, normal, forces, forces + 3, forces + 6);
   for (int a = 0; a < 3; ++a) p.out[a][i] = normal[a];
-  for (int r = 0; r < 9; ++r) p.out[3 + r][i] = forces[r];
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) p.sum[3 * k + a][i + p.o[k]] += forces[3 * k + a];
 }
 
 [[gnu::always_inline]] inline void hinge_family_slot(const FamilyPass p, std::int64_t i) {
@@ -529,7 +543,8 @@ struct FamilyPass {
     rates[3 * k + 2] = p.vz[at];
   }
   hinge_slot(m1, m2, corners, rates, p.in[0][i], p.in[1][i], p.alpha, forces);
-  for (int r = 0; r < 12; ++r) p.out[r][i] = forces[r];
+  for (int k = 0; k < 4; ++k)
+    for (int a = 0; a < 3; ++a) p.sum[3 * k + a][i + p.o[k]] += forces[3 * k + a];
 }
 
 // This thread's block of [0, n) in a parallel region (all of it outside one): n split evenly in
@@ -555,18 +570,24 @@ template <typename Slot>
   }
 }
 
-// Every element by families; called inside a parallel region. Every loop runs over the particles
-// (or slots) with the same static schedule, so each thread keeps the same range from loop to loop
-// and the sums need no barrier between them.
+// Every element by families; called inside a parallel region. A family's loop splits its runs
+// among the threads and adds into the sums of its corners' particles; a barrier after each family
+// keeps each sum's additions in family order on any number of threads, and each thread then adds
+// its own block of particles' sums, corner number by corner number: the same bits on any number of
+// threads.
 void family_forces(const ContinuumArrays& c, const ContinuumFamilies& fam, const double* x,
                    const double* v, double* scratch, double* force) {
   const FamilyColumns s(fam, scratch);
   const std::int64_t n = fam.particles, pad = fam.padding;
   split_state(n, x, v, s.x, s.v);
+  const std::pair<std::int64_t, std::int64_t> mine = own_block(n);
+  for (double* column : s.sum) std::fill(column + mine.first, column + mine.second, 0.0);
+#pragma omp barrier
   FamilyPass p{};
   p.px = s.x[0], p.py = s.x[1], p.pz = s.x[2];
   p.vx = s.v[0], p.vy = s.v[1], p.vz = s.v[2];
   p.mu = c.mu, p.lambda = c.lambda, p.alpha = c.alpha;
+  std::copy(s.sum, s.sum + 12, p.sum);
   for (std::size_t f = 0; f < fam.triangles.size(); ++f) {
     const TriangleFamily& tf = fam.triangles[f];
     for (int k = 0; k < 3; ++k) p.o[k] = tf.offset[static_cast<std::size_t>(k)];
@@ -574,69 +595,29 @@ void family_forces(const ContinuumArrays& c, const ContinuumFamilies& fam, const
     const double* in[5] = {tf.g1x.data(), tf.g1y.data(), tf.g2x.data(), tf.g2y.data(),
                            tf.area.data()};
     std::copy(in, in + 5, p.in);
-    for (int q = 0; q < 12; ++q)
-      p.out[q] = s.triangle_column(static_cast<std::int64_t>(f), q) + pad;
+    for (int a = 0; a < 3; ++a) p.out[a] = s.normal_column(static_cast<std::int64_t>(f), a) + pad;
     over_runs(tf.runs, p, [](const FamilyPass q, std::int64_t i) { triangle_family_slot(q, i); });
-  }
 #pragma omp barrier
+  }
   for (std::size_t f = 0; f < fam.hinges.size(); ++f) {
     const HingeFamily& hf = fam.hinges[f];
     for (int k = 0; k < 4; ++k) p.o[k] = hf.offset[static_cast<std::size_t>(k)];
     for (int a = 0; a < 3; ++a) {
-      p.n1[a] = s.triangle_column(hf.wing_family[0], a) + pad + hf.wing_shift[0];
-      p.n2[a] = s.triangle_column(hf.wing_family[1], a) + pad + hf.wing_shift[1];
+      p.n1[a] = s.normal_column(hf.wing_family[0], a) + pad + hf.wing_shift[0];
+      p.n2[a] = s.normal_column(hf.wing_family[1], a) + pad + hf.wing_shift[1];
     }
     p.sign = hf.second_sign;
     p.in[0] = hf.stiffness.data();
     p.in[1] = hf.rest_angle.data();
-    for (int q = 0; q < 12; ++q) p.out[q] = s.hinge_column(static_cast<std::int64_t>(f), q) + pad;
     over_runs(hf.runs, p, [](const FamilyPass q, std::int64_t i) { hinge_family_slot(q, i); });
-  }
 #pragma omp barrier
-  // Each particle sums its shares family by family, corner by corner: a fixed order. A family's
-  // corner k reaches only the particles of its runs moved by offset k (every other row on a grid
-  // whose diagonal turns by row), and each thread sums its own block of particles, so no two
-  // threads touch one sum.
-  double *sx = s.sum[0], *sy = s.sum[1], *sz = s.sum[2];
-  const std::pair<std::int64_t, std::int64_t> mine = own_block(n);
-  const std::int64_t mine_from = mine.first, mine_to = mine.second;
-  for (std::int64_t i = mine_from; i < mine_to; ++i) sx[i] = sy[i] = sz[i] = 0.0;
-  auto add_share = [&](const std::vector<std::int64_t>& runs, std::int64_t offset, const double* cx,
-                       const double* cy, const double* cz) {
-    for (std::size_t r = 0; r < runs.size(); r += 2) {
-      const std::int64_t from = std::max(runs[r] + offset, mine_from);
-      const std::int64_t to = std::min(runs[r + 1] + offset, mine_to);
-#pragma omp simd
-      for (std::int64_t i = from; i < to; ++i) {
-        sx[i] += cx[i];
-        sy[i] += cy[i];
-        sz[i] += cz[i];
-      }
-    }
-  };
-  for (std::size_t f = 0; f < fam.triangles.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const std::int64_t offset = fam.triangles[f].offset[static_cast<std::size_t>(k)];
-      const auto column = [&](int q) {
-        return s.triangle_column(static_cast<std::int64_t>(f), q) + pad - offset;
-      };
-      add_share(fam.triangles[f].runs, offset, column(3 + 3 * k), column(4 + 3 * k),
-                column(5 + 3 * k));
-    }
-  for (std::size_t f = 0; f < fam.hinges.size(); ++f)
-    for (int k = 0; k < 4; ++k) {
-      const std::int64_t offset = fam.hinges[f].offset[static_cast<std::size_t>(k)];
-      const auto column = [&](int q) {
-        return s.hinge_column(static_cast<std::int64_t>(f), q) + pad - offset;
-      };
-      add_share(fam.hinges[f].runs, offset, column(3 * k), column(3 * k + 1), column(3 * k + 2));
-    }
-#pragma omp simd
-  for (std::int64_t i = mine_from; i < mine_to; ++i) {
-    force[3 * i] += sx[i];
-    force[3 * i + 1] += sy[i];
-    force[3 * i + 2] += sz[i];
   }
+  const FamilyPass sums = p;  // by value, so that the compiler sees the pointers stay put
+#pragma omp simd
+  for (std::int64_t i = mine.first; i < mine.second; ++i)
+    for (int a = 0; a < 3; ++a)
+      force[3 * i + a] +=
+          ((sums.sum[a][i] + sums.sum[3 + a][i]) + sums.sum[6 + a][i]) + sums.sum[9 + a][i];
 }
 
 }  // namespace
