@@ -143,33 +143,6 @@ inline void apply_f(const double* f, const double* y, double* out) {
   for (int a = 0; a < 3; ++a) out[a] = f[a] * y[0] + f[3 + a] * y[1];
 }
 
-// -A (dF S' + F dS) g_k for every corner k, with dF = sum_l w_l g_l^T: the elastic force for
-// (w, S') = (0, -), or minus the Hessian times w with the stress S' in the geometric term.
-void membrane_action(const ContinuumArrays& c, const MembraneState& m, const double* w,
-                     const double* stress, double scale, double* out) {
-  double df[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  for (int l = 0; l < 3; ++l)
-    for (int a = 0; a < 3; ++a) {
-      df[a] += w[3 * l + a] * m.g[2 * l];
-      df[3 + a] += w[3 * l + a] * m.g[2 * l + 1];
-    }
-  // dG = sym(F^T dF), dS = 2 mu dG + lambda tr(dG) I
-  const double dg00 = dot3(m.f, df), dg11 = dot3(m.f + 3, df + 3);
-  const double dg01 = 0.5 * (dot3(m.f, df + 3) + dot3(m.f + 3, df));
-  const double trace = dg00 + dg11;
-  const double ds[3] = {2.0 * c.mu * dg00 + c.lambda * trace, 2.0 * c.mu * dg01,
-                        2.0 * c.mu * dg11 + c.lambda * trace};
-  for (int k = 0; k < 3; ++k) {
-    const double* g = m.g + 2 * k;
-    const double sg[2] = {stress[0] * g[0] + stress[1] * g[1], stress[1] * g[0] + stress[2] * g[1]};
-    const double dsg[2] = {ds[0] * g[0] + ds[1] * g[1], ds[1] * g[0] + ds[2] * g[1]};
-    double a1[3], a2[3];
-    apply_f(df, sg, a1);
-    apply_f(m.f, dsg, a2);
-    for (int a = 0; a < 3; ++a) out[3 * k + a] -= scale * m.area * (a1[a] + a2[a]);
-  }
-}
-
 void membrane_force(const MembraneState& m, double* out) {
   for (int k = 0; k < 3; ++k) {
     const double* g = m.g + 2 * k;
@@ -645,24 +618,41 @@ void continuum_particle_terms(const ContinuumArrays& c, std::int64_t i, const do
     const std::int64_t t = c.triangle_of[r];
     const int k = c.triangle_slot[r];
     const MembraneState m = membrane_state(c, t, x);
-    double out[9];
-    membrane_force(m, out);
+    const double* g = m.g + 2 * k;
+    // The elastic force on corner k, -A F S g_k, and the damping's -alpha/h A F dS g_k for the
+    // step's move dF = sum_l w_l g_l^T (dS = C : sym(F^T dF))
+    const double sg[2] = {m.s[0] * g[0] + m.s[1] * g[1], m.s[1] * g[0] + m.s[2] * g[1]};
+    double pull[3];
+    apply_f(m.f, sg, pull);
+    for (int a = 0; a < 3; ++a) f[a] -= m.area * pull[a];
     if (damping > 0.0) {
       const std::int32_t* corner = c.triangle + 3 * t;
-      double w[9];
+      double df[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
       for (int q = 0; q < 3; ++q)
         for (int a = 0; a < 3; ++a) {
           const std::int64_t at = 3 * static_cast<std::int64_t>(corner[q]) + a;
-          w[3 * q + a] = x[at] - start[at];
+          const double w = x[at] - start[at];
+          df[a] += w * m.g[2 * q];
+          df[3 + a] += w * m.g[2 * q + 1];
         }
-      membrane_action(c, m, w, no_stress, damping, out);
+      const double dg00 = dot3(m.f, df), dg11 = dot3(m.f + 3, df + 3);
+      const double dg01 = 0.5 * (dot3(m.f, df + 3) + dot3(m.f + 3, df));
+      const double trace = dg00 + dg11;
+      const double ds[3] = {2.0 * c.mu * dg00 + c.lambda * trace, 2.0 * c.mu * dg01,
+                            2.0 * c.mu * dg11 + c.lambda * trace};
+      const double dsg[2] = {ds[0] * g[0] + ds[1] * g[1], ds[1] * g[0] + ds[2] * g[1]};
+      double resist[3];
+      apply_f(m.f, dsg, resist);
+      for (int a = 0; a < 3; ++a) f[a] -= damping * m.area * resist[a];
     }
-    double hk[9], hm[9];  // the block with the clamped stress, and its material part alone
-    membrane_block(c, m, m.s_psd, k, k, hk);
-    membrane_block(c, m, no_stress, k, k, hm);
-    for (int a = 0; a < 3; ++a) f[a] += out[3 * k + a];
+    // The block's material part, and the clamped stress's geometric part on its diagonal
+    double material[9];
+    membrane_block(c, m, no_stress, k, k, material);
+    const double geometric = m.area * (g[0] * (m.s_psd[0] * g[0] + m.s_psd[1] * g[1]) +
+                                       g[1] * (m.s_psd[1] * g[0] + m.s_psd[2] * g[1]));
     const int entry[6] = {0, 4, 8, 1, 2, 5};  // xx, yy, zz, xy, xz, yz of a row-major 3 x 3
-    for (int q = 0; q < 6; ++q) block[q] += hk[entry[q]] + damping * hm[entry[q]];
+    for (int q = 0; q < 6; ++q)
+      block[q] += (1.0 + damping) * material[entry[q]] + (q < 3 ? geometric : 0.0);
   }
   for (std::int32_t r = c.hinge_offsets[i]; r < c.hinge_offsets[i + 1]; ++r) {
     const std::int64_t e = c.hinge_of[r];
