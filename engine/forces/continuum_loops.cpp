@@ -597,9 +597,9 @@ void family_forces(const ContinuumArrays& c, const ContinuumFamilies& fam, const
 
 void add_continuum_forces(const ContinuumArrays& c, const double* x, const double* v,
                           double* scratch, double* force) {
-  // The family loop streams its columns through memory: a second thread sharing the same L3 made
-  // it slower up to 129 x 129 (49 against 67 ns per particle at 65 x 65) and faster only from
-  // 257 x 257 (78 against 71), docs/performance.md.
+  // A second thread made the family loop slower up to 129 x 129 (33 against 41 ns per particle
+  // at 65 x 65: it shares the caches, and each family ends at a barrier) and broke even at
+  // 257 x 257 (44 against 44), docs/performance.md.
   const bool parallel = c.particles >= (c.families ? 32768 : 2048);
 #pragma omp parallel if (parallel)
   {
