@@ -81,6 +81,7 @@ class BulletDeformableSolver final : public BulletClothSolver {
     if (status_ != SolverStatus::ok) return;
     substep_start_ = state_.time;
     world_->stepSimulation(h, 0);
+    if (options_.attachments) place_attached_nodes(*options_.attachments, state_.time + h, *cloth_);
     state_.time += h;
     ++state_.step_count;
     read_soft_body_state(*cloth_, state_);
@@ -107,6 +108,8 @@ class BulletDeformableSolver final : public BulletClothSolver {
   static void before_substep(btDynamicsWorld* world, btScalar h) {
     auto* self = static_cast<BulletDeformableSolver*>(world->getWorldUserInfo());
     self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
+    if (self->options_.attachments)
+      place_attached_nodes(*self->options_.attachments, self->substep_start_, *self->cloth_);
   }
 
   std::string name_;

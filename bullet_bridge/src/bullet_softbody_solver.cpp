@@ -44,6 +44,7 @@ void BulletSoftBodySolver::step(double h) {
   substep_start_ = state_.time;
   previous_velocity_ = state_.v;
   world_->stepSimulation(h, 0);  // exactly one substep of h
+  if (options_.attachments) place_attached_nodes(*options_.attachments, state_.time + h, *cloth_);
   state_.time += h;
   ++state_.step_count;
   read_state();
@@ -55,6 +56,8 @@ void BulletSoftBodySolver::step(double h) {
 void BulletSoftBodySolver::before_substep(btDynamicsWorld* world, btScalar h) {
   auto* self = static_cast<BulletSoftBodySolver*>(world->getWorldUserInfo());
   self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
+  if (self->options_.attachments)
+    place_attached_nodes(*self->options_.attachments, self->substep_start_, *self->cloth_);
 }
 
 void BulletSoftBodySolver::build_cloth(const ClothState& initial) {

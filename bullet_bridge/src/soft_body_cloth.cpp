@@ -58,6 +58,15 @@ void read_soft_body_state(const btSoftBody& body, ClothState& state) {
   }
 }
 
+void place_attached_nodes(const Attachments& attachments, double t, btSoftBody& body) {
+  for (std::size_t k = 0; k < attachments.list.size(); ++k) {
+    const auto [position, velocity] = attachments.placement(k, t);
+    btSoftBody::Node& node = body.m_nodes[attachments.list[k].particle];
+    node.m_x = node.m_q = to_bullet(position);
+    node.m_v = node.m_vn = to_bullet(velocity);
+  }
+}
+
 void estimate_contact_forces(const ClothModel& model, const std::vector<NodeContact>& contacts,
                              const Eigen::Matrix3Xd& previous_velocity,
                              const Eigen::Matrix3Xd& velocity, const Eigen::Vector3d& gravity,

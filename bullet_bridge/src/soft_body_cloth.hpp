@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/solver.hpp"
@@ -26,6 +27,10 @@ std::unique_ptr<btSoftBody> make_soft_body(
     const std::function<double(std::size_t)>& link_stiffness);
 
 void read_soft_body_state(const btSoftBody& body, ClothState& state);
+// Puts the attached nodes (pinned: mass 0) where their colliders carry them at time t (s):
+// position, previous position and velocity. Both Bullet cloths call it before every substep and
+// after it, so an attached node is a kinematic node that follows its collider.
+void place_attached_nodes(const Attachments& attachments, double t, btSoftBody& body);
 
 // A node touching a collider during the last step, with the contact's outward normal.
 struct NodeContact {

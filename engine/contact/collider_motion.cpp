@@ -47,35 +47,42 @@ Eigen::Matrix3d euler_rotation(const Eigen::Vector3d& degrees) {
       .toRotationMatrix();
 }
 
-Eigen::Isometry3d collider_pose(const Collider& collider, double t) {
+bool Collider::moves() const {
+  if (!motion.is_static()) return true;
+  for (const ColliderFrame& frame : ancestors)
+    if (!frame.motion.is_static()) return true;
+  return false;
+}
+
+Eigen::Isometry3d frame_pose(const ColliderFrame& frame, double t) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  const ColliderMotion& motion = collider.motion;
+  const ColliderMotion& motion = frame.motion;
   if (!motion.keyframes.empty()) {
     // Linear in position, spherical-linear in orientation between neighbouring keyframes. The
-    // keyframe's rotation turns the collider after its own `rotation` (its orientation at rest),
-    // about the keyframe's centre; the collider's `center` plays no part (the keyframes give the
+    // keyframe's rotation turns the frame after its own `rotation` (its orientation at rest),
+    // about the keyframe's centre; the frame's `center` plays no part (the keyframes give the
     // centre).
     const auto [k, s] = keyframe_segment(motion.keyframes, t);
     const ColliderKeyframe& a = motion.keyframes[k];
     const ColliderKeyframe& b = motion.keyframes.size() > 1 ? motion.keyframes[k + 1] : a;
     pose.translation() = (1.0 - s) * a.center + s * b.center;
     pose.linear() = keyframe_rotation(a).slerp(s, keyframe_rotation(b)).toRotationMatrix() *
-                    euler_rotation(collider.rotation);
+                    euler_rotation(frame.rotation);
     return pose;
   }
-  pose.translation() = collider.center + t * motion.velocity;
+  pose.translation() = frame.center + t * motion.velocity;
   const Eigen::Vector3d turn = t * motion.angular_velocity * kDegree;  // rad, rotation vector
   const double angle = turn.norm();
   const Eigen::Matrix3d spin = angle > 0.0
                                    ? Eigen::AngleAxisd(angle, turn / angle).toRotationMatrix()
                                    : Eigen::Matrix3d::Identity();
-  pose.linear() = spin * euler_rotation(collider.rotation);
+  pose.linear() = spin * euler_rotation(frame.rotation);
   return pose;
 }
 
-Eigen::Vector3d collider_point_velocity(const Collider& collider, double t,
-                                        const Eigen::Vector3d& p) {
-  const ColliderMotion& motion = collider.motion;
+Eigen::Vector3d frame_point_velocity(const ColliderFrame& frame, double t,
+                                     const Eigen::Vector3d& p) {
+  const ColliderMotion& motion = frame.motion;
   if (!motion.keyframes.empty()) {
     // Constant linear and angular velocity within a segment; at rest before the first keyframe and
     // after the last.
@@ -88,14 +95,36 @@ Eigen::Vector3d collider_point_velocity(const Collider& collider, double t,
     const double span = b.t - a.t;  // s
     Eigen::Quaterniond qa = keyframe_rotation(a), qb = keyframe_rotation(b);
     if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();  // slerp takes the shorter way round
-    // The collider's own rotation, applied first, cancels from (Rb Rs)(Ra Rs)^T = Rb Ra^T.
+    // The frame's own rotation, applied first, cancels from (Rb Rs)(Ra Rs)^T = Rb Ra^T.
     const Eigen::AngleAxisd turn(qb * qa.inverse());
     const Eigen::Vector3d omega = turn.axis() * turn.angle() / span;  // rad/s
     const Eigen::Vector3d center = (1.0 - s) * a.center + s * b.center;
     return (b.center - a.center) / span + omega.cross(p - center);
   }
-  const Eigen::Vector3d center = collider.center + t * motion.velocity;
+  const Eigen::Vector3d center = frame.center + t * motion.velocity;
   return motion.velocity + (motion.angular_velocity * kDegree).cross(p - center);
+}
+
+Eigen::Isometry3d collider_pose(const Collider& collider, double t) {
+  Eigen::Isometry3d pose = frame_pose(collider.frame(), t);
+  for (const ColliderFrame& frame : collider.ancestors) pose = frame_pose(frame, t) * pose;
+  return pose;
+}
+
+Eigen::Vector3d collider_point_velocity(const Collider& collider, double t,
+                                        const Eigen::Vector3d& p) {
+  if (collider.ancestors.empty()) return frame_point_velocity(collider.frame(), t, p);
+  // p = A_root ... A_own q moves by sum_k (A_root ... A_(k+1)) dA_k/dt (A_(k-1) ... A_own q): frame
+  // k's own motion at the point, seen from the frames above it, which only turn a velocity.
+  Eigen::Isometry3d above = Eigen::Isometry3d::Identity();  // world <- frame k's parent
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  const auto add = [&](const ColliderFrame& frame) {
+    velocity += above.linear() * frame_point_velocity(frame, t, above.inverse() * p);
+    above = above * frame_pose(frame, t);
+  };
+  for (auto it = collider.ancestors.rbegin(); it != collider.ancestors.rend(); ++it) add(*it);
+  add(collider.frame());
+  return velocity;
 }
 
 }  // namespace drapelab

@@ -90,8 +90,8 @@ Eigen::Isometry3d ContactModel::pose(std::size_t c, double t) const {
 Eigen::Vector3d ContactModel::surface_velocity(std::size_t c, double t,
                                                const Eigen::Vector3d& p) const {
   if (poses_) return poses_->at(c, t).point_velocity(p);
-  return colliders_[c].motion.is_static() ? Eigen::Vector3d::Zero()
-                                          : collider_point_velocity(colliders_[c], t, p);
+  return !colliders_[c].moves() ? Eigen::Vector3d::Zero()
+                                : collider_point_velocity(colliders_[c], t, p);
 }
 
 Eigen::Isometry3d ContactModel::shape_pose(std::size_t c, double t) const {
@@ -130,7 +130,7 @@ ContactPass::ContactPass(const ContactModel& contacts, const ClothModel& model, 
     posed.shape_pose = pose * shape.shape_in_collider;
     posed.near = near_test(shape, posed.shape_pose, contacts_.query().radius());
     posed.hosted = hosted;
-    posed.moving = poses ? hosted.moving() : !collider.motion.is_static();
+    posed.moving = poses ? hosted.moving() : collider.moves();
   }
   const auto block_count = static_cast<std::size_t>(blocks_);
   if (work_.blocks.size() < block_count) work_.blocks.resize(block_count);

@@ -121,6 +121,13 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   }
   for (int i = 0; i < model_->particle_count(); ++i)
     if (model_->is_pinned(i)) state_.v.col(i).setZero();  // a pin holds its particle still
+  if (settings_.attachments) {
+    for (const Attachment& a : settings_.attachments->list)
+      if (a.particle >= n || !model_->is_pinned(a.particle))
+        throw std::invalid_argument("attached particle " + std::to_string(a.particle) +
+                                    " is not a pinned particle of the cloth");
+    settings_.attachments->place(state_.time, state_.x, state_.v);  // ... or moves with its body
+  }
   if (settings_.contacts && settings_.collider_edges && model_->triangles.cols() > 0) {
     edge_contact_ = std::make_unique<EdgeContact>(*model_, *settings_.contacts);
     if (!edge_contact_->active()) edge_contact_.reset();
@@ -413,6 +420,7 @@ void SpringDamperSolver::single_step(double h) {
   const auto start = Clock::now();
   const double force_seconds_before = force_phase_seconds();
   std::optional<std::int64_t> scanned;  // the Euler passes scan the new state as they write it
+  if (settings_.attachments) settings_.attachments->place(state_.time, state_.x, state_.v);
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
     case Integrator::symplectic_euler:
@@ -437,9 +445,12 @@ void SpringDamperSolver::single_step(double h) {
       vbd_step(h);
       break;
   }
+  // The schemes moved the attached particles with their velocities at the step's start; they end
+  // it where their colliders are.
+  if (settings_.attachments) settings_.attachments->place(state_.time + h, state_.x, state_.v);
   // Only the Euler pair with colliders keeps the spring kernel's split state in step with the
-  // update.
-  if (!scanned || !settings_.contacts) split_state_is_current_ = false;
+  // update (and not when attached particles were placed after it).
+  if (!scanned || !settings_.contacts || settings_.attachments) split_state_is_current_ = false;
   // Whatever the step spent outside the force phases is the integrator's own work.
   const double step_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stats_.seconds[static_cast<int>(StepPhase::integrate)] +=

@@ -112,6 +112,8 @@ inline void ExpectSameCollider(const Collider& a, const Collider& b) {
   EXPECT_EQ(a.rotation, b.rotation);
   EXPECT_EQ(a.friction, b.friction);
   EXPECT_EQ(a.static_friction, b.static_friction);
+  EXPECT_EQ(a.parent, b.parent);
+  EXPECT_EQ(a.ancestors.size(), b.ancestors.size());
   EXPECT_EQ(a.motion.velocity, b.motion.velocity);
   EXPECT_EQ(a.motion.angular_velocity, b.motion.angular_velocity);
   ASSERT_EQ(a.motion.keyframes.size(), b.motion.keyframes.size());

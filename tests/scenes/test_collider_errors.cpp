@@ -219,14 +219,14 @@ std::vector<BadScene> bad_colliders() {
        30,
        "colliders.3.radius",
        {"is not a known key",
-        "valid keys here: name, type, rotation, friction, static_friction, motion, center, "
+        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, center, "
         "half_extents"}},
       {"HalfExtentsOnASphereIsUnknown",
        insert_lines(14, "    half_extents: [1, 1, 1]"),
        15,
        "colliders.0.half_extents",
        {"is not a known key",
-        "valid keys here: name, type, rotation, friction, static_friction, motion, center, "
+        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, center, "
         "radius"}},
       // No key of a sphere is close to `point`, so the message lists the sphere's valid keys.
       {"PointOnASphereIsUnknown",
@@ -234,7 +234,7 @@ std::vector<BadScene> bad_colliders() {
        15,
        "colliders.0.point",
        {"is not a known key",
-        "valid keys here: name, type, rotation, friction, static_friction, motion, center, "
+        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, center, "
         "radius"}},
       {"OtherShapesKeysAreUnknown_SphereHeight",
        insert_lines(14, "    height: 1"),
@@ -557,6 +557,36 @@ std::vector<BadScene> bad_colliders() {
        15,
        "colliders.0.motion",
        {"must be a map of keys, got 'fast'"}},
+      // Parents (colliders.N.parent) and carried pins (cloth.pins.N.attach)
+      {"ParentMustNameAnotherColliderOfTheScene",
+       insert_lines(25, "    parent: nobody"),
+       26,
+       "colliders.2.parent",
+       {"must name another collider of the scene (ball, crate, floor, pill, table)",
+        "got 'nobody'"}},
+      {"ParentCannotBeTheColliderItself",
+       insert_lines(25, "    parent: pill"),
+       26,
+       "colliders.2.parent",
+       {"names the collider itself"}},
+      {"ParentsCannotMakeALoop",
+       {insert_lines(31, "    parent: pill"), insert_lines(25, "    parent: crate")},
+       26,
+       "colliders.2.parent",
+       {"makes a loop of parents through 'pill'", "must end at a collider without a parent"}},
+      {"PinAttachMustNameACollider",
+       insert_lines(5, "  pins: [{index: 0, attach: nobody}]"),
+       6,
+       "cloth.pins.0.attach",
+       {"must name a collider of the scene (ball, table, pill, crate, floor)", "got 'nobody'"}},
+      {"AParticleHasOneHolder",
+       insert_lines(5,
+                    "  pins: [{index: 3, attach: ball}, {within: {center: [0, 0, 0], "
+                    "radius: 5}}]"),
+       6,
+       "cloth.pins.1",
+       {"holds particle 3, which cloth.pins.0 also holds", "one moves with 'ball'",
+        "the other stays in place"}},
       {"VelocitiesMustHaveThreeNumbers_Velocity",
        ball_motion("    motion: {velocity: [0, 1]}"),
        15,

@@ -92,6 +92,34 @@ TEST(ColliderResolved, RoundTripKeepsEveryValue) {
   EXPECT_TRUE(c[4].motion.is_static());
 }
 
+// An articulated chain and a pin carried by one of its colliders: the parent names, the frames
+// they resolve to, and the pin's attach all survive resolved.yaml.
+TEST(ColliderResolved, ParentsAndCarriedPinsRoundTrip) {
+  const std::string chain =
+      "colliders:\n"
+      "  - {name: pelvis, type: sphere, radius: 0.1, motion: {keyframes: [{t: 0, center: [0, 1, "
+      "0]}, {t: 1, center: [0, 1, 0], rotation: [0, 90, 0]}]}}\n"
+      "  - {name: arm, type: capsule, parent: shoulder, center: [0, -0.2, 0], radius: 0.04, "
+      "height: 0.3}\n"
+      "  - {name: shoulder, type: sphere, parent: pelvis, center: [0.2, 0.3, 0], radius: 0.05, "
+      "rotation: [10, 0, 0]}\n";
+  std::string text = kHeader + chain;
+  text.insert(text.find("contact:"), "  pins: [{index: 0, attach: arm}]\n");
+  ExpectCollidersRoundTrip(text);
+  const auto loaded = load(text);
+  ASSERT_LOADS(loaded);
+  const auto& c = loaded.scene->colliders;
+  ASSERT_EQ(c[1].ancestors.size(), 2u);  // shoulder, then pelvis
+  EXPECT_EQ(c[1].ancestors[0].center, Vector3d(0.2, 0.3, 0));
+  EXPECT_EQ(c[1].ancestors[0].rotation, Vector3d(10, 0, 0));
+  EXPECT_EQ(c[1].ancestors[1].motion.keyframes.size(), 2u);
+  EXPECT_TRUE(c[1].moves());
+  const std::string written = resolved_scene_yaml(*loaded.scene);
+  EXPECT_NE(written.find("parent: shoulder"), std::string::npos) << written;
+  EXPECT_NE(written.find("{index: 0, attach: arm}"), std::string::npos) << written;
+  EXPECT_EQ(loaded.scene->cloth.pin_attach, std::vector<std::string>{"arm"});
+}
+
 // Directions are normalised on load; the normalised value written to resolved.yaml loads back to
 // exactly the same vector. Normalising an already-unit vector again would divide by a norm of 1 +-
 // 1 ulp and move its last bits (axis [1, 1, 0], written as [0.7071067811865475, 0.7071067811865475,

@@ -34,6 +34,14 @@ struct ColliderMotion {
   }
 };
 
+// Where a frame sits in its parent's frame (the world's for a collider without a parent): its
+// centre, its rotation at rest and its kinematic motion, all given in the parent's frame.
+struct ColliderFrame {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();    // m
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // deg, Euler angles (x, y, z)
+  ColliderMotion motion;
+};
+
 struct Collider {
   std::string name;
   ColliderShape shape = ColliderShape::sphere;
@@ -50,18 +58,37 @@ struct Collider {
   double friction = 0.3;                               // kinetic Coulomb coefficient
   double static_friction = 0.3;                        // static Coulomb coefficient, >= friction
   ColliderMotion motion;
+  // The collider it moves with (empty: none): then center, rotation and motion are in that
+  // collider's frame, and `ancestors` holds the frames it moves with, nearest first (the scene
+  // loader fills them in from the names).
+  std::string parent;
+  std::vector<ColliderFrame> ancestors;
+
+  // Its own frame in its parent's.
+  ColliderFrame frame() const { return {center, rotation, motion}; }
+  // Whether it moves at all: by its own motion or by an ancestor's.
+  bool moves() const;
 };
 
 // R = Rz(z) Ry(y) Rx(x): rotate about the fixed x axis first, then y, then z (angles in degrees).
 Eigen::Matrix3d euler_rotation(const Eigen::Vector3d& degrees);
 
-// The collider's rigid transform at time t (s): local frame -> world. The local frame has its
-// origin at the collider's centre (a plane: its point) and the shape's own axes before `rotation`.
-// With keyframes: translation = the interpolated keyframe centre, rotation = R_keyframes(t) *
-// R(rotation).
+// A frame's rigid transform at time t (s): its own coordinates -> its parent's. The frame has its
+// origin at the centre and the shape's own axes before `rotation`. With keyframes: translation =
+// the interpolated keyframe centre, rotation = R_keyframes(t) * R(rotation).
+Eigen::Isometry3d frame_pose(const ColliderFrame& frame, double t);
+// Velocity (m/s, in the parent's axes) at time t of the frame's material point at p (the parent's
+// coordinates), relative to the parent's frame.
+Eigen::Vector3d frame_point_velocity(const ColliderFrame& frame, double t,
+                                     const Eigen::Vector3d& p);
+
+// The collider's rigid transform at time t (s): local frame -> world, its ancestors' poses
+// composed with its own (root first): W = A_root(t) ... A_parent(t) A_own(t).
 Eigen::Isometry3d collider_pose(const Collider& collider, double t);
 
-// Velocity (m/s) at time t of the collider's material point that is at world position p.
+// Velocity (m/s) at time t of the collider's material point that is at world position p: the sum
+// over the chain of each frame's own point velocity, turned into the world by the frames above
+// it.
 Eigen::Vector3d collider_point_velocity(const Collider& collider, double t,
                                         const Eigen::Vector3d& p);
 

@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/contact_model.hpp"
@@ -68,6 +69,10 @@ struct SpringDamperSettings {
   // The colliders' sharp edges and corners also push on the cloth's edges and triangles
   // (contact/edge_contact.hpp), not only on its particles.
   bool collider_edges = false;
+  // Pinned particles carried by colliders (cloth.pins[].attach): placed on their colliders at the
+  // start and the end of every step (and every substep), so each step's schemes move them with
+  // the colliders' velocities in between. They must be pinned in the model. None when null.
+  std::shared_ptr<const Attachments> attachments;
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).

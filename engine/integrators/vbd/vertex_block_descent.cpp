@@ -262,8 +262,10 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   // that part is not always taken back where the cloth is held, and an undamped curtain then gained
   // energy (9.6 J from 2.45 J in 2 s at 1/120 s, 10 sweeps). The fall itself comes from the
   // translation step after every sweep.
+  // A pinned particle with a velocity is carried by a collider (attachments.hpp): it moves too.
   for (int i = 0; i < n; ++i)
-    if (!model.is_pinned(i)) x.col(i) = start_.col(i) + h * base_v_.col(i);
+    if (!model.is_pinned(i) || !base_v_.col(i).isZero(0))
+      x.col(i) = start_.col(i) + h * base_v_.col(i);
 
   kernels::VbdProblem problem;
   problem.n = n;

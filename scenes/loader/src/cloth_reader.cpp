@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "drapelab/cloth_limits.hpp"
 #include "drapelab/disc_cloth.hpp"
@@ -330,6 +331,7 @@ void ClothReader::read_pins(const YAML::Node& node) {
     const YAML::Node item = node[k];
     const std::string path = "cloth.pins." + std::to_string(k);
     std::optional<PinSelector> selector;
+    std::string attach;  // the collider the pin's particles move with, if any
     if (item.IsScalar()) {
       if (const auto name = r_.choice(item, path, pin_set_names(scene_.cloth)))
         selector = PinNamed{*name};
@@ -337,7 +339,7 @@ void ClothReader::read_pins(const YAML::Node& node) {
       if (const auto ij = r_.integers(item, path, 2, grid_coordinate_range()))
         selector = PinGridCoord{static_cast<int>((*ij)[0]), static_cast<int>((*ij)[1])};
     } else if (item.IsMap()) {
-      selector = read_pin_map(item, path);
+      selector = read_pin_map(item, path, attach);
     } else {
       r_.error(
           item, path,
@@ -345,15 +347,17 @@ void ClothReader::read_pins(const YAML::Node& node) {
     }
     if (!selector) continue;
     scene_.cloth.grid.pins.push_back(*selector);
+    scene_.cloth.pin_attach.push_back(attach);
     pin_nodes_.push_back(item);
     pin_paths_.push_back(path);
   }
 }
 
 std::optional<PinSelector> ClothReader::read_pin_map(const YAML::Node& item,
-                                                     const std::string& path) {
-  MapReader pin(r_, item, path, {"index", "within"});
+                                                     const std::string& path, std::string& attach) {
+  MapReader pin(r_, item, path, {"index", "within", "attach"});
   if (!pin.valid()) return std::nullopt;
+  if (const auto name = pin.text("attach", std::nullopt)) attach = *name;
   if (pin.has("index") == pin.has("within")) {
     r_.error(item, path, "must have exactly one of index or within");
     return std::nullopt;
@@ -394,6 +398,26 @@ void ClothReader::check_disc_size() {
   geometry_ok_ = false;
 }
 
+// Each attach names a collider of the scene.
+void ClothReader::check_pin_attach() {
+  ClothSpec& spec = scene_.cloth;
+  for (std::size_t k = 0; k < spec.pin_attach.size(); ++k) {
+    const std::string& name = spec.pin_attach[k];
+    if (name.empty()) continue;
+    bool found = false;
+    std::string known;
+    for (const Collider& c : scene_.colliders) {
+      found = found || c.name == name;
+      known += (known.empty() ? "" : ", ") + c.name;
+    }
+    if (found) continue;
+    r_.error(pin_nodes_[k]["attach"], pin_paths_[k] + ".attach",
+             "must name a collider of the scene" +
+                 (known.empty() ? std::string(" (it has none)") : " (" + known + ")") + ", got '" +
+                 name + "'");
+  }
+}
+
 void ClothReader::finish() {
   ClothSpec& spec = scene_.cloth;
   if (spec.shape == "disc" && scene_.drape_support) {
@@ -403,21 +427,42 @@ void ClothReader::finish() {
   }
   if (spec.shape == "disc" && geometry_ok_) check_disc_size();
   if (!geometry_ok_) return;
+  check_pin_attach();
   // Pins are checked only on a cloth that can be built (its selectors may be fine on a fixed one).
   std::vector<PinSelector> kept;
+  std::vector<std::string> kept_attach;
+  std::map<int, std::size_t> holder;  // particle -> the first pin that holds it
   try {
     for (std::size_t k = 0; k < spec.grid.pins.size(); ++k) {
       std::string why;
-      if (select_cloth_pins(spec, spec.grid.pins[k], &why).empty())
+      const std::vector<int> held = select_cloth_pins(spec, spec.grid.pins[k], &why);
+      if (held.empty()) {
         r_.error(pin_nodes_[k], pin_paths_[k], "selects no particle: " + why);
-      else
-        kept.push_back(spec.grid.pins[k]);
+        continue;
+      }
+      kept.push_back(spec.grid.pins[k]);
+      kept_attach.push_back(spec.pin_attach[k]);
+      // A particle cannot both stay put and move with a collider, or move with two.
+      for (int particle : held) {
+        const auto [it, first] = holder.emplace(particle, k);
+        const std::string& other = spec.pin_attach[it->second];
+        if (first || other == spec.pin_attach[k]) continue;
+        const auto held_by = [](const std::string& name) {
+          return name.empty() ? std::string("stays in place") : "moves with '" + name + "'";
+        };
+        r_.error(pin_nodes_[k], pin_paths_[k],
+                 "holds particle " + std::to_string(particle) + ", which " +
+                     pin_paths_[it->second] + " also holds; one " + held_by(other) +
+                     ", the other " + held_by(spec.pin_attach[k]) + ": a particle has one holder");
+        break;
+      }
     }
   } catch (const std::exception& e) {  // the shape's builder refused it
     r_.error(cloth_node_, "cloth", "cannot be built: " + std::string(e.what()));
     geometry_ok_ = false;
   }
   spec.grid.pins = kept;
+  spec.pin_attach = kept_attach;
 }
 
 }  // namespace drapelab::scene

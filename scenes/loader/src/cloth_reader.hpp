@@ -36,7 +36,10 @@ class ClothReader {
   void read_pins(const YAML::Node& node);
   // cloth.self_collision, resolved: thickness defaults to the cloth's, static_friction to friction.
   void read_self_collision(MapReader& cloth);
-  std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path);
+  // A pin given as a map; its `attach` (a collider's name) goes to `attach`.
+  std::optional<PinSelector> read_pin_map(const YAML::Node& item, const std::string& path,
+                                          std::string& attach);
+  void check_pin_attach();
   double particle_spacing() const;  // m, for material presets and the continuum's springs
   // An undefined node: an error about a whole map-valued key of the cloth is placed at the key's
   // own line (SceneReader::where), not at the map's first entry.

@@ -15,7 +15,7 @@ const std::vector<std::string> kTypes = {"sphere", "cylinder", "capsule", "box",
 
 // Keys every collider may have, and those of each shape.
 const std::vector<std::string> kCommonKeys = {
-    "name", "type", "rotation", "friction", "static_friction", "motion"};
+    "name", "type", "rotation", "friction", "static_friction", "motion", "parent"};
 const std::map<std::string, std::vector<std::string>> kShapeKeys = {
     {"sphere", {"center", "radius"}},
     {"cylinder", {"center", "radius", "height", "axis"}},
@@ -208,10 +208,54 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
             map.path_of("static_friction"),
             "must be >= friction (" + format_number(c.friction) + "), got " +
                 format_number(c.static_friction));
+  if (const auto parent = map.text("parent", std::nullopt)) c.parent = *parent;
   if (map.has("motion")) read_motion(r, map.get("motion"), map.path_of("motion"), c.motion);
   if (!c.motion.keyframes.empty()) keyframe_center(r, map, center_key, c);
   if (r.error_count() != errors_before) return std::nullopt;
   return c;
+}
+
+// Fills in each collider's ancestors from the `parent` names: each must name another collider of
+// the scene, and following them must end at a collider without a parent.
+void resolve_parents(SceneReader& r, std::vector<Collider>& colliders,
+                     const std::vector<YAML::Node>& parent_nodes,
+                     const std::vector<std::string>& paths) {
+  std::map<std::string, std::size_t> index;
+  for (std::size_t k = 0; k < colliders.size(); ++k) index[colliders[k].name] = k;
+  for (std::size_t k = 0; k < colliders.size(); ++k) {
+    Collider& c = colliders[k];
+    if (c.parent.empty()) continue;
+    const std::string path = paths[k] + ".parent";
+    if (c.parent == c.name) {
+      r.error(parent_nodes[k], path, "names the collider itself; give another collider's name");
+      continue;
+    }
+    if (!index.contains(c.parent)) {
+      std::string known;
+      for (const auto& [name, at] : index) known += (known.empty() ? "" : ", ") + name;
+      r.error(parent_nodes[k], path,
+              "must name another collider of the scene (" + known + "), got '" + c.parent + "'");
+      continue;
+    }
+    std::vector<ColliderFrame> chain;
+    std::set<std::string> seen = {c.name};
+    for (std::string name = c.parent; !name.empty();) {
+      if (!seen.insert(name).second) {
+        r.error(parent_nodes[k], path,
+                "makes a loop of parents through '" + name +
+                    "'; the chain must end at a "
+                    "collider without a parent");
+        chain.clear();
+        break;
+      }
+      const auto found = index.find(name);
+      if (found == index.end()) break;  // reported at that collider
+      const Collider& parent = colliders[found->second];
+      chain.push_back(parent.frame());
+      name = parent.parent;
+    }
+    c.ancestors = chain;
+  }
 }
 
 }  // namespace
@@ -226,6 +270,8 @@ std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list
   }
   record_item_lines(reader, list, "colliders");
   std::set<std::string> names;
+  std::vector<YAML::Node> parent_nodes;  // each kept collider's `parent` node, for its errors
+  std::vector<std::string> paths;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string path = "colliders." + std::to_string(k);
     auto collider = read_collider(reader, list[k], path, contact);
@@ -238,7 +284,10 @@ std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list
       continue;
     }
     colliders.push_back(*collider);
+    parent_nodes.push_back(list[k]["parent"]);
+    paths.push_back(path);
   }
+  resolve_parents(reader, colliders, parent_nodes, paths);
   return colliders;
 }
 

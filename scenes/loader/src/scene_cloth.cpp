@@ -129,4 +129,25 @@ std::shared_ptr<const ClothModel> cloth_for_solver(const Scene& scene, const Sol
   return own;
 }
 
+std::shared_ptr<const Attachments> scene_attachments(const Scene& scene,
+                                                     const ClothState& initial) {
+  std::vector<std::pair<int, int>> attached;  // (particle, collider)
+  const ClothSpec& cloth = scene.cloth;
+  for (std::size_t k = 0; k < cloth.pin_attach.size() && k < cloth.grid.pins.size(); ++k) {
+    if (cloth.pin_attach[k].empty()) continue;
+    int collider = -1;
+    for (std::size_t c = 0; c < scene.colliders.size(); ++c)
+      if (scene.colliders[c].name == cloth.pin_attach[k]) collider = static_cast<int>(c);
+    if (collider < 0)
+      throw std::invalid_argument("cloth.pins." + std::to_string(k) + ".attach: no collider '" +
+                                  cloth.pin_attach[k] + "'");
+    std::string why;
+    for (int particle : select_cloth_pins(cloth, cloth.grid.pins[k], &why))
+      attached.emplace_back(particle, collider);
+  }
+  if (attached.empty()) return nullptr;
+  return std::make_shared<const Attachments>(
+      make_attachments(scene.colliders, attached, initial.x, 0.0));
+}
+
 }  // namespace drapelab::scene

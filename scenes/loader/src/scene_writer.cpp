@@ -58,6 +58,8 @@ void write_collider(std::ostream& out, const Collider& c) {
   out << "    rotation: " << format_list(c.rotation) << "  # deg, Euler x, y, z\n"
       << "    friction: " << format_number(c.friction) << "\n"
       << "    static_friction: " << format_number(c.static_friction) << "\n";
+  if (!c.parent.empty())
+    out << "    parent: " << c.parent << "  # center, rotation, motion in its frame\n";
   const ColliderMotion& m = c.motion;
   if (!m.keyframes.empty()) {
     out << "    motion:\n      keyframes:\n";
@@ -145,7 +147,12 @@ std::string resolved_scene_yaml(const Scene& s) {
     out << "  pins: []\n";
   } else {
     out << "  pins:\n";
-    for (const auto& pin : g.pins) out << "    - " << pin_text(pin) << "\n";
+    for (std::size_t k = 0; k < g.pins.size(); ++k) {
+      std::string text = pin_text(g.pins[k]);
+      const std::string attach = k < s.cloth.pin_attach.size() ? s.cloth.pin_attach[k] : "";
+      if (!attach.empty()) text.insert(text.size() - 1, ", attach: " + attach);  // a map's
+      out << "    - " << text << "\n";
+    }
   }
   const SelfCollisionSettings& self = s.cloth.self_collision;
   out << "  self_collision:\n"

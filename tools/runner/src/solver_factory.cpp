@@ -25,6 +25,7 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
   settings.adaptive_substeps = spec.adaptive_substeps;
   settings.self_collision = scene.cloth.self_collision;
   settings.collider_edges = scene.contact.triangles;
+  settings.attachments = scene::scene_attachments(scene, initial);
   if (!spec.bullet_host) {
     settings.contacts = std::move(contacts);
     return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
@@ -56,6 +57,7 @@ std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scen
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
   options.self_collision = scene.cloth.self_collision;  // no effect in Bullet 3.24's classic cloth
+  options.attachments = scene::scene_attachments(scene, initial);
   return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders,
                                              options);
 }
@@ -74,6 +76,7 @@ std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
   options.self_collision = scene.cloth.self_collision;
+  options.attachments = scene::scene_attachments(scene, initial);
   return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial,
                                                scene.colliders, options);
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/collider.hpp"
@@ -28,6 +29,9 @@ struct BulletDeformableOptions {
   // cloth.self_collision: when enabled, Bullet's face-node repulsion between the cloth's layers,
   // which keep 2 x margin apart (docs/bullet.md, "Self-collision").
   SelfCollisionSettings self_collision;
+  // Pinned nodes carried by colliders: placed on them before and after every substep (kinematic
+  // nodes). None when null.
+  std::shared_ptr<const Attachments> attachments;
 };
 
 std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name,

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/attachments.hpp"
 #include "drapelab/bullet/parameter_mapping.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
@@ -37,6 +38,9 @@ struct BulletSoftBodyOptions {
   // self-collision that runs: VF_SS skips a body against itself and CL_SELF is unreachable
   // (docs/bullet.md, "Self-collision").
   SelfCollisionSettings self_collision;
+  // Pinned nodes carried by colliders: placed on them before and after every substep (kinematic
+  // nodes). None when null.
+  std::shared_ptr<const Attachments> attachments;
 };
 
 std::unique_ptr<Solver> make_bullet_softbody_solver(std::string name,

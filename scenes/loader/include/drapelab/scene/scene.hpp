@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/attachments.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/disc_cloth.hpp"
 #include "drapelab/drape_metrics.hpp"
@@ -45,6 +46,8 @@ struct ClothSpec {
   // set only when the cloth itself is model: continuum).
   ContinuumParams continuum;
   bool continuum_given = false;  // the scene has a cloth.continuum block
+  // Per entry of grid.pins: the collider its particles move with (cloth.pins[].attach), or empty.
+  std::vector<std::string> pin_attach;
 };
 
 // metrics.drape_support: the support disc of the drape coefficient.
@@ -139,6 +142,9 @@ ClothModel build_scene_cloth(const Scene& scene);
 std::shared_ptr<const ClothModel> cloth_for_solver(const Scene& scene, const SolverSpec& solver,
                                                    std::shared_ptr<const ClothModel> cloth);
 ClothState initial_scene_state(const Scene& scene, const ClothModel& model);
+// The pinned particles that move with a collider (cloth.pins[].attach), their offsets taken from
+// `initial` at time 0; null when no pin is attached.
+std::shared_ptr<const Attachments> scene_attachments(const Scene& scene, const ClothState& initial);
 
 // Named pin sets of the scene's cloth shape (grid: corners, ...; disc: center, rim; mesh: center).
 std::vector<std::string> pin_set_names(const ClothSpec& cloth);

@@ -1,0 +1,49 @@
+// Pinned particles carried by colliders (see attachments.hpp).
+#include "drapelab/attachments.hpp"
+
+#include <Eigen/Geometry>
+#include <stdexcept>
+#include <string>
+
+namespace drapelab {
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> Attachments::placement(std::size_t k, double t) const {
+  const Attachment& a = list[k];
+  const Collider& c = colliders[static_cast<std::size_t>(a.collider)];
+  const Eigen::Vector3d position = collider_pose(c, t) * a.offset;
+  return {position, collider_point_velocity(c, t, position)};
+}
+
+void Attachments::place(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) const {
+  // One pose per collider and call: a cape holds a few particles per shoulder, a hammock dozens.
+  std::vector<Eigen::Isometry3d> pose(colliders.size());
+  std::vector<bool> posed(colliders.size(), false);
+  for (const Attachment& a : list) {
+    const auto c = static_cast<std::size_t>(a.collider);
+    if (!posed[c]) pose[c] = collider_pose(colliders[c], t), posed[c] = true;
+    const Eigen::Vector3d position = pose[c] * a.offset;
+    x.col(a.particle) = position;
+    v.col(a.particle) = collider_point_velocity(colliders[c], t, position);
+  }
+}
+
+Attachments make_attachments(std::vector<Collider> colliders,
+                             const std::vector<std::pair<int, int>>& particles,
+                             const Eigen::Matrix3Xd& x, double t) {
+  Attachments out;
+  out.colliders = std::move(colliders);
+  for (const auto& [particle, collider] : particles) {
+    if (particle < 0 || particle >= x.cols())
+      throw std::invalid_argument("attachment of particle " + std::to_string(particle) +
+                                  ": the cloth has " + std::to_string(x.cols()) + " particles");
+    if (collider < 0 || collider >= static_cast<int>(out.colliders.size()))
+      throw std::invalid_argument("attachment to collider " + std::to_string(collider) +
+                                  ": the scene has " + std::to_string(out.colliders.size()));
+    const Eigen::Isometry3d pose =
+        collider_pose(out.colliders[static_cast<std::size_t>(collider)], t);
+    out.list.push_back({particle, collider, pose.inverse() * Eigen::Vector3d(x.col(particle))});
+  }
+  return out;
+}
+
+}  // namespace drapelab
