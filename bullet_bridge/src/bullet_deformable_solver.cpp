@@ -82,6 +82,8 @@ class BulletDeformableSolver final : public BulletClothSolver {
     substep_start_ = state_.time;
     world_->stepSimulation(h, 0);
     if (options_.attachments) place_attached_nodes(*options_.attachments, state_.time + h, *cloth_);
+    if (options_.constraints && options_.constraints->has_hard())
+      project_node_constraints(*options_.constraints, *model_, state_.time + h, h, *cloth_, state_);
     state_.time += h;
     ++state_.step_count;
     read_soft_body_state(*cloth_, state_);
@@ -110,6 +112,9 @@ class BulletDeformableSolver final : public BulletClothSolver {
     self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
     if (self->options_.attachments)
       place_attached_nodes(*self->options_.attachments, self->substep_start_, *self->cloth_);
+    if (self->options_.constraints && self->options_.constraints->has_soft())
+      kick_soft_constraints(*self->options_.constraints, *self->model_, self->substep_start_, h,
+                            *self->cloth_, self->state_);
   }
 
   std::string name_;

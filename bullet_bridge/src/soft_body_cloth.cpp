@@ -67,6 +67,31 @@ void place_attached_nodes(const Attachments& attachments, double t, btSoftBody& 
   }
 }
 
+void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
+                           double t, double h, btSoftBody& body, ClothState& scratch) {
+  read_soft_body_state(body, scratch);
+  Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, scratch.x.cols());
+  constraints.add_soft_forces(t, scratch.x, scratch.v, force, nullptr);
+  for (int i = 0; i < body.m_nodes.size(); ++i)
+    if (model.inverse_mass[i] > 0.0 && force.col(i).squaredNorm() > 0.0)
+      body.m_nodes[i].m_v += to_bullet((h * model.inverse_mass[i]) * force.col(i));
+}
+
+ConstraintProjection project_node_constraints(const DistanceConstraints& constraints,
+                                              const ClothModel& model, double t, double h,
+                                              btSoftBody& body, ClothState& scratch) {
+  read_soft_body_state(body, scratch);
+  ConstraintProjection result = constraints.project_positions(t, model.inverse_mass, scratch.x);
+  constraints.project_velocities(t, h, model.inverse_mass, scratch.x, scratch.v, result);
+  for (int i = 0; i < body.m_nodes.size(); ++i) {
+    if (model.inverse_mass[i] == 0.0) continue;  // pinned and attached nodes are placed already
+    btSoftBody::Node& node = body.m_nodes[i];
+    node.m_x = node.m_q = to_bullet(scratch.x.col(i));
+    node.m_v = node.m_vn = to_bullet(scratch.v.col(i));
+  }
+  return result;
+}
+
 void estimate_contact_forces(const ClothModel& model, const std::vector<NodeContact>& contacts,
                              const Eigen::Matrix3Xd& previous_velocity,
                              const Eigen::Matrix3Xd& velocity, const Eigen::Vector3d& gravity,

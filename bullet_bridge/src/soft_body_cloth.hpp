@@ -14,6 +14,7 @@
 #include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
+#include "drapelab/distance_constraints.hpp"
 #include "drapelab/solver.hpp"
 
 namespace drapelab::bullet {
@@ -31,6 +32,17 @@ void read_soft_body_state(const btSoftBody& body, ClothState& state);
 // position, previous position and velocity. Both Bullet cloths call it before every substep and
 // after it, so an attached node is a kinematic node that follows its collider.
 void place_attached_nodes(const Attachments& attachments, double t, btSoftBody& body);
+
+// The soft distance constraints as an explicit external force of the substep [t, t + h]: each
+// free node's velocity gains h f / m (what btSoftBody::addForce does in the classic cloth, which the
+// deformable world's solver does not read). `scratch` receives the nodes' state.
+void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
+                           double t, double h, btSoftBody& body, ClothState& scratch);
+// The hard and rope constraints at the substep's end t (s): the nodes' positions and velocities
+// projected as our solver projects its particles (distance_constraints.hpp), written back.
+ConstraintProjection project_node_constraints(const DistanceConstraints& constraints,
+                                              const ClothModel& model, double t, double h,
+                                              btSoftBody& body, ClothState& scratch);
 
 // A node touching a collider during the last step, with the contact's outward normal.
 struct NodeContact {

@@ -128,6 +128,16 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
                                     " is not a pinned particle of the cloth");
     settings_.attachments->place(state_.time, state_.x, state_.v);  // ... or moves with its body
   }
+  if (settings_.constraints)
+    for (const DistanceConstraint& c : settings_.constraints->list)
+      if (c.a < 0 || c.a >= n ||
+          (c.b.kind == ConstraintEnd::Kind::particle && (c.b.particle < 0 || c.b.particle >= n)) ||
+          (c.b.kind == ConstraintEnd::Kind::collider_point &&
+           (c.b.collider < 0 ||
+            c.b.collider >= static_cast<int>(settings_.constraints->colliders.size()))) ||
+          !(c.length > 0.0))
+        throw std::invalid_argument("a distance constraint names a particle or collider the scene "
+                                    "does not have, or has a length that is not positive");
   if (settings_.contacts && settings_.collider_edges && model_->triangles.cols() > 0) {
     edge_contact_ = std::make_unique<EdgeContact>(*model_, *settings_.contacts);
     if (!edge_contact_->active()) edge_contact_.reset();
@@ -174,6 +184,10 @@ void SpringDamperSolver::add_pair_contact_forces(const Eigen::Matrix3Xd& x,
     PhaseTimer timer(stats_, StepPhase::contacts);
     edge_contact_->add_forces(*settings_.contacts, t, h, x, v, model_->inverse_mass, force_,
                               couplings);
+  }
+  if (has_soft_constraints()) {
+    PhaseTimer timer(stats_, StepPhase::springs);
+    settings_.constraints->add_soft_forces(t, x, v, force_, couplings);
   }
 }
 
@@ -277,6 +291,14 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const
          {"self_collision_unresolved_fast_steps",
           static_cast<double>(stats_.unresolved_fast_steps)}});
   }
+  if (settings_.constraints && settings_.constraints->has_hard())
+    all.insert(all.end(),
+               {{"constraint_position_sweeps_max",
+                 static_cast<double>(stats_.constraint_position_sweeps_max)},
+                {"constraint_velocity_sweeps_max",
+                 static_cast<double>(stats_.constraint_velocity_sweeps_max)},
+                {"constraint_unconverged_steps",
+                 static_cast<double>(stats_.constraint_unconverged_steps)}});
   return all;
 }
 
@@ -448,9 +470,15 @@ void SpringDamperSolver::single_step(double h) {
   // The schemes moved the attached particles with their velocities at the step's start; they end
   // it where their colliders are.
   if (settings_.attachments) settings_.attachments->place(state_.time + h, state_.x, state_.v);
+  const bool projects = settings_.constraints && settings_.constraints->has_hard();
+  if (projects) {
+    project_constraints(state_.time + h, h);
+    scanned.reset();  // the projection moved particles after the Euler pass scanned them
+  }
   // Only the Euler pair with colliders keeps the spring kernel's split state in step with the
-  // update (and not when attached particles were placed after it).
-  if (!scanned || !settings_.contacts || settings_.attachments) split_state_is_current_ = false;
+  // update (and not when attached particles were placed or constraints projected after it).
+  if (!scanned || !settings_.contacts || settings_.attachments || projects)
+    split_state_is_current_ = false;
   // Whatever the step spent outside the force phases is the integrator's own work.
   const double step_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stats_.seconds[static_cast<int>(StepPhase::integrate)] +=
@@ -460,6 +488,26 @@ void SpringDamperSolver::single_step(double h) {
   ++stats_.steps;
   PhaseTimer timer(stats_, StepPhase::health_check);
   check_health(h, scanned);
+}
+
+// Projection with velocity correction: the positions onto the constraints, then the velocities
+// onto their tangent spaces (distance_constraints.hpp). Verlet, whose velocity is its position
+// difference, takes its velocity from the projected positions first (so the constraint's impulse
+// stays in its history, as SHAKE does); leapfrog's stored end-of-step force was evaluated before the
+// projection, so it evaluates the force afresh at the next step.
+void SpringDamperSolver::project_constraints(double t, double h) {
+  const DistanceConstraints& constraints = *settings_.constraints;
+  ConstraintProjection result =
+      constraints.project_positions(t, model_->inverse_mass, state_.x);
+  if (result.moved && settings_.integrator == Integrator::verlet)
+    state_.v = (state_.x - previous_x_) / h + (0.5 * h) * acceleration_;
+  if (result.moved && settings_.integrator == Integrator::leapfrog) two_level_step_ = 0.0;
+  constraints.project_velocities(t, h, model_->inverse_mass, state_.x, state_.v, result);
+  stats_.constraint_position_sweeps_max =
+      std::max(stats_.constraint_position_sweeps_max, result.position_sweeps);
+  stats_.constraint_velocity_sweeps_max =
+      std::max(stats_.constraint_velocity_sweeps_max, result.velocity_sweeps);
+  if (!result.converged) ++stats_.constraint_unconverged_steps;
 }
 
 std::int64_t SpringDamperSolver::euler_step(double h) {

@@ -23,6 +23,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/contact_model.hpp"
+#include "drapelab/distance_constraints.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/self_collision.hpp"
@@ -73,6 +74,10 @@ struct SpringDamperSettings {
   // start and the end of every step (and every substep), so each step's schemes move them with
   // the colliders' velocities in between. They must be pinned in the model. None when null.
   std::shared_ptr<const Attachments> attachments;
+  // Distance constraints (distance_constraints.hpp): the soft ones are forces of every evaluation
+  // (couplings of the implicit Euler and vbd solves); the hard and rope ones are projected at the
+  // end of every step (and substep), after the attached particles are placed. None when null.
+  std::shared_ptr<const DistanceConstraints> constraints;
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
@@ -102,6 +107,12 @@ struct StepStats {
   std::int64_t split_steps = 0;
   int split_pieces_max = 0;
   std::int64_t unresolved_fast_steps = 0;
+  // Hard and rope constraints: the most Gauss-Seidel sweeps one step's projection took (positions,
+  // velocities), and the steps whose projection reached the cap with a length still outside its
+  // tolerance.
+  int constraint_position_sweeps_max = 0;
+  int constraint_velocity_sweeps_max = 0;
+  std::int64_t constraint_unconverged_steps = 0;
 };
 
 class SpringDamperSolver final : public Solver {
@@ -173,13 +184,19 @@ class SpringDamperSolver final : public Solver {
   // The force phases on their own: gravity, air drag and springs overwrite force_; contacts add to
   // it (with `follow_up` run on each block of particles once its force is final; returns its flag).
   void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
-  // The contacts between particles: self-collision's forces, then the collider edges' (each a
-  // no-op when off), added to force_ before the particle contacts.
+  // The contacts between particles: self-collision's forces, then the collider edges', then the
+  // soft constraints' (each a no-op when off), added to force_ before the particle contacts.
   void add_pair_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
                                double h);
   // Whether forces act between the springs and the particle contacts (then the two cannot share
   // one parallel region).
-  bool has_pair_contacts() const { return self_contact_ || edge_contact_; }
+  bool has_pair_contacts() const { return self_contact_ || edge_contact_ || has_soft_constraints(); }
+  bool has_soft_constraints() const {
+    return settings_.constraints && settings_.constraints->has_soft();
+  }
+  // The hard and rope constraints' projection at the step's end (time t, s), with the scheme's
+  // velocity bookkeeping (Verlet's history, leapfrog's stored force).
+  void project_constraints(double t, double h);
   std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
                                   double h, const ContactBlockFollowUp* follow_up);
   // How the integrator takes the penalty normal force: at the step's end for symplectic Euler.

@@ -18,6 +18,9 @@ struct WeightedContact {
   double damping = 0.0;                               // N*s/m
   double depth = 0.0;  // m: how far inside the contact distance at the evaluation
   double force = 0.0;  // N: the push f at the evaluation
+  // A contact only pushes (vbd drops it while f < 0); a soft distance constraint, also a coupling,
+  // pulls as well.
+  bool two_sided = false;
 };
 
 }  // namespace drapelab

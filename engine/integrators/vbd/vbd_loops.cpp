@@ -160,7 +160,7 @@ void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, Block&
     }
     const double depth = c.depth[contact] - along;
     const double fn = c.stiffness[contact] * depth - c.damping[contact] * along / p.h;  // N
-    if (fn <= 0.0) continue;
+    if (fn <= 0.0 && !c.two_sided[contact]) continue;
     const double w = c.weight[4 * contact + c.slot[e]];
     b.add_force(w * fn, n);
     b.add_outer(w * w * (c.stiffness[contact] + c.damping[contact] / p.h), n);

@@ -51,6 +51,7 @@ struct VbdCouplings {
   const double* depth = nullptr;           // m per contact, at the step's start
   const double* stiffness = nullptr;       // N/m per contact
   const double* damping = nullptr;         // N*s/m per contact
+  const std::uint8_t* two_sided = nullptr;  // 1: pulls as well as pushes (a soft constraint)
 };
 
 struct VbdProblem {

@@ -199,6 +199,7 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
   coupling_depth_.resize(count);
   coupling_stiffness_.resize(count);
   coupling_damping_.resize(count);
+  coupling_two_sided_.resize(count);
   coupling_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
   for (std::size_t c = 0; c < count; ++c) {
     const WeightedContact& w = couplings[c];
@@ -216,6 +217,7 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
     coupling_depth_[c] = w.depth - shift;
     coupling_stiffness_[c] = w.stiffness;
     coupling_damping_[c] = w.damping;
+    coupling_two_sided_[c] = w.two_sided ? 1 : 0;
   }
   for (int i = 0; i < n; ++i) coupling_offsets_[i + 1] += coupling_offsets_[i];
   coupling_contact_.resize(static_cast<std::size_t>(coupling_offsets_.back()));
@@ -299,7 +301,8 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
     problem.couplings = {
         coupling_offsets_.data(),  coupling_contact_.data(),   coupling_slot_.data(),
         coupling_particle_.data(), coupling_weight_.data(),    coupling_normal_.data(),
-        coupling_depth_.data(),    coupling_stiffness_.data(), coupling_damping_.data()};
+        coupling_depth_.data(),    coupling_stiffness_.data(), coupling_damping_.data(),
+        coupling_two_sided_.data()};
   problem.color_offsets = color_offsets_.data();
   problem.color_particles = color_particles_.data();
   problem.colors = static_cast<int>(color_offsets_.size()) - 1;

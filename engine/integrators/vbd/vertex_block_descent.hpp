@@ -115,6 +115,7 @@ class VertexBlockDescent {
       coupling_particle_;
   std::vector<double> coupling_weight_, coupling_normal_, coupling_depth_, coupling_stiffness_,
       coupling_damping_;
+  std::vector<std::uint8_t> coupling_two_sided_;
   // Per step (m, 3 x N): the start X (x(n), or BDF2's blend), the inertial target, the sweep's
   // start (read by the contacts between particles), the iteration's start and the one before
   // (Chebyshev's history); V (m/s), the start velocity.

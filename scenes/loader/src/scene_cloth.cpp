@@ -129,6 +129,14 @@ std::shared_ptr<const ClothModel> cloth_for_solver(const Scene& scene, const Sol
   return own;
 }
 
+std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene) {
+  if (scene.constraints.empty()) return nullptr;
+  auto constraints = std::make_shared<DistanceConstraints>();
+  constraints->colliders = scene.colliders;
+  constraints->list = scene.constraints;
+  return constraints;
+}
+
 std::shared_ptr<const Attachments> scene_attachments(const Scene& scene,
                                                      const ClothState& initial) {
   std::vector<std::pair<int, int>> attached;  // (particle, collider)

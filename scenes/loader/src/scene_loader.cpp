@@ -10,6 +10,7 @@
 
 #include "cloth_reader.hpp"
 #include "collider_reader.hpp"
+#include "constraint_reader.hpp"
 #include "drapelab/bounded_file.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
@@ -31,7 +32,7 @@ class SceneBuilder {
   Scene build(const YAML::Node& root) {
     MapReader top(r_, root, "",
                   {"name", "description", "duration", "frame_rate", "gravity", "seed", "cloth",
-                   "colliders", "contact", "solvers", "metrics", "output"});
+                   "colliders", "constraints", "contact", "solvers", "metrics", "output"});
     if (!top.valid()) return scene_;
     if (const auto name = top.text("name", std::nullopt)) {
       if (const auto problem = name_problem(*name))
@@ -207,6 +208,9 @@ class SceneBuilder {
         r_.error(top.get("cloth"), "cloth", "cannot be built: " + std::string(e.what()));
       }
     }
+    // Constraints resolve their ends on the built cloth (and are checked for form without one).
+    if (top.has("constraints"))
+      scene_.constraints = read_constraints(r_, top.get("constraints"), scene_, model.get());
     if (top.has("solvers")) {
       scene_.solvers = scene::read_solvers(r_, top.get("solvers"), scene_, model.get(), notes);
     } else {

@@ -27,6 +27,34 @@ std::string pin_text(const PinSelector& selector) {
          ", radius: " + format_number(ball.radius) + "}}";
 }
 
+// A constraint's end b as the scene gives it; particles by index.
+std::string end_text(const ConstraintEnd& end, const std::vector<Collider>& colliders) {
+  switch (end.kind) {
+    case ConstraintEnd::Kind::particle:
+      return "{index: " + std::to_string(end.particle) + "}";
+    case ConstraintEnd::Kind::point:
+      return "{point: " + format_list(end.point) + "}";
+    case ConstraintEnd::Kind::collider_point:
+      return "{collider: " + colliders[static_cast<std::size_t>(end.collider)].name +
+             ", offset: " + format_list(end.point) + "}";
+  }
+  return "{}";
+}
+
+void write_constraint(std::ostream& out, const DistanceConstraint& c,
+                      const std::vector<Collider>& colliders) {
+  out << "  - type: distance\n"
+      << "    a: {index: " << c.a << "}\n"
+      << "    b: " << end_text(c.b, colliders) << "\n"
+      << "    length: " << format_number(c.length) << "  # m\n"
+      << "    mode: " << constraint_mode_name(c.mode) << "\n";
+  if (c.mode == ConstraintMode::soft)
+    out << "    stiffness: " << format_number(c.stiffness) << "  # N/m\n"
+        << "    damping: " << format_number(c.damping) << "  # N*s/m\n";
+  else
+    out << "    tolerance: " << format_number(c.tolerance) << "  # largest relative length error\n";
+}
+
 std::string spring_text(const SpringParams& p) {
   return "{ks: " + format_number(p.ks) + ", kd: " + format_number(p.kd) + "}";
 }
@@ -168,6 +196,8 @@ std::string resolved_scene_yaml(const Scene& s) {
   else
     out << "colliders:\n";
   for (const auto& collider : s.colliders) write_collider(out, collider);
+  if (!s.constraints.empty()) out << "constraints:\n";
+  for (const auto& constraint : s.constraints) write_constraint(out, constraint, s.colliders);
   out << "contact:\n"
       << "  stiffness: " << format_number(s.contact.stiffness) << "  # N/m per particle\n"
       << "  damping: " << format_number(s.contact.damping) << "  # N*s/m\n"

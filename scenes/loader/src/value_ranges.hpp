@@ -72,6 +72,8 @@ inline Range particle_index_range() {
   return {0.0, true, static_cast<double>(kMaxClothParticles - 1), true};
 }
 inline Range grid_coordinate_range() { return {0.0, true, 1e6 - 1.0, true}; }
+// constraints[].tolerance: the largest relative length error a hard or rope projection leaves.
+inline Range constraint_tolerance_range() { return {1e-12, true, 0.1, true}; }
 inline Range seed_range() { return {0.0, true, 9.2e18, true}; }
 
 }  // namespace drapelab::scene

@@ -40,6 +40,8 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup,
   measure.time = time;
   measure.metrics = frame_metrics(setup, scene, state);
   measure.metrics.self_intersections = setup.self_intersections->count(state.x);
+  if (setup.constraints && setup.constraints->has_hard())
+    measure.metrics.constraint_error = setup.constraints->largest_error(time, state.x);
   if (setup.contacts) {
     measure.collisions = compute_collision_metrics(*setup.model, state, *setup.contacts, time);
     measure.metrics.min_clearance = measure.collisions->min_clearance;

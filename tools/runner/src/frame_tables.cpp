@@ -54,7 +54,8 @@ FrameTables::FrameTables(const std::filesystem::path& folder)
                                         "drape_coefficient",
                                         "drape_nodes",
                                         "self_intersections",
-                                        "triangle_penetration"}),
+                                        "triangle_penetration",
+                                        "constraint_error"}),
       compare_(folder / "compare.csv", {"solver_a", "solver_b", "frame", "time", "rms_distance",
                                         "max_distance", "hausdorff_distance"}),
       contacts_(folder / "contacts.csv", {"solver", "frame", "time", "collider", "contact_count",
@@ -81,7 +82,8 @@ void FrameTables::add_metrics(const std::string& solver, int frame, double time,
                 optional_cell(m.drape_coefficient),
                 optional_cell(m.drape_nodes),
                 optional_cell(m.self_intersections),
-                optional_cell(m.triangle_penetration)});
+                optional_cell(m.triangle_penetration),
+                optional_cell(m.constraint_error)});
 }
 
 void FrameTables::add_comparison(const std::string& solver_a, const std::string& solver_b,

@@ -65,6 +65,7 @@ double kind_floor(const std::string& kind) {
   if (kind == "drape") return 1.0;                  // the drape coefficient is a fraction of 1
   if (kind == "intersections") return 1.0;          // one crossing edge
   if (kind == "triangle_penetration") return 1e-7;  // m
+  if (kind == "constraint_error") return 1e-6;      // a relative length error
   return 1e-12;
 }
 
@@ -256,6 +257,7 @@ std::string golden_kind(const std::string& column) {
   // between particles must not widen the tolerances of the contact columns they would pool with.
   if (column == "self_intersections") return "intersections";
   if (column == "triangle_penetration") return "triangle_penetration";
+  if (column == "constraint_error") return "constraint_error";
   return "other";
 }
 

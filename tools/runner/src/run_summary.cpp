@@ -37,6 +37,7 @@ ordered_json metrics_json(const ClothMetrics& m) {
       m.self_intersections ? ordered_json(*m.self_intersections) : ordered_json();
   j["triangle_penetration"] =
       m.triangle_penetration ? ordered_json(*m.triangle_penetration) : ordered_json();
+  j["constraint_error"] = m.constraint_error ? ordered_json(*m.constraint_error) : ordered_json();
   return j;
 }
 

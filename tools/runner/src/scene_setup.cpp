@@ -24,6 +24,7 @@ SceneSetup build_scene_setup(const scene::Scene& scene, std::shared_ptr<const Cl
         setup.model->thickness);
   setup.self_intersections =
       std::make_shared<const SelfIntersectionCounter>(setup.model->triangles);
+  setup.constraints = scene::scene_constraints(scene);
   if (scene.drape_support)
     setup.drape =
         std::make_shared<const DrapeMeter>(*setup.model, scene.drape_support->disc, up_of(scene));

@@ -10,10 +10,16 @@
 namespace drapelab::runner {
 namespace {
 
+// What the scene holds the cloth by besides its pins, built once per solver.
+struct Holds {
+  std::shared_ptr<const Attachments> attachments;          // null: no pin moves with a collider
+  std::shared_ptr<const DistanceConstraints> constraints;  // null: no constraint
+};
+
 // Our spring-damper cloth: bare, or a plugin in a Bullet world of its own (the default).
 std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scene::SolverSpec& spec,
                                            std::shared_ptr<const ClothModel> model,
-                                           const ClothState& initial,
+                                           const ClothState& initial, const Holds& holds,
                                            std::shared_ptr<const ContactModel> contacts) {
   SpringDamperSettings settings;
   settings.integrator = spec.integrator;
@@ -25,7 +31,8 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
   settings.adaptive_substeps = spec.adaptive_substeps;
   settings.self_collision = scene.cloth.self_collision;
   settings.collider_edges = scene.contact.triangles;
-  settings.attachments = scene::scene_attachments(scene, initial);
+  settings.attachments = holds.attachments;
+  settings.constraints = holds.constraints;
   if (!spec.bullet_host) {
     settings.contacts = std::move(contacts);
     return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
@@ -45,7 +52,7 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
 // Bullet's classic cloth on the scene's colliders (docs/bullet.md, "Fairness table").
 std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scene::SolverSpec& spec,
                                            std::shared_ptr<const ClothModel> model,
-                                           const ClothState& initial) {
+                                           const ClothState& initial, const Holds& holds) {
   bullet::BulletSoftBodyOptions options;
   options.dt = spec.dt;
   options.iterations = spec.iterations;
@@ -57,7 +64,8 @@ std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scen
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
   options.self_collision = scene.cloth.self_collision;  // no effect in Bullet 3.24's classic cloth
-  options.attachments = scene::scene_attachments(scene, initial);
+  options.attachments = holds.attachments;
+  options.constraints = holds.constraints;
   return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders,
                                              options);
 }
@@ -66,7 +74,7 @@ std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scen
 std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
                                               const scene::SolverSpec& spec,
                                               std::shared_ptr<const ClothModel> model,
-                                              const ClothState& initial) {
+                                              const ClothState& initial, const Holds& holds) {
   bullet::BulletDeformableOptions options;
   options.dt = spec.dt;
   options.margin = spec.margin;
@@ -76,7 +84,8 @@ std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
   options.air_damping = scene.cloth.air_damping;
   options.max_speed = spec.max_speed;
   options.self_collision = scene.cloth.self_collision;
-  options.attachments = scene::scene_attachments(scene, initial);
+  options.attachments = holds.attachments;
+  options.constraints = holds.constraints;
   return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial,
                                                scene.colliders, options);
 }
@@ -90,13 +99,15 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
   // The cloth as this solver runs it: the continuum's elements for our solver with model:
   // continuum, the springs for the others.
   model = scene::cloth_for_solver(scene, spec, std::move(model));
+  const Holds holds{scene::scene_attachments(scene, initial), scene::scene_constraints(scene)};
   switch (spec.type) {
     case SolverType::spring_damper:
-      return make_spring_damper(scene, spec, std::move(model), initial, std::move(contacts));
+      return make_spring_damper(scene, spec, std::move(model), initial, holds,
+                                std::move(contacts));
     case SolverType::bullet_softbody:
-      return make_classic_cloth(scene, spec, std::move(model), initial);
+      return make_classic_cloth(scene, spec, std::move(model), initial, holds);
     case SolverType::bullet_deformable:
-      return make_deformable_cloth(scene, spec, std::move(model), initial);
+      return make_deformable_cloth(scene, spec, std::move(model), initial, holds);
   }
   // Every type has a case above, so reaching here is a programming error.
   throw std::logic_error(std::string("solver type '") + solver_type_name(spec.type) +

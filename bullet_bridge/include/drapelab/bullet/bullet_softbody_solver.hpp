@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "drapelab/attachments.hpp"
+#include "drapelab/distance_constraints.hpp"
 #include "drapelab/bullet/parameter_mapping.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
@@ -41,6 +42,9 @@ struct BulletSoftBodyOptions {
   // Pinned nodes carried by colliders: placed on them before and after every substep (kinematic
   // nodes). None when null.
   std::shared_ptr<const Attachments> attachments;
+  // Distance constraints: the soft ones kick the nodes' velocities before every substep, the hard
+  // and rope ones are projected after it (docs/bullet.md, "Constraints"). None when null.
+  std::shared_ptr<const DistanceConstraints> constraints;
 };
 
 std::unique_ptr<Solver> make_bullet_softbody_solver(std::string name,

@@ -14,6 +14,7 @@
 #include "drapelab/attachments.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/disc_cloth.hpp"
+#include "drapelab/distance_constraints.hpp"
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
@@ -116,6 +117,8 @@ struct Scene {
   std::uint64_t seed = 0;
   ClothSpec cloth;
   std::vector<Collider> colliders;
+  // constraints: ends resolved to particle indices and indices into `colliders`, lengths filled in.
+  std::vector<DistanceConstraint> constraints;
   ContactSpec contact;
   std::vector<SolverSpec> solvers;
   std::optional<DrapeSupportSpec> drape_support;
@@ -145,6 +148,9 @@ ClothState initial_scene_state(const Scene& scene, const ClothModel& model);
 // The pinned particles that move with a collider (cloth.pins[].attach), their offsets taken from
 // `initial` at time 0; null when no pin is attached.
 std::shared_ptr<const Attachments> scene_attachments(const Scene& scene, const ClothState& initial);
+
+// The scene's distance constraints for a solver (their colliders the scene's); null when none.
+std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene);
 
 // Named pin sets of the scene's cloth shape (grid: corners, ...; disc: center, rim; mesh: center).
 std::vector<std::string> pin_set_names(const ClothSpec& cloth);

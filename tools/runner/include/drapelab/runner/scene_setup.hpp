@@ -22,6 +22,7 @@ struct SceneSetup {
   std::shared_ptr<const ContactModel> contacts;  // null when the scene has no colliders
   std::shared_ptr<const DrapeMeter> drape;       // null without metrics.drape_support
   std::shared_ptr<const SelfIntersectionCounter> self_intersections;  // the model's edges, once
+  std::shared_ptr<const DistanceConstraints> constraints;  // null when the scene has none
 };
 
 // Builds the cloth (any shape) unless `model` is given (the loader's, scene::LoadResult::model,

@@ -1,0 +1,93 @@
+// Distance constraints (scene key `constraints:`): each joins a particle `a` to a second end `b`
+// (another particle, a fixed point, or a point carried by a collider) at a length L.
+//   hard: |a - b| = L, held to a relative tolerance after every step by projection;
+//   rope: |a - b| <= L, the same projection, only while the rope would be longer than L;
+//   soft: a damped spring between the ends, f_a = -[k (l - L) + c (v_a - v_b).n] n, n = (a - b)/l.
+// Every solver applies them itself: our solver adds the soft ones as forces (implicit for implicit
+// Euler and vbd, as couplings) and projects the hard and rope ones at the end of each step; Bullet's
+// cloths get the same forces and projection through bullet_bridge/.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "drapelab/collider.hpp"
+#include "drapelab/weighted_contact.hpp"
+
+namespace drapelab {
+
+enum class ConstraintMode { hard, rope, soft };
+const char* constraint_mode_name(ConstraintMode mode);
+
+// The second end of a constraint.
+struct ConstraintEnd {
+  enum class Kind { particle, point, collider_point };
+  Kind kind = Kind::point;
+  int particle = -1;                                // Kind::particle
+  int collider = -1;                                // Kind::collider_point: index into colliders
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // m: the world point, or the offset in the
+                                                    // collider's own frame
+};
+
+struct DistanceConstraint {
+  int a = 0;  // particle
+  ConstraintEnd b;
+  double length = 0.0;  // m, L
+  ConstraintMode mode = ConstraintMode::hard;
+  double stiffness = 0.0;    // N/m (soft)
+  double damping = 0.0;      // N*s/m (soft)
+  double tolerance = 1e-6;   // hard and rope: the largest |l - L| / L a projection leaves
+};
+
+// What one projection did (hard and rope constraints).
+struct ConstraintProjection {
+  int position_sweeps = 0;  // Gauss-Seidel sweeps over the constraints' lengths
+  int velocity_sweeps = 0;  // ... and over their stretching velocities
+  bool converged = true;    // every length within its tolerance before the sweep cap
+  bool moved = false;       // some particle was moved
+};
+
+struct DistanceConstraints {
+  std::vector<Collider> colliders;  // the scene's colliders, indexed by ConstraintEnd::collider
+  std::vector<DistanceConstraint> list;
+  int max_sweeps = 1000;  // the cap of each Gauss-Seidel projection
+
+  bool empty() const { return list.empty(); }
+  bool has_soft() const;
+  bool has_hard() const;  // hard or rope
+
+  // b's position (m) and velocity (m/s) at time t (s), the state x, v (3 x N) holding particles.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> end_b(const DistanceConstraint& c, double t,
+                                                    const Eigen::Matrix3Xd& x,
+                                                    const Eigen::Matrix3Xd& v) const;
+
+  // Adds the soft constraints' spring-damper forces (N) to `force`. When `couplings` is given, each
+  // is also appended as a two-sided weighted contact (normal n = (a - b)/l, weights +1 on a and -1
+  // on a particle b, depth L - l, the push f = k (L - l) - c (v_a - v_b).n), so that implicit
+  // Euler and vbd take its stiffness and damping into their solves.
+  void add_soft_forces(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                       Eigen::Matrix3Xd& force, std::vector<WeightedContact>* couplings) const;
+
+  // Moves the particles of x (m) onto the hard and rope constraints at time t (s): Gauss-Seidel
+  // sweeps, each moving a constraint's ends along it in proportion to their inverse masses (a
+  // pinned particle, a point and a collider point do not move), until every length is within its
+  // tolerance or max_sweeps. `inverse_mass` is 1/kg per particle, 0 when pinned.
+  ConstraintProjection project_positions(double t, const Eigen::VectorXd& inverse_mass,
+                                         Eigen::Matrix3Xd& x) const;
+  // Then removes each hard constraint's stretching velocity (v_a - v_b).n, and a taut rope's when it
+  // would lengthen it, by equal and opposite impulses (an inelastic constraint: the kinetic energy
+  // along the constraint is lost). Sweeps until every rate is below tolerance L / h.
+  void project_velocities(double t, double h, const Eigen::VectorXd& inverse_mass,
+                          const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v,
+                          ConstraintProjection& result) const;
+
+  // The largest relative length error of the hard (|l - L| / L) and rope (max(0, l - L) / L)
+  // constraints at time t: metrics.csv's constraint_error. 0 when there are none.
+  double largest_error(double t, const Eigen::Matrix3Xd& x) const;
+  // The soft constraints' elastic energy k (l - L)^2 / 2 (J).
+  double soft_energy(double t, const Eigen::Matrix3Xd& x) const;
+};
+
+}  // namespace drapelab
