@@ -13,6 +13,7 @@ namespace drapelab::bullet {
 class BulletWorldSolver : public Solver {
  public:
   virtual const KinematicColliders& colliders() const = 0;
+  std::vector<BodyState> bodies() const override { return colliders().dynamic_bodies(); }
 };
 
 class BulletClothSolver : public BulletWorldSolver {

@@ -60,12 +60,16 @@ KinematicColliders::KinematicColliders(const std::vector<Collider>& colliders, d
     : world_(world), colliders_(colliders) {
   for (const auto& collider : colliders_) {
     shapes_.push_back(make_bullet_shape(collider, edge_margin));
-    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, shapes_.back().shape.get());
+    btCollisionShape* shape = shapes_.back().shape.get();
+    btVector3 inertia(0, 0, 0);  // kg m^2, in the shape's principal axes
+    if (collider.dynamic()) shape->calculateLocalInertia(collider.dynamic_mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(collider.dynamic_mass, nullptr, shape, inertia);
     info.m_friction = collider.friction / friction_divisor;
     info.m_startWorldTransform =
         to_bullet(collider_pose(collider, 0.0) * shapes_.back().shape_in_collider);
     auto body = std::make_unique<btRigidBody>(info);
-    body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    if (!collider.dynamic())
+      body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     body->setActivationState(DISABLE_DEACTIVATION);
     world_.addRigidBody(body.get());
     bodies_.push_back(std::move(body));
@@ -79,6 +83,7 @@ KinematicColliders::~KinematicColliders() {
 void KinematicColliders::move_to(double t0, double t1) {
   const double h = t1 - t0;
   for (std::size_t c = 0; c < bodies_.size(); ++c) {
+    if (colliders_[c].dynamic()) continue;  // the world moves it
     const Eigen::Isometry3d before =
         collider_pose(colliders_[c], t0) * shapes_[c].shape_in_collider;
     const Eigen::Isometry3d after = collider_pose(colliders_[c], t1) * shapes_[c].shape_in_collider;
@@ -106,6 +111,20 @@ Eigen::Isometry3d KinematicColliders::collider_pose_in_world(std::size_t c) cons
 ColliderSubstepMotion KinematicColliders::substep_motion(std::size_t c, double h) const {
   const btRigidBody& body = *bodies_[c];
   ColliderSubstepMotion motion;
+  if (colliders_[c].dynamic()) {
+    // A dynamic body's origin is its centre of mass (its shape sits there, unshifted).
+    motion.start = collider_pose_in_world(c);
+    motion.velocity = to_eigen(body.getLinearVelocity());
+    motion.angular_velocity = to_eigen(body.getAngularVelocity());
+    motion.end = motion.start;
+    motion.end.translation() += h * motion.velocity;
+    const double turn = h * motion.angular_velocity.norm();  // rad
+    if (turn > 0.0)
+      motion.end.linear() =
+          Eigen::AngleAxisd(turn, motion.angular_velocity.normalized()).toRotationMatrix() *
+          motion.start.linear();
+    return motion;
+  }
   motion.start =
       to_eigen(body.getInterpolationWorldTransform()) * shapes_[c].shape_in_collider.inverse();
   motion.end = collider_pose_in_world(c);
@@ -115,6 +134,31 @@ ColliderSubstepMotion KinematicColliders::substep_motion(std::size_t c, double h
   if (h > 0.0) motion.velocity = (motion.end.translation() - motion.start.translation()) / h;
   motion.angular_velocity = to_eigen(body.getAngularVelocity());
   return motion;
+}
+
+std::vector<BodyState> KinematicColliders::dynamic_bodies() const {
+  std::vector<BodyState> out;
+  for (std::size_t c = 0; c < bodies_.size(); ++c) {
+    if (!colliders_[c].dynamic()) continue;
+    BodyState body;
+    body.collider = static_cast<int>(c);
+    body.pose = collider_pose_in_world(c);
+    body.velocity = to_eigen(bodies_[c]->getLinearVelocity());
+    body.angular_velocity = to_eigen(bodies_[c]->getAngularVelocity());
+    out.push_back(body);
+  }
+  return out;
+}
+
+void KinematicColliders::apply_loads(const std::vector<ColliderForce>& forces) {
+  for (std::size_t c = 0; c < bodies_.size() && c < forces.size(); ++c) {
+    if (!colliders_[c].dynamic()) continue;
+    btRigidBody& body = *bodies_[c];
+    const Eigen::Vector3d centre = to_eigen(body.getCenterOfMassPosition());
+    body.applyCentralForce(to_bullet(forces[c].force));
+    // The moment about the centre of mass from the moment about the world origin.
+    body.applyTorque(to_bullet(forces[c].torque - centre.cross(forces[c].force)));
+  }
 }
 
 int KinematicColliders::index_of(const btCollisionObject* body) const {

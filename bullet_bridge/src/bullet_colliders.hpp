@@ -10,6 +10,7 @@
 
 #include "drapelab/collider.hpp"
 #include "drapelab/collider_pose_table.hpp"
+#include "drapelab/solver.hpp"
 
 namespace drapelab::bullet {
 
@@ -24,8 +25,10 @@ struct BulletShape {
 // cylinders, whose edges Bullet rounds by their margin (spheres and capsules are exact).
 BulletShape make_bullet_shape(const Collider& collider, double edge_margin);
 
-// Kinematic bodies for every collider in one world; move_to(t0, t1) poses them at t1 with the
-// velocities of the motion over [t0, t1], as a substep needs. Each body's friction is the
+// Bodies for every collider in one world: kinematic ones, which move_to(t0, t1) poses at t1 with
+// the velocities of the motion over [t0, t1], as a substep needs; and the dynamic colliders'
+// (colliders[].dynamic) rigid bodies, which the world moves (mass from the scene, inertia from the
+// shape, no damping, never put to sleep). Each body's friction is the
 // collider's divided by `friction_divisor`, for a soft body whose kDF (which Bullet multiplies into
 // every collider's friction) is not 1.
 class KinematicColliders {
@@ -43,8 +46,15 @@ class KinematicColliders {
   // Where Bullet has collider c now, as the collider's own pose (its shape offset taken out).
   Eigen::Isometry3d collider_pose_in_world(std::size_t c) const;
   // Collider c's motion over the substep of length h (s) that move_to prepared, read back from its
-  // Bullet body: the start (interpolation) and end (world) transforms and the velocities.
+  // Bullet body: the start (interpolation) and end (world) transforms and the velocities. For a
+  // dynamic body, called before the world moves it: its pose now, and the end pose its velocities
+  // predict.
   ColliderSubstepMotion substep_motion(std::size_t c, double h) const;
+  // The dynamic bodies' states, in scene order.
+  std::vector<BodyState> dynamic_bodies() const;
+  // Applies to each dynamic body the load of `forces` (one per collider: force, and moment about
+  // the world origin), for the world's next substep.
+  void apply_loads(const std::vector<ColliderForce>& forces);
 
  private:
   btDynamicsWorld& world_;

@@ -3,7 +3,6 @@
 
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
-#include <BulletDynamics/Dynamics/btActionInterface.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 
@@ -21,7 +20,7 @@ class BulletHostedSolver final : public BulletWorldSolver {
   BulletHostedSolver(std::unique_ptr<Solver> guest, std::shared_ptr<ColliderPoseTable> guest_poses,
                      const std::vector<Collider>& colliders, const Eigen::Vector3d& gravity,
                      double collider_margin)
-      : guest_(std::move(guest)), guest_poses_(std::move(guest_poses)), action_(*this) {
+      : guest_(std::move(guest)), guest_poses_(std::move(guest_poses)) {
     if (!guest_poses_ || guest_poses_->size() != colliders.size())
       throw std::invalid_argument("the hosted solver's pose table needs one entry per collider (" +
                                   std::to_string(colliders.size()) + ")");
@@ -30,18 +29,13 @@ class BulletHostedSolver final : public BulletWorldSolver {
     world_->setGravity(to_bullet(gravity));
     world_->setInternalTickCallback(&BulletHostedSolver::before_substep, this, /*isPreTick=*/true);
     colliders_ = std::make_unique<KinematicColliders>(colliders, collider_margin, *world_);
-    world_->addAction(&action_);
   }
-  ~BulletHostedSolver() override {
-    world_->removeAction(&action_);
-    colliders_.reset();
-  }
+  ~BulletHostedSolver() override { colliders_.reset(); }
 
   void step(double h) override {
     if (guest_->status() != SolverStatus::ok) return;
     substep_start_ = guest_->state().time;
-    world_->stepSimulation(
-        h, 0);  // one substep: pre-tick poses the colliders, the action steps the guest
+    world_->stepSimulation(h, 0);  // one substep: the pre-tick callback steps the guest
   }
   const ClothState& state() const override { return guest_->state(); }
   const std::string& name() const override { return guest_->name(); }
@@ -59,35 +53,29 @@ class BulletHostedSolver final : public BulletWorldSolver {
   const KinematicColliders& colliders() const override { return *colliders_; }
 
  private:
-  // Bullet calls updateAction once per substep, after the pre-tick callback has posed the colliders
-  // for [t, t + h].
-  class GuestAction final : public btActionInterface {
-   public:
-    explicit GuestAction(BulletHostedSolver& host) : host_(host) {}
-    void updateAction(btCollisionWorld*, btScalar h) override { host_.step_guest(h); }
-    void debugDraw(btIDebugDraw*) override {}
-
-   private:
-    BulletHostedSolver& host_;
-  };
-
+  // At the start of each substep [t, t + h], before the world moves its dynamic bodies: the
+  // kinematic colliders take their poses, the guest steps against them (and against the dynamic
+  // bodies moving at their present velocities), and the guest's loads go onto the dynamic bodies,
+  // which the world then moves under gravity and those loads. Cloth and bodies thus exchange equal
+  // and opposite impulses within the same substep.
   static void before_substep(btDynamicsWorld* world, btScalar h) {
     auto* self = static_cast<BulletHostedSolver*>(world->getWorldUserInfo());
     self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
+    self->step_guest(h);
   }
 
-  // Hands the guest the colliders as the world holds them at this point of the substep, then steps
-  // it.
+  // Hands the guest the colliders as the world holds them over the substep, steps it, and puts its
+  // loads on the dynamic bodies.
   void step_guest(double h) {
     guest_poses_->set_substep(substep_start_, substep_start_ + h);
     for (std::size_t c = 0; c < colliders_->size(); ++c)
       guest_poses_->set(c, colliders_->substep_motion(c, h));
     guest_->step(h);
+    colliders_->apply_loads(guest_->collider_forces());
   }
 
   std::unique_ptr<Solver> guest_;
   std::shared_ptr<ColliderPoseTable> guest_poses_;  // read by the guest's ContactModel
-  GuestAction action_;
   double substep_start_ = 0.0;  // s
   btSoftBodyRigidBodyCollisionConfiguration configuration_;
   btCollisionDispatcher dispatcher_{&configuration_};

@@ -48,7 +48,7 @@ Eigen::Matrix3d euler_rotation(const Eigen::Vector3d& degrees) {
 }
 
 bool Collider::moves() const {
-  if (!motion.is_static()) return true;
+  if (dynamic() || !motion.is_static()) return true;
   for (const ColliderFrame& frame : ancestors)
     if (!frame.motion.is_static()) return true;
   return false;

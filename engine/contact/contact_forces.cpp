@@ -52,7 +52,7 @@ kernels::NearCollider near_test(const FclCollider& collider, const Eigen::Isomet
 // A block's per-collider totals from its overlaps' force magnitudes. The overlaps come collider by
 // collider, each collider's in particle order, so each sum runs in particle order, the order in
 // which a serial loop over the block's particles would add them (and the same on any thread count).
-void sum_block_totals(ContactBlockWork& record) {
+void sum_block_totals(ContactBlockWork& record, const Eigen::Matrix3Xd& x) {
   const std::vector<TouchingContact>& found = record.touching;
   for (std::size_t e = 0; e < found.size();) {
     const int collider = found[e].collider;
@@ -63,6 +63,9 @@ void sum_block_totals(ContactBlockWork& record) {
       sum.normal_force += record.applied[e].normal;
       sum.friction_force += record.applied[e].friction;
       sum.max_depth = std::max(sum.max_depth, found[e].depth);
+      const Eigen::Vector3d& on_cloth = record.applied[e].force;
+      sum.force -= on_cloth;
+      sum.torque -= Eigen::Vector3d(x.col(found[e].particle)).cross(on_cloth);
     }
     record.colliders[static_cast<std::size_t>(collider)].totals = sum;
   }
@@ -147,6 +150,7 @@ void ContactPass::finish_contact(ContactBlockWork& record, std::size_t e, double
   const int i = touching.particle;
   const Collider& collider = contacts_.collider(static_cast<std::size_t>(touching.collider));
   double friction_magnitude = 0.0;
+  Eigen::Vector3d on_cloth = fn * touching.normal;  // N
   if (fn > 0.0 && collider.static_friction > 0.0) {
     const double mass = model_.mass[i];
     const Eigen::Vector3d relative_velocity = v_.col(i) - touching.surface_velocity;
@@ -156,8 +160,9 @@ void ContactPass::finish_contact(ContactBlockWork& record, std::size_t e, double
                                collider.static_friction, collider.friction);
     force_.col(i) += friction.force;
     friction_magnitude = friction.magnitude;
+    on_cloth += friction.force;
   }
-  record.applied[e] = {fn, friction_magnitude};
+  record.applied[e] = {fn, friction_magnitude, on_cloth};
 }
 
 void ContactPass::block_forces(std::int64_t block) const {
@@ -203,7 +208,7 @@ void ContactPass::block_forces(std::int64_t block) const {
       if (keep_active_ && fn > 0.0) block_active.push_back({i, touching.normal});
       finish_contact(record, e, fn);
     }
-    sum_block_totals(record);
+    sum_block_totals(record, x_);
     return;
   }
   // 2b. End of step: each particle's contacts together (penalty_contact.hpp), then their frictions
@@ -265,7 +270,7 @@ void ContactPass::block_forces(std::int64_t block) const {
                      a < count ? fn[a] : 0.0);
     group = group_end;
   }
-  sum_block_totals(record);
+  sum_block_totals(record, x_);
 }
 
 void ContactPass::run_block(std::int64_t block) const {
@@ -293,6 +298,8 @@ std::int64_t ContactPass::finish(std::vector<ColliderContactTotals>& totals,
       totals[c].normal_force += part.normal_force;
       totals[c].friction_force += part.friction_force;
       totals[c].max_depth = std::max(totals[c].max_depth, part.max_depth);
+      totals[c].force += part.force;
+      totals[c].torque += part.torque;
     }
     if (active && keep_active_)
       active->insert(active->end(), record.active.begin(), record.active.end());

@@ -34,6 +34,7 @@ struct TouchingContact {
 struct ContactForceMagnitudes {
   double normal = 0.0;    // N, the penalty force
   double friction = 0.0;  // N, |friction force|
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, normal and friction, on the particle
 };
 
 // One collider's totals within one block, alone on its cache line (see ContactBlockWork).

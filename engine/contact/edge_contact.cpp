@@ -98,6 +98,20 @@ EdgeContact::EdgeContact(const ClothModel& model, const ContactModel& contacts)
   totals_.resize(contacts.size());
 }
 
+void EdgeContact::add_load(EdgeContactTotals& total, const Found& f, const Eigen::Matrix3Xd& x,
+                           const Eigen::Vector3d& on_cloth) {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // m
+  double weights = 0.0;
+  for (int s = 0; s < 3; ++s)
+    if (f.particle[s] >= 0) {
+      point += f.weight[s] * x.col(f.particle[s]);
+      weights += f.weight[s];
+    }
+  if (weights != 0.0) point /= weights;
+  total.force -= on_cloth;
+  total.torque -= point.cross(on_cloth);
+}
+
 void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
                              const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                              const Eigen::VectorXd& inverse_mass, Eigen::Matrix3Xd& force,
@@ -217,6 +231,7 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
     ++total.contact_count;
     total.normal_force += fn;
     total.max_depth = std::max(total.max_depth, f.depth);
+    add_load(total, f, x, fn * f.normal);
     if (active) {
       WeightedContact w;
       for (int s = 0; s < 3; ++s) {
@@ -249,7 +264,9 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
                                   collider.static_friction, collider.friction);
     for (int s = 0; s < 3; ++s)
       if (f.particle[s] >= 0) force.col(f.particle[s]) += f.weight[s] * friction.force;
-    totals_[static_cast<std::size_t>(f.collider)].friction_force += friction.magnitude;
+    EdgeContactTotals& total = totals_[static_cast<std::size_t>(f.collider)];
+    total.friction_force += friction.magnitude;
+    add_load(total, f, x, friction.force);
   }
 }
 

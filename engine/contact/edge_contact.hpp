@@ -69,6 +69,8 @@ struct EdgeContactTotals {
   double normal_force = 0.0;    // N
   double friction_force = 0.0;  // N
   double max_depth = 0.0;       // m
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, on the collider (ColliderContactTotals)
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // N*m, about the world origin
 };
 
 class EdgeContact {
@@ -94,6 +96,10 @@ class EdgeContact {
     Eigen::Vector3d surface_velocity;  // m/s
     int collider = 0;
   };
+  // Adds the reaction of `on_cloth` (N, a force on the cloth at the contact's cloth point, the
+  // weighted sum of its particles) to the collider's load.
+  static void add_load(EdgeContactTotals& total, const Found& f, const Eigen::Matrix3Xd& x,
+                       const Eigen::Vector3d& on_cloth);
 
   const ClothModel& model_;
   double thickness_;  // m

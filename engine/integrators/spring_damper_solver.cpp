@@ -237,6 +237,8 @@ void SpringDamperSolver::add_edge_contact_totals() {
     contact_totals_[c].normal_force += edges.normal_force;
     contact_totals_[c].friction_force += edges.friction_force;
     contact_totals_[c].max_depth = std::max(contact_totals_[c].max_depth, edges.max_depth);
+    contact_totals_[c].force += edges.force;
+    contact_totals_[c].torque += edges.torque;
   }
 }
 
@@ -248,7 +250,7 @@ ContactNormalScheme SpringDamperSolver::contact_normal_scheme() const {
 std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
   std::vector<ColliderForce> forces;
   for (const auto& total : contact_totals_)
-    forces.push_back({total.normal_force, total.friction_force});
+    forces.push_back({total.normal_force, total.friction_force, total.force, total.torque});
   return forces;
 }
 

@@ -63,10 +63,17 @@ struct Collider {
   // loader fills them in from the names).
   std::string parent;
   std::vector<ColliderFrame> ancestors;
+  // colliders[].dynamic: a rigid body of this mass (kg) in each solver's Bullet world, moved by
+  // gravity and by that solver's cloth; 0 for a kinematic collider. A dynamic collider has no
+  // motion and no parent: collider_pose(t) gives its pose at t = 0 for every t, and each solver
+  // reports where its own copy of the body is (Solver::bodies()).
+  double dynamic_mass = 0.0;
+
+  bool dynamic() const { return dynamic_mass > 0.0; }
 
   // Its own frame in its parent's.
   ColliderFrame frame() const { return {center, rotation, motion}; }
-  // Whether it moves at all: by its own motion or by an ancestor's.
+  // Whether it moves at all: by its own motion, by an ancestor's, or as a dynamic body.
   bool moves() const;
 };
 

@@ -26,6 +26,11 @@ struct ColliderContactTotals {
   double normal_force = 0.0;    // N, sum of |normal force| over them
   double friction_force = 0.0;  // N, sum of |friction force| over them
   double max_depth = 0.0;       // m, deepest overlap
+  // What the cloth exerts on the collider (minus the sum of the contacts' forces on the cloth) and
+  // its moment about the world origin, each contact's force acting at its particle or cloth point:
+  // the load a dynamic collider's body takes (N, N*m).
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
 };
 
 // A particle that a collider's penalty spring pushed in the last evaluation, for the implicit

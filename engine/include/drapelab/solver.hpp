@@ -3,6 +3,8 @@
 // their insides.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <optional>
 #include <string>
@@ -30,10 +32,23 @@ std::optional<SolverType> parse_solver_type(std::string_view name);
 // The contact force a solver's cloth received from one collider during its last step (N): the sums
 // over the touching particles of the magnitudes of the normal and tangential parts.
 struct ColliderForce {
-  double normal = 0.0;
-  double friction = 0.0;
+  double normal = 0.0;    // N, the sum of the contacts' normal force magnitudes
+  double friction = 0.0;  // N, ... and of their friction force magnitudes
+  // The load on the collider: the force the cloth exerts on it and its moment about the world
+  // origin (N, N*m); zero where a solver does not measure it (Bullet's cloths exert theirs
+  // through their own rigid-body coupling).
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
 };
 const char* solver_status_name(SolverStatus status);
+
+// A dynamic collider's rigid body as one solver holds it (every solver has its own copy).
+struct BodyState {
+  int collider = 0;                                            // index into the scene's colliders
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();      // collider frame -> world (m)
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // m/s of the collider's origin
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, world axes
+};
 
 class Solver {
  public:
@@ -52,6 +67,8 @@ class Solver {
   virtual std::vector<std::pair<std::string, double>> phase_seconds() const { return {}; }
   // Scheme-specific counts worth reporting (implicit Euler: CG iterations and residuals).
   virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
+  // The dynamic colliders' bodies, in scene order (empty without dynamic colliders).
+  virtual std::vector<BodyState> bodies() const { return {}; }
 };
 
 }  // namespace drapelab

@@ -486,11 +486,17 @@ void VertexBlockDescent::record_contact_totals(const Eigen::Matrix3Xd& x, double
       ColliderContactTotals& t = totals[static_cast<std::size_t>(plane_collider_[e])];
       ++t.contact_count;
       t.normal_force += fn;
-      const double slip = (rel - rel.dot(n) * n).norm();
+      const Eigen::Vector3d slide = rel - rel.dot(n) * n;  // m over the step
+      const double slip = slide.norm();
       const double scale = settings_.friction_velocity * h;
-      t.friction_force +=
-          slip < scale ? plane_fixed_[e] * fn * slip / scale : plane_kinetic_[e] * fn;
+      const double friction =
+          slip < scale ? plane_fixed_[e] * fn * slip / scale : plane_kinetic_[e] * fn;  // N
+      t.friction_force += friction;
       t.max_depth = std::max(t.max_depth, depth);
+      Eigen::Vector3d on_cloth = fn * n;  // N
+      if (slip > 0.0) on_cloth -= (friction / slip) * slide;
+      t.force -= on_cloth;
+      t.torque -= Eigen::Vector3d(x.col(static_cast<Eigen::Index>(i))).cross(on_cloth);
     }
 }
 

@@ -15,7 +15,7 @@ const std::vector<std::string> kTypes = {"sphere", "cylinder", "capsule", "box",
 
 // Keys every collider may have, and those of each shape.
 const std::vector<std::string> kCommonKeys = {
-    "name", "type", "rotation", "friction", "static_friction", "motion", "parent"};
+    "name", "type", "rotation", "friction", "static_friction", "motion", "parent", "dynamic"};
 const std::map<std::string, std::vector<std::string>> kShapeKeys = {
     {"sphere", {"center", "radius"}},
     {"cylinder", {"center", "radius", "height", "axis"}},
@@ -120,6 +120,29 @@ void keyframe_center(SceneReader& r, MapReader& map, const std::string& key, Col
   }
 }
 
+// colliders[].dynamic: {mass: kg}. A body the world moves cannot also follow a motion or a parent,
+// and a plane (infinite, solid below) has no mass to give.
+void read_dynamic(SceneReader& r, MapReader& map, Collider& c) {
+  const std::string path = map.path_of("dynamic");
+  MapReader dynamic(r, map.get("dynamic"), path, {"mass"});
+  if (!dynamic.valid()) return;
+  if (!dynamic.has("mass")) dynamic.missing("mass", "the body's mass in kg, > 0");
+  const auto mass = dynamic.number("mass", mass_range(), std::nullopt);
+  if (!mass) return;
+  const char* clash = c.shape == ColliderShape::plane ? "a plane cannot be dynamic"
+                      : map.has("motion")             ? "a dynamic collider has no motion key"
+                      : map.has("parent")             ? "a dynamic collider has no parent"
+                                                      : nullptr;
+  if (clash) {
+    r.error(map.get("dynamic"), path,
+            std::string(clash) +
+                ": its rigid body moves under gravity and the cloth's loads (remove dynamic, or "
+                "the other key)");
+    return;
+  }
+  c.dynamic_mass = *mass;
+}
+
 std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
                                       const std::string& path, const ContactSpec& contact) {
   // The type decides which keys are valid, so read it before checking the keys.
@@ -211,6 +234,7 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
   if (const auto parent = map.text("parent", std::nullopt)) c.parent = *parent;
   if (map.has("motion")) read_motion(r, map.get("motion"), map.path_of("motion"), c.motion);
   if (!c.motion.keyframes.empty()) keyframe_center(r, map, center_key, c);
+  if (map.has("dynamic")) read_dynamic(r, map, c);
   if (r.error_count() != errors_before) return std::nullopt;
   return c;
 }
@@ -251,6 +275,14 @@ void resolve_parents(SceneReader& r, std::vector<Collider>& colliders,
       const auto found = index.find(name);
       if (found == index.end()) break;  // reported at that collider
       const Collider& parent = colliders[found->second];
+      if (parent.dynamic()) {
+        r.error(parent_nodes[k], path,
+                "names '" + name +
+                    "', a dynamic collider, which cannot carry others (its pose is each "
+                    "solver's own rigid body)");
+        chain.clear();
+        break;
+      }
       chain.push_back(parent.frame());
       name = parent.parent;
     }

@@ -164,6 +164,12 @@ class ConstraintReader {
                    (near.empty() ? "" : "; did you mean " + near + "?"));
       return std::nullopt;
     }
+    if (scene_.colliders[static_cast<std::size_t>(end.collider)].dynamic()) {
+      r_.error(m.get("collider"), m.path_of("collider"),
+               "names '" + *name +
+                   "', a dynamic collider: constraints hold to kinematic colliders only");
+      return std::nullopt;
+    }
     end.kind = ConstraintEnd::Kind::collider_point;
     end.point = *offset;
     return end;

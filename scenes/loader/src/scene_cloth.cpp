@@ -129,6 +129,12 @@ std::shared_ptr<const ClothModel> cloth_for_solver(const Scene& scene, const Sol
   return own;
 }
 
+bool has_dynamic_colliders(const Scene& scene) {
+  for (const Collider& c : scene.colliders)
+    if (c.dynamic()) return true;
+  return false;
+}
+
 std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene) {
   if (scene.constraints.empty()) return nullptr;
   auto constraints = std::make_shared<DistanceConstraints>();

@@ -219,6 +219,25 @@ class SceneBuilder {
       scene_.solvers = scene::read_solvers(r_, defaults, scene_, model.get(), notes);
     }
     check_continuum_is_used();
+    check_dynamic_hosts(top);
+  }
+
+  // A dynamic collider is a rigid body of a Bullet world: our solver has one only when hosted.
+  void check_dynamic_hosts(MapReader& top) {
+    std::string dynamic;
+    for (const Collider& c : scene_.colliders)
+      if (c.dynamic()) dynamic = c.name;
+    if (dynamic.empty() || !top.has("solvers")) return;
+    const YAML::Node list = top.get("solvers");
+    for (std::size_t k = 0; k < scene_.solvers.size() && k < list.size(); ++k) {
+      const SolverSpec& solver = scene_.solvers[k];
+      if (solver.type != SolverType::spring_damper || solver.bullet_host) continue;
+      r_.error(list[k]["host"], "solvers." + std::to_string(k) + ".host",
+               "is none, but collider '" + dynamic +
+                   "' is dynamic: its rigid body lives in the Bullet world that hosts our solver "
+                   "(use host: bullet)",
+               list[k]);
+    }
   }
 
   // cloth.continuum on a springs cloth serves the solvers with model: continuum. With none it acts

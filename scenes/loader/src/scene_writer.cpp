@@ -86,6 +86,7 @@ void write_collider(std::ostream& out, const Collider& c) {
   out << "    rotation: " << format_list(c.rotation) << "  # deg, Euler x, y, z\n"
       << "    friction: " << format_number(c.friction) << "\n"
       << "    static_friction: " << format_number(c.static_friction) << "\n";
+  if (c.dynamic()) out << "    dynamic: {mass: " << format_number(c.dynamic_mass) << "}  # kg\n";
   if (!c.parent.empty())
     out << "    parent: " << c.parent << "  # center, rotation, motion in its frame\n";
   const ColliderMotion& m = c.motion;

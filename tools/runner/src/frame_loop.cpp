@@ -33,8 +33,36 @@ void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* inter
 
 // The metrics of one state: cloth metrics and the self-intersection audit, plus clearance and
 // triangle penetration when there are colliders (the same queries for every solver).
+// The contact model one solver's metrics use: the scene's, or, with dynamic colliders, one whose
+// dynamic colliders stand where this solver's own bodies are.
+std::shared_ptr<const ContactModel> contacts_for(const SceneSetup& setup, const Solver& solver,
+                                                 double time) {
+  const std::vector<BodyState> bodies = solver.bodies();
+  if (!setup.contacts || bodies.empty()) return setup.contacts;
+  const ContactModel& scene_contacts = *setup.contacts;
+  auto poses = std::make_shared<ColliderPoseTable>(scene_contacts.size());
+  poses->set_substep(time, time);
+  for (std::size_t c = 0; c < scene_contacts.size(); ++c) {
+    ColliderSubstepMotion still;
+    still.start = still.end = collider_pose(scene_contacts.collider(c), time);
+    poses->set(c, still);
+  }
+  for (const BodyState& body : bodies) {
+    ColliderSubstepMotion motion;
+    motion.start = motion.end = body.pose;
+    motion.velocity = body.velocity;
+    motion.angular_velocity = body.angular_velocity;
+    poses->set(static_cast<std::size_t>(body.collider), motion);
+  }
+  return std::make_shared<const ContactModel>(scene_contacts.colliders(),
+                                              scene_contacts.parameters(),
+                                              scene_contacts.query().radius(), std::move(poses));
+}
+
 FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup,
-                           const ClothState& state, int frame, double time) {
+                           const Solver& solver, int frame, double time) {
+  const ClothState& state = solver.state();
+  const std::shared_ptr<const ContactModel> contacts = contacts_for(setup, solver, time);
   FrameMeasure measure;
   measure.frame = frame;
   measure.time = time;
@@ -42,13 +70,13 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup,
   measure.metrics.self_intersections = setup.self_intersections->count(state.x);
   if (setup.constraints && setup.constraints->has_hard())
     measure.metrics.constraint_error = setup.constraints->largest_error(time, state.x);
-  if (setup.contacts) {
-    measure.collisions = compute_collision_metrics(*setup.model, state, *setup.contacts, time);
+  if (contacts) {
+    measure.collisions = compute_collision_metrics(*setup.model, state, *contacts, time);
     measure.metrics.min_clearance = measure.collisions->min_clearance;
     measure.metrics.max_penetration = measure.collisions->max_penetration;
     measure.metrics.contact_count = measure.collisions->contact_count;
     measure.metrics.triangle_penetration =
-        triangle_penetration(*setup.model, state.x, *setup.contacts, time);
+        triangle_penetration(*setup.model, state.x, *contacts, time);
   }
   return measure;
 }
@@ -94,7 +122,7 @@ FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup,
     const double time = frame / scene.frame_rate;  // s
     for (auto& run : runs) {
       if (!run.running()) continue;
-      FrameMeasure measure = measure_frame(scene, setup, run.solver->state(), frame, time);
+      FrameMeasure measure = measure_frame(scene, setup, *run.solver, frame, time);
       measure.failed = stretch_check(*run.spec, measure.metrics, options.stretch_limit);
       run.last_metrics = measure.metrics;
       run.rest.add(time, measure.metrics.kinetic_energy, measure.metrics.gravity_energy,

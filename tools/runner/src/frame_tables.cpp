@@ -34,7 +34,7 @@ StateDifference compare_states(const ClothModel& model, const ClothState& a, con
   return d;
 }
 
-FrameTables::FrameTables(const std::filesystem::path& folder)
+FrameTables::FrameTables(const std::filesystem::path& folder, bool bodies)
     : metrics_(folder / "metrics.csv", {"solver",
                                         "frame",
                                         "time",
@@ -59,7 +59,13 @@ FrameTables::FrameTables(const std::filesystem::path& folder)
       compare_(folder / "compare.csv", {"solver_a", "solver_b", "frame", "time", "rms_distance",
                                         "max_distance", "hausdorff_distance"}),
       contacts_(folder / "contacts.csv", {"solver", "frame", "time", "collider", "contact_count",
-                                          "normal_force", "friction_force", "max_penetration"}) {}
+                                          "normal_force", "friction_force", "max_penetration"}) {
+  if (bodies)
+    bodies_.emplace(folder / "bodies.csv",
+                    std::vector<std::string>{"solver", "frame", "time", "collider", "x", "y", "z",
+                                             "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy",
+                                             "wz"});
+}
 
 void FrameTables::add_metrics(const std::string& solver, int frame, double time,
                               const ClothMetrics& m) {
@@ -101,23 +107,40 @@ void FrameTables::add_contact(const std::string& solver, int frame, double time,
                  format_number(friction_force), format_number(max_penetration)});
 }
 
+void FrameTables::add_body(const std::string& solver, int frame, double time,
+                           const std::string& collider, const BodyState& body) {
+  const Eigen::Vector3d& p = body.pose.translation();
+  const Eigen::Quaterniond q(body.pose.linear());
+  const Eigen::Vector3d& v = body.velocity;
+  const Eigen::Vector3d& w = body.angular_velocity;
+  bodies_->row({solver, std::to_string(frame), format_number(time), collider,
+                format_number(p.x()), format_number(p.y()), format_number(p.z()),
+                format_number(q.x()), format_number(q.y()), format_number(q.z()),
+                format_number(q.w()), format_number(v.x()), format_number(v.y()),
+                format_number(v.z()), format_number(w.x()), format_number(w.y()),
+                format_number(w.z())});
+}
+
 void FrameTables::flush() {
   metrics_.flush();
   compare_.flush();
   contacts_.flush();
+  if (bodies_) bodies_->flush();
 }
 
 void FrameTables::commit() {
   metrics_.commit();
   compare_.commit();
   contacts_.commit();
+  if (bodies_) bodies_->commit();
 }
 
 bool FrameTables::rollback() noexcept {
   const bool metrics = metrics_.rollback();
   const bool compare = compare_.rollback();
   const bool contacts = contacts_.rollback();
-  return metrics && compare && contacts;
+  const bool bodies = !bodies_ || bodies_->rollback();
+  return metrics && compare && contacts && bodies;
 }
 
 }  // namespace drapelab::runner

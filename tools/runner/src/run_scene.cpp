@@ -40,7 +40,12 @@ class RunFolderWriter final : public FrameObserver {
  public:
   RunFolderWriter(const fs::path& out, const scene::Scene& scene, const SceneSetup& setup,
                   std::vector<SolverRun>& runs)
-      : out_(out), setup_(setup), runs_(runs), tables_(out), obj_(wants_obj(scene.output.meshes)) {}
+      : out_(out),
+        scene_(scene),
+        setup_(setup),
+        runs_(runs),
+        tables_(out, has_dynamic_colliders(scene)),
+        obj_(wants_obj(scene.output.meshes)) {}
 
   void measured(const SolverRun& run, const FrameMeasure& measure) override {
     const std::string& name = run.spec->name;
@@ -56,6 +61,9 @@ class RunFolderWriter final : public FrameObserver {
       }
     }
     tables_.add_metrics(name, measure.frame, measure.time, measure.metrics);
+    for (const BodyState& body : run.solver->bodies())
+      tables_.add_body(name, measure.frame, measure.time,
+                       scene_.colliders[static_cast<std::size_t>(body.collider)].name, body);
     const ClothState& state = run.solver->state();
     if (obj_) {
       pending_objs_.push_back(out_ / run_folder::kMeshesFolder /
@@ -100,6 +108,7 @@ class RunFolderWriter final : public FrameObserver {
 
  private:
   const fs::path& out_;
+  const scene::Scene& scene_;
   const SceneSetup& setup_;
   std::vector<SolverRun>& runs_;
   FrameTables tables_;

@@ -1,6 +1,8 @@
-// Our cloth as a plugin in a Bullet rigid-body world: the solver is stepped by Bullet as an action
-// (btActionInterface), inside a btSoftRigidDynamicsWorld whose kinematic colliders are driven
-// exactly like those of Bullet's cloth (the same pre-tick code, the same collider_pose(t)). The
+// Our cloth as a plugin in a Bullet rigid-body world: the solver is stepped by Bullet's pre-tick
+// callback, inside a btSoftRigidDynamicsWorld whose kinematic colliders are driven exactly like
+// those of Bullet's cloth (the same pre-tick code, the same collider_pose(t)), and whose dynamic
+// colliders are rigid bodies that the cloth's contact loads move (two-way coupling: the guest steps
+// first, then its loads go onto the bodies, which the world integrates in the same substep). The
 // cloth does not collide with Bullet's cloth: each solver has its own world (docs/bullet.md,
 // "Parallel worlds with the same colliders").
 //

@@ -149,6 +149,9 @@ ClothState initial_scene_state(const Scene& scene, const ClothModel& model);
 // `initial` at time 0; null when no pin is attached.
 std::shared_ptr<const Attachments> scene_attachments(const Scene& scene, const ClothState& initial);
 
+// Whether any collider is a dynamic rigid body (then every solver has its own copy of it).
+bool has_dynamic_colliders(const Scene& scene);
+
 // The scene's distance constraints for a solver (their colliders the scene's); null when none.
 std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene);
 
