@@ -83,7 +83,8 @@ const std::vector<std::string> kMetricsColumns = {"solver",
                                                   "drape_coefficient",
                                                   "drape_nodes",
                                                   "self_intersections",
-                                                  "triangle_penetration"};
+                                                  "triangle_penetration",
+                                                  "constraint_error"};
 const std::vector<std::string> kCompareColumns = {
     "solver_a", "solver_b", "frame", "time", "rms_distance", "max_distance", "hausdorff_distance"};
 const std::vector<std::string> kContactsColumns = {
@@ -92,7 +93,8 @@ const std::vector<std::string> kContactsColumns = {
 // Empty while the scene has no colliders and no drape support.
 const std::vector<std::string> kEmptyMetricsColumns = {"min_clearance", "max_penetration",
                                                        "contact_count", "drape_coefficient",
-                                                       "drape_nodes",   "triangle_penetration"};
+                                                       "drape_nodes",   "triangle_penetration",
+                                                       "constraint_error"};
 
 // A parsed CSV file: header and rows, each row a map from column name to cell.
 struct Csv {

@@ -237,6 +237,8 @@ int render_run(const RenderArguments& arguments, const std::atomic<bool>& interr
           panels[s].legend.push_back(note);
         }
         panels[s].cloth = &positions[s];
+        const auto bodies = solver.bodies.find(shown);
+        if (bodies != solver.bodies.end()) panels[s].bodies = &bodies->second;
       }
       const render::Image image =
           render::render_frame(context, renderer, camera, panels, time, supersample, font);

@@ -57,7 +57,7 @@ Image render_frame(const OffscreenContext& context, const PanelRenderer& rendere
     // Spans computed at the output size and scaled, so panel edges fall on whole output pixels.
     const PanelSpan span = panel_span(k, n, big_width / supersample);
     renderer.draw(camera, span.x0 * supersample, 0, (span.x1 - span.x0) * supersample,
-                  context.height(), *panels[k].cloth, time);
+                  context.height(), *panels[k].cloth, time, panels[k].bodies);
   }
   Image image = downsample(context.read_pixels(), supersample);
 

@@ -114,6 +114,10 @@ Bounds framing_bounds(const RunFrames& run, int samples) {
       const double t = run.scene.duration * k / (count - 1);  // s
       add_collider_bounds(collider, collider_pose(collider, t), bounds);
     }
+  for (const auto& solver : run.solvers)  // each solver's own dynamic bodies, at every frame
+    for (const auto& [frame, poses] : solver.bodies)
+      for (const auto& [collider, pose] : poses)
+        add_collider_bounds(run.scene.colliders[static_cast<std::size_t>(collider)], pose, bounds);
   return bounds;
 }
 
@@ -139,6 +143,8 @@ Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& x, const Eigen::Matrix3X
 PanelRenderer::PanelRenderer(const scene::Scene& scene, const ClothModel& model,
                              const Image& texture, const Bounds& framing)
     : model_(model) {
+  constraints_.colliders = scene.colliders;
+  constraints_.list = scene.constraints;
   const Eigen::Vector3d center = framing.empty() ? Eigen::Vector3d::Zero() : framing.center();
   const double radius = std::max(framing.radius(), 0.05);
   // A floor patch reaching well beyond the framed scene, so its edge stays out of the default view.
@@ -160,7 +166,8 @@ PanelRenderer::PanelRenderer(const scene::Scene& scene, const ClothModel& model,
 }
 
 void PanelRenderer::draw(const Camera& camera, int x, int y, int width, int height,
-                         const Eigen::Matrix3Xd& cloth, double time) const {
+                         const Eigen::Matrix3Xd& cloth, double time,
+                         const BodyPoses* bodies) const {
   glViewport(x, y, width, height);
   glScissor(x, y, width, height);
   glEnable(GL_SCISSOR_TEST);
@@ -187,7 +194,11 @@ void PanelRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     const bool plane = drawable.collider->shape == ColliderShape::plane;
     if (plane) set_specular(0.0f, 1.0f);  // a matt floor
     glPushMatrix();
-    const Eigen::Matrix4d pose = collider_pose(*drawable.collider, time).matrix();
+    Eigen::Matrix4d pose = collider_pose(*drawable.collider, time).matrix();
+    if (bodies) {
+      const auto body = bodies->find(static_cast<int>(&drawable - colliders_.data()));
+      if (body != bodies->end()) pose = body->second.matrix();
+    }
     glMultMatrixd(pose.data());
     draw_mesh(drawable.mesh);
     glPopMatrix();
@@ -224,9 +235,30 @@ void PanelRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(cloth.cols()));
     glDisableClientState(GL_VERTEX_ARRAY);
   }
+  draw_constraints(cloth, time);
   glDisable(GL_COLOR_MATERIAL);
   glDisable(GL_LIGHTING);
   glDisable(GL_SCISSOR_TEST);
+}
+
+void PanelRenderer::draw_constraints(const Eigen::Matrix3Xd& cloth, double time) const {
+  if (constraints_.empty()) return;
+  glDisable(GL_LIGHTING);
+  glLineWidth(2.0f);
+  glBegin(GL_LINES);
+  for (const DistanceConstraint& c : constraints_.list) {
+    // Hard and rope constraints dark like a cord, soft ones lighter like an elastic.
+    if (c.mode == ConstraintMode::soft)
+      glColor3f(0.45f, 0.55f, 0.30f);
+    else
+      glColor3f(0.16f, 0.14f, 0.12f);
+    const Eigen::Vector3d a = cloth.col(c.a);
+    const Eigen::Vector3d b = constraints_.end_b(c, time, cloth, cloth).first;
+    glVertex3d(a.x(), a.y(), a.z());
+    glVertex3d(b.x(), b.y(), b.z());
+  }
+  glEnd();
+  glEnable(GL_LIGHTING);
 }
 
 }  // namespace drapelab::render

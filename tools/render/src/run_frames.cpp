@@ -132,6 +132,42 @@ void read_metrics(const fs::path& file, std::vector<SolverFrames>& solvers) {
   }
 }
 
+// bodies.csv rows by solver, frame and collider: each solver's own dynamic bodies.
+void read_bodies(const fs::path& file, const scene::Scene& scene,
+                 std::vector<SolverFrames>& solvers) {
+  const auto table = run_folder::read_csv_file(file);
+  if (!table) return;  // no dynamic colliders: they are drawn where the scene puts them
+  const auto column = [&](const char* name) { return table->column(name); };
+  const auto solver_column = column("solver"), frame_column = column("frame"),
+             collider_column = column("collider");
+  const std::array<std::optional<std::size_t>, 7> pose_columns = {
+      column("x"), column("y"), column("z"), column("qx"), column("qy"), column("qz"), column("qw")};
+  if (!solver_column || !frame_column || !collider_column) return;
+  using run_folder::parse_number;
+  for (std::size_t r = 0; r < table->rows.size(); ++r) {
+    std::array<double, 7> value{};
+    bool complete = true;
+    for (std::size_t k = 0; k < value.size(); ++k) {
+      const auto number =
+          pose_columns[k] ? parse_number(table->text(r, pose_columns[k])) : std::nullopt;
+      complete = complete && number.has_value();
+      if (number) value[k] = *number;
+    }
+    const auto frame = parse_number(table->text(r, frame_column));
+    int collider = -1;
+    for (std::size_t c = 0; c < scene.colliders.size(); ++c)
+      if (scene.colliders[c].name == table->text(r, collider_column)) collider = static_cast<int>(c);
+    if (!complete || !frame || collider < 0) continue;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(value[0], value[1], value[2]);
+    pose.linear() =
+        Eigen::Quaterniond(value[6], value[3], value[4], value[5]).normalized().toRotationMatrix();
+    for (auto& solver : solvers)
+      if (solver.name == table->text(r, solver_column))
+        solver.bodies[static_cast<int>(*frame)][collider] = pose;
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<FrameSource> open_point_cache(const fs::path& file, int particle_count) {
@@ -210,6 +246,7 @@ RunFrames load_run_frames(const fs::path& dir) {
   if (run.frame_count == 0)
     throw RunInputError(dir.string() + ": the point caches hold no frame yet");
   read_metrics(dir / "metrics.csv", run.solvers);
+  read_bodies(dir / "bodies.csv", run.scene, run.solvers);
   return run;
 }
 

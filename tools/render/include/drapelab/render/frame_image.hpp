@@ -17,6 +17,7 @@ struct Panel {
   std::string title;                        // the solver's name (and status when it stopped)
   std::vector<std::string> legend;          // lines drawn at the panel's bottom left
   const Eigen::Matrix3Xd* cloth = nullptr;  // positions to draw (m)
+  const BodyPoses* bodies = nullptr;        // this solver's dynamic colliders (none: null)
 };
 
 // Where panel k of n lies in an image `width` pixels wide: [x0, x1).

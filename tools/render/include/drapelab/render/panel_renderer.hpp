@@ -33,16 +33,21 @@ class PanelRenderer {
   // plane.
   double extra_radius() const { return extra_radius_; }
   // Draws into the GL viewport (x, y, width, height) (pixels, y up from the buffer's bottom), with
-  // the cloth at `cloth` (3 x particles, m) and the colliders posed at `time` (s).
+  // the cloth at `cloth` (3 x particles, m) and the colliders posed at `time` (s), each dynamic
+  // collider where `bodies` puts it (the solver's own body; at its start without an entry).
   void draw(const Camera& camera, int x, int y, int width, int height,
-            const Eigen::Matrix3Xd& cloth, double time) const;
+            const Eigen::Matrix3Xd& cloth, double time, const BodyPoses* bodies = nullptr) const;
 
  private:
   struct ColliderDrawable {
     const Collider* collider;
     DrawMesh mesh;
   };
+  // The constraints as lines from particle a to their other end at `time` (s): strings and rods.
+  void draw_constraints(const Eigen::Matrix3Xd& cloth, double time) const;
+
   const ClothModel& model_;
+  DistanceConstraints constraints_;  // the scene's, drawn as lines
   std::vector<ColliderDrawable> colliders_;
   unsigned texture_ = 0;
   double extra_radius_ = 0.0;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <Eigen/Geometry>
 #include <map>
 #include <memory>
 #include <optional>
@@ -50,6 +51,9 @@ struct FrameMetrics {
   std::optional<double> drape_coefficient;  // empty unless the scene names a drape support
 };
 
+// Collider index -> the pose (collider frame -> world) one solver's body has at one frame.
+using BodyPoses = std::map<int, Eigen::Isometry3d>;
+
 struct SolverFrames {
   std::string name;
   std::string type;          // spring_damper, bullet_softbody, bullet_deformable
@@ -57,6 +61,9 @@ struct SolverFrames {
   int frames_recorded = -1;  // summary.json's frames_recorded (frame 0 included); -1 when absent
   std::unique_ptr<FrameSource> source;
   std::map<int, FrameMetrics> metrics;  // by frame; empty when metrics.csv is missing
+  // Where this solver's dynamic colliders are (bodies.csv), by frame, then by collider index in the
+  // scene; empty without dynamic colliders.
+  std::map<int, BodyPoses> bodies;
 };
 
 struct RunFrames {
