@@ -50,6 +50,8 @@ class KinematicColliders {
   // dynamic body, called before the world moves it: its pose now, and the end pose its velocities
   // predict.
   ColliderSubstepMotion substep_motion(std::size_t c, double h) const;
+  // Collider c's rigid body (to anchor cloth nodes to a dynamic one).
+  btRigidBody* rigid_body(std::size_t c) { return bodies_[c].get(); }
   // The dynamic bodies' states, in scene order.
   std::vector<BodyState> dynamic_bodies() const;
   // Applies to each dynamic body the load of `forces` (one per collider: force, and moment about

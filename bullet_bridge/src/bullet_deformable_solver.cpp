@@ -50,8 +50,9 @@ class BulletDeformableSolver final : public BulletClothSolver {
     colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_,
                                                       friction_factor);
 
-    cloth_ = make_soft_body(info, *model_, initial,
-                            [](std::size_t) { return 1.0; });  // kLST unused here
+    cloth_ = make_soft_body(
+        info, *model_, initial, [](std::size_t) { return 1.0; },  // kLST unused here
+        options_.attachments.get());
     btSoftBody::Config& cfg = cloth_->m_cfg;
     cfg.collisions =
         btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;  // node contacts
@@ -62,6 +63,10 @@ class BulletDeformableSolver final : public BulletClothSolver {
     if (self_collision)
       enable_deformable_self_collision(*cloth_, options_.self_collision, options_.dt);
     world_->addSoftBody(cloth_.get());
+    if (options_.attachments)
+      anchor_attached_nodes(
+          *options_.attachments, [this](std::size_t c) { return colliders_->rigid_body(c); },
+          *cloth_);
     springs_ = std::make_unique<PerLinkSpringForce>(model_->springs.ks, model_->springs.kd);
     gravity_ = std::make_unique<btDeformableGravityForce>(to_bullet(options_.gravity));
     world_->addForce(cloth_.get(), springs_.get());

@@ -11,7 +11,7 @@ namespace drapelab::bullet {
 
 std::unique_ptr<btSoftBody> make_soft_body(
     btSoftBodyWorldInfo& info, const ClothModel& model, const ClothState& initial,
-    const std::function<double(std::size_t)>& link_stiffness) {
+    const std::function<double(std::size_t)>& link_stiffness, const Attachments* attachments) {
   const int n = model.particle_count();
   std::vector<btVector3> rest(n);
   std::vector<btScalar> masses(n);
@@ -19,6 +19,12 @@ std::unique_ptr<btSoftBody> make_soft_body(
     rest[i] = to_bullet(model.rest_positions.col(i));
     masses[i] = model.is_pinned(i) ? 0.0 : model.mass[i];  // Bullet: mass 0 = pinned
   }
+  if (attachments)
+    for (std::size_t k = 0; k < attachments->list.size(); ++k)
+      if (attachments->on_dynamic(k)) {
+        const int i = attachments->list[k].particle;
+        masses[i] = model.mass[i];
+      }
   auto body = std::make_unique<btSoftBody>(&info, n, rest.data(), masses.data());
   const SpringSet& s = model.springs;
   std::map<double, btSoftBody::Material*> materials;  // one material per distinct kLST
@@ -60,10 +66,21 @@ void read_soft_body_state(const btSoftBody& body, ClothState& state) {
 
 void place_attached_nodes(const Attachments& attachments, double t, btSoftBody& body) {
   for (std::size_t k = 0; k < attachments.list.size(); ++k) {
+    if (attachments.on_dynamic(k)) continue;  // anchored to its body
     const auto [position, velocity] = attachments.placement(k, t);
     btSoftBody::Node& node = body.m_nodes[attachments.list[k].particle];
     node.m_x = node.m_q = to_bullet(position);
     node.m_v = node.m_vn = to_bullet(velocity);
+  }
+}
+
+void anchor_attached_nodes(const Attachments& attachments,
+                           const std::function<btRigidBody*(std::size_t)>& body_of,
+                           btSoftBody& cloth) {
+  for (std::size_t k = 0; k < attachments.list.size(); ++k) {
+    if (!attachments.on_dynamic(k)) continue;
+    const Attachment& a = attachments.list[k];
+    cloth.appendDeformableAnchor(a.particle, body_of(static_cast<std::size_t>(a.collider)));
   }
 }
 

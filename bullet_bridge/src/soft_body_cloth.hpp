@@ -23,15 +23,24 @@ namespace drapelab::bullet {
 // positions whenever masses or links change: docs/bullet.md, "Masses, pins and rest lengths"), then
 // set exactly to ours and moved to the initial state. `link_stiffness(e)` gives spring e's kLST
 // (the classic solver's only stiffness).
+// `attachments` (may be null): a pinned particle attached to a dynamic collider keeps its mass, as
+// the anchor that holds it to the body needs (anchor_attached_nodes).
 std::unique_ptr<btSoftBody> make_soft_body(
     btSoftBodyWorldInfo& info, const ClothModel& model, const ClothState& initial,
-    const std::function<double(std::size_t)>& link_stiffness);
+    const std::function<double(std::size_t)>& link_stiffness, const Attachments* attachments);
 
 void read_soft_body_state(const btSoftBody& body, ClothState& state);
 // Puts the attached nodes (pinned: mass 0) where their colliders carry them at time t (s):
 // position, previous position and velocity. Both Bullet cloths call it before every substep and
 // after it, so an attached node is a kinematic node that follows its collider.
+// Nodes attached to a dynamic collider are skipped: anchors hold them (anchor_attached_nodes).
 void place_attached_nodes(const Attachments& attachments, double t, btSoftBody& body);
+// The deformable world: anchors every node attached to a dynamic collider to that collider's rigid
+// body with `appendDeformableAnchor`, Bullet's own two-way attachment. `body_of(c)` is collider
+// c's rigid body. (The classic cloth refuses such attachments: docs/bullet.md, "Constraints".)
+void anchor_attached_nodes(const Attachments& attachments,
+                           const std::function<btRigidBody*(std::size_t)>& body_of,
+                           btSoftBody& cloth);
 
 // The soft distance constraints as an explicit external force of the substep [t, t + h]: each
 // free node's velocity gains h f / m (what btSoftBody::addForce does in the classic cloth, which the

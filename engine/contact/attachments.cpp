@@ -9,17 +9,29 @@ namespace drapelab {
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> Attachments::placement(std::size_t k, double t) const {
   const Attachment& a = list[k];
-  const Collider& c = colliders[static_cast<std::size_t>(a.collider)];
-  const Eigen::Vector3d position = collider_pose(c, t) * a.offset;
-  return {position, collider_point_velocity(c, t, position)};
+  const auto c = static_cast<std::size_t>(a.collider);
+  if (poses && colliders[c].dynamic()) {
+    const ColliderKinematics body = poses->at(c, t);
+    const Eigen::Vector3d position = body.pose * a.offset;
+    return {position, body.point_velocity(position)};
+  }
+  const Eigen::Vector3d position = collider_pose(colliders[c], t) * a.offset;
+  return {position, collider_point_velocity(colliders[c], t, position)};
 }
 
 void Attachments::place(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) const {
   // One pose per collider and call: a cape holds a few particles per shoulder, a hammock dozens.
   std::vector<Eigen::Isometry3d> pose(colliders.size());
   std::vector<bool> posed(colliders.size(), false);
-  for (const Attachment& a : list) {
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const Attachment& a = list[k];
     const auto c = static_cast<std::size_t>(a.collider);
+    if (poses && colliders[c].dynamic()) {
+      const auto [position, velocity] = placement(k, t);
+      x.col(a.particle) = position;
+      v.col(a.particle) = velocity;
+      continue;
+    }
     if (!posed[c]) pose[c] = collider_pose(colliders[c], t), posed[c] = true;
     const Eigen::Vector3d position = pose[c] * a.offset;
     x.col(a.particle) = position;

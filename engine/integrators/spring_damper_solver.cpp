@@ -251,6 +251,11 @@ std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
   std::vector<ColliderForce> forces;
   for (const auto& total : contact_totals_)
     forces.push_back({total.normal_force, total.friction_force, total.force, total.torque});
+  if (forces.size() < attachment_loads_.size()) forces.resize(attachment_loads_.size());
+  for (std::size_t c = 0; c < attachment_loads_.size(); ++c) {
+    forces[c].force += attachment_loads_[c].force;
+    forces[c].torque += attachment_loads_[c].torque;
+  }
   return forces;
 }
 
@@ -472,6 +477,7 @@ void SpringDamperSolver::single_step(double h) {
   // The schemes moved the attached particles with their velocities at the step's start; they end
   // it where their colliders are.
   if (settings_.attachments) settings_.attachments->place(state_.time + h, state_.x, state_.v);
+  if (settings_.attachments && settings_.attachments->any_on_dynamic()) record_attachment_loads();
   const bool projects = settings_.constraints && settings_.constraints->has_hard();
   if (projects) {
     project_constraints(state_.time + h, h);
@@ -510,6 +516,19 @@ void SpringDamperSolver::project_constraints(double t, double h) {
   stats_.constraint_velocity_sweeps_max =
       std::max(stats_.constraint_velocity_sweeps_max, result.velocity_sweeps);
   if (!result.converged) ++stats_.constraint_unconverged_steps;
+}
+
+void SpringDamperSolver::record_attachment_loads() {
+  const Attachments& attached = *settings_.attachments;
+  if (settings_.integrator == Integrator::vbd) set_body_and_spring_forces(state_.x, state_.v);
+  attachment_loads_.assign(attached.colliders.size(), ColliderForce{});
+  for (std::size_t k = 0; k < attached.list.size(); ++k) {
+    if (!attached.on_dynamic(k)) continue;
+    const int i = attached.list[k].particle;
+    ColliderForce& load = attachment_loads_[static_cast<std::size_t>(attached.list[k].collider)];
+    load.force += force_.col(i);
+    load.torque += Eigen::Vector3d(state_.x.col(i)).cross(Eigen::Vector3d(force_.col(i)));
+  }
 }
 
 std::int64_t SpringDamperSolver::euler_step(double h) {

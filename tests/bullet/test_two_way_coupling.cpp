@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "drapelab/attachments.hpp"
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
@@ -34,10 +36,10 @@ struct BallAndSheet {
   std::shared_ptr<const ClothModel> model;
   ClothState initial;
 
-  BallAndSheet(bool pinned, const Eigen::Vector3d& ball_center) {
+  BallAndSheet(bool pinned, const Eigen::Vector3d& ball_center, GridPlane plane = GridPlane::xz) {
     spec.nx = spec.ny = 11;
     spec.size = {0.5, 0.5};
-    spec.plane = GridPlane::xz;
+    spec.plane = plane;
     spec.center = {0.0, 1.0, 0.0};
     spec.mass = 0.1;
     spec.thickness = 0.005;
@@ -45,6 +47,8 @@ struct BallAndSheet {
     spec.shear = {50.0, 0.05};
     spec.bend = {0.5, 0.005};
     if (pinned) spec.pins = {PinNamed{"corners"}};
+    if (plane == GridPlane::xy)  // hanging: the top corners, and the bottom ones for the ball
+      spec.pins = {PinNamed{"top_corners"}, PinIndex{5}};
     model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
     initial = initial_grid_state(*model, spec, 0.0, 0);
     ball.name = "ball";
@@ -63,11 +67,22 @@ struct Solvers {
   SpringDamperSolver* guest = nullptr;
 };
 
-Solvers make_solvers(const BallAndSheet& scene, double air_damping) {
+// `attachments`: pins carried by the ball (null: none).
+Solvers make_solvers(const BallAndSheet& scene, double air_damping,
+                     std::shared_ptr<const Attachments> attachments = nullptr) {
   Solvers out;
   const std::vector<Collider> colliders = {scene.ball};
   auto poses = std::make_shared<ColliderPoseTable>(colliders.size());
+  poses->set_substep(0.0, 0.0);  // the ball where the scene puts it, until the host's first step
+  ColliderSubstepMotion still;
+  still.start = still.end = collider_pose(scene.ball, 0.0);
+  poses->set(0, still);
   SpringDamperSettings settings;
+  if (attachments) {
+    auto carried = std::make_shared<Attachments>(*attachments);
+    carried->poses = poses;  // the ball's pose is the host's body
+    settings.attachments = carried;
+  }
   settings.gravity = kGravity;
   settings.air_damping = air_damping;
   settings.contacts = std::make_shared<const ContactModel>(
@@ -81,13 +96,16 @@ Solvers make_solvers(const BallAndSheet& scene, double air_damping) {
   classic.margin = classic.voxel_size = scene.spec.thickness;
   classic.gravity = kGravity;
   classic.air_damping = air_damping;
-  out.classic =
-      bullet::make_bullet_softbody_solver("classic", scene.model, scene.initial, colliders, classic);
+  classic.attachments = attachments;
+  if (!attachments || !attachments->any_on_dynamic())  // else it refuses (tested below)
+    out.classic = bullet::make_bullet_softbody_solver("classic", scene.model, scene.initial,
+                                                      colliders, classic);
   bullet::BulletDeformableOptions deformable;
   deformable.dt = 2e-4;
   deformable.margin = deformable.voxel_size = scene.spec.thickness;
   deformable.gravity = kGravity;
   deformable.air_damping = air_damping;
+  deformable.attachments = attachments;
   out.deformable = bullet::make_bullet_deformable_solver("deformable", scene.model, scene.initial,
                                                          colliders, deformable);
   return out;
@@ -219,6 +237,50 @@ TEST(TwoWayCoupling, DroppedBallAndClothTradeEnergy) {
     EXPECT_GT(cloth_energy, 0.05 * ball_energy);   // ... moving itself ...
     EXPECT_GT(rebound, 0.2 * impact_speed);        // ... and threw it back up
     RecordProperty(solver->name() + "_rebound_over_impact", std::to_string(rebound / impact_speed));
+  }
+}
+
+// A ball hanging from the middle of the bottom edge of a sheet pinned at its top corners, the
+// particle there attached to the top of the ball (cloth.pins[].attach on a dynamic collider). Our cloth: the particles' loads
+// carry the ball, and the top pins carry ball and cloth, (M_ball + M_cloth) g within 1 %. Bullet's
+// deformable cloth (its anchor): the ball hangs at rest where ours does, within 2 cm. (The classic
+// cloth cannot carry it: the loader refuses the scene for it.)
+TEST(TwoWayCoupling, AnAttachedBallHangsFromTheSheet) {
+  // The sheet spans y from 0.75 to 1.25 m; the ball's top touches its bottom edge.
+  const BallAndSheet scene(/*pinned=*/true, {0.0, 0.75 - 0.11, 0.0}, GridPlane::xy);
+  const auto attachments = std::make_shared<const Attachments>(
+      make_attachments({scene.ball}, {{5, 0}}, scene.initial.x, 0.0));
+  Solvers solvers = make_solvers(scene, /*air_damping=*/40.0, attachments);
+  bullet::BulletSoftBodyOptions classic;
+  classic.dt = 1e-4;
+  classic.attachments = attachments;
+  EXPECT_THROW(bullet::make_bullet_softbody_solver("classic", scene.model, scene.initial,
+                                                   {scene.ball}, classic),
+               std::invalid_argument);
+  double ours_height = 0.0;
+  for (Solver* solver : {solvers.ours.get(), solvers.deformable.get()}) {
+    SCOPED_TRACE(solver->name());
+    const double h = step_of(*solver);
+    for (int k = 0; k < static_cast<int>(std::lround(5.0 / h)); ++k) solver->step(h);
+    ASSERT_EQ(solver->status(), SolverStatus::ok) << solver->message();
+    const BodyState ball = ball_of(*solver);
+    EXPECT_LT(ball.velocity.norm(), 0.01);                // m/s: at rest
+    EXPECT_LT(ball.pose.translation().y(), 0.64 - 0.01);  // m: it pulled the sheet down
+    if (solver == solvers.ours.get()) {
+      ours_height = ball.pose.translation().y();
+      const ClothState& s = solver->state();
+      const Eigen::Matrix3Xd& force = solvers.guest->evaluate_forces(s.x, s.v, s.time, h);
+      Eigen::Vector3d pins = Eigen::Vector3d::Zero();  // N: what the top pins exert
+      for (int i = 0; i < scene.model->particle_count(); ++i)
+        if (scene.model->is_pinned(i) && i != 5) pins -= force.col(i);
+      const double weight = (scene.ball.dynamic_mass + scene.model->total_mass()) * 9.81;  // N
+      EXPECT_NEAR(pins.y() / weight, 1.0, 0.01) << "pins " << pins.transpose();
+      RecordProperty("hanging_pin_force_over_weight", std::to_string(pins.y() / weight));
+    } else {
+      EXPECT_NEAR(ball.pose.translation().y(), ours_height, 0.02);
+    }
+    RecordProperty(solver->name() + "_hanging_ball_height",
+                   std::to_string(ball.pose.translation().y()));
   }
 }
 

@@ -127,18 +127,20 @@ std::vector<BadScene> bad_constraints() {
        27,
        "colliders.2.parent",
        {"names 'ball', a dynamic collider, which cannot carry others"}},
-      {"PinsDoNotAttachToADynamicCollider",
-       {insert_lines(14, "    dynamic: {mass: 1}"),
-        insert_lines(5, "  pins: [{index: 0, attach: ball}]")},
-       6,
-       "cloth.pins.0.attach",
-       {"names 'ball', a dynamic collider"}},
       {"ConstraintsDoNotHoldToADynamicCollider",
        {insert_lines(14, "    dynamic: {mass: 1}"),
         one_constraint("{type: distance, a: [1, 2], b: {collider: ball, offset: [0, 0, 0]}}")},
        40,
        "constraints.0.b.collider",
        {"names 'ball', a dynamic collider"}},
+      {"TheClassicClothCannotCarryPinsAttachedToADynamicCollider",
+       {replace_line(9, "solvers: [{type: bullet_softbody, dt: 0.001041666666666666667}]"),
+        insert_lines(14, "    dynamic: {mass: 1}"),
+        insert_lines(5, "  pins: [{index: 0, attach: ball}]")},
+       10,
+       "solvers.0.type",
+       {"is bullet_softbody, which cannot carry pins attached to the dynamic collider 'ball'",
+        "use bullet_deformable or spring_damper"}},
       {"ADynamicColliderNeedsOurSolverHosted",
        {replace_line(9, "solvers: [{type: spring_damper, dt: 0.001041666666666666667, host: none}]"),
         insert_lines(14, "    dynamic: {mass: 1}")},
@@ -206,6 +208,7 @@ TEST(ConstraintLoader, ConstraintsAndDynamicCollidersRoundTrip) {
     EXPECT_EQ(a.tolerance, b.tolerance);
   }
   EXPECT_EQ(again.scene->colliders[0].dynamic_mass, 0.75);
+  EXPECT_NE(written.find("dynamic: {mass: 0.75}"), std::string::npos) << written;
   EXPECT_EQ(scene::resolved_scene_yaml(*again.scene), written);
 }
 

@@ -5,10 +5,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <utility>
 #include <vector>
 
 #include "drapelab/collider.hpp"
+#include "drapelab/collider_pose_table.hpp"
 
 namespace drapelab {
 
@@ -21,8 +23,22 @@ struct Attachment {
 struct Attachments {
   std::vector<Collider> colliders;  // the scene's colliders, indexed by Attachment::collider
   std::vector<Attachment> list;
+  // Where a host world has its dynamic colliders over the current substep (our solver hosted in
+  // Bullet): particles attached to a dynamic collider follow its body there. Null: every collider
+  // is posed by collider_pose(t).
+  std::shared_ptr<const ColliderPoseTable> poses;
 
   bool empty() const { return list.empty(); }
+  // Whether particle k's collider is a dynamic body (its pose is the host's, and the particle's
+  // load goes onto it).
+  bool on_dynamic(std::size_t k) const {
+    return colliders[static_cast<std::size_t>(list[k].collider)].dynamic();
+  }
+  bool any_on_dynamic() const {
+    for (std::size_t k = 0; k < list.size(); ++k)
+      if (on_dynamic(k)) return true;
+    return false;
+  }
   // Where attached particle k is at time t (s): W(t) offset (m), and its velocity (m/s).
   std::pair<Eigen::Vector3d, Eigen::Vector3d> placement(std::size_t k, double t) const;
   // Moves every attached particle of x (m) and v (m/s), 3 x N, to its placement at time t (s).

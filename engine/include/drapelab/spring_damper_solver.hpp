@@ -197,6 +197,10 @@ class SpringDamperSolver final : public Solver {
   // The hard and rope constraints' projection at the step's end (time t, s), with the scheme's
   // velocity bookkeeping (Verlet's history, leapfrog's stored force).
   void project_constraints(double t, double h);
+  // The loads of the particles attached to dynamic colliders: each particle's force of the step's
+  // last evaluation (vbd, which evaluates none, takes gravity and the springs at the end state),
+  // which its body supplies the reaction to, so it pushes on the body with it.
+  void record_attachment_loads();
   std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
                                   double h, const ContactBlockFollowUp* follow_up);
   // How the integrator takes the penalty normal force: at the step's end for symplectic Euler.
@@ -248,6 +252,7 @@ class SpringDamperSolver final : public Solver {
   // Self-collision: the state a step restarts from (m, m/s) and the start of its piece (m).
   Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
   std::vector<ColliderContactTotals> contact_totals_;
+  std::vector<ColliderForce> attachment_loads_;  // per collider: force (N), moment (N*m)
   std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
   std::unique_ptr<ShapeBoundWorkspace>
       shape_bound_;  // adaptive substeps: each particle's springs, for the bound

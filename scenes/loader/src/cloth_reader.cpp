@@ -404,18 +404,12 @@ void ClothReader::check_pin_attach() {
   for (std::size_t k = 0; k < spec.pin_attach.size(); ++k) {
     const std::string& name = spec.pin_attach[k];
     if (name.empty()) continue;
-    bool found = false, dynamic = false;
+    bool found = false;
     std::string known;
     for (const Collider& c : scene_.colliders) {
       found = found || c.name == name;
-      dynamic = dynamic || (c.name == name && c.dynamic());
       known += (known.empty() ? "" : ", ") + c.name;
     }
-    if (dynamic)
-      r_.error(pin_nodes_[k]["attach"], pin_paths_[k] + ".attach",
-               "names '" + name +
-                   "', a dynamic collider: pins attach to kinematic colliders only (tie the cloth "
-                   "to a body with contact, or attach it to a kinematic collider)");
     if (found) continue;
     r_.error(pin_nodes_[k]["attach"], pin_paths_[k] + ".attach",
              "must name a collider of the scene" +

@@ -222,15 +222,27 @@ class SceneBuilder {
     check_dynamic_hosts(top);
   }
 
-  // A dynamic collider is a rigid body of a Bullet world: our solver has one only when hosted.
+  // A dynamic collider is a rigid body of a Bullet world: our solver has one only when hosted. And
+  // Bullet's classic cloth cannot hang a body from pins attached to it (docs/bullet.md,
+  // "Constraints").
   void check_dynamic_hosts(MapReader& top) {
-    std::string dynamic;
+    std::string dynamic, carrying;
     for (const Collider& c : scene_.colliders)
       if (c.dynamic()) dynamic = c.name;
+    for (const std::string& name : scene_.cloth.pin_attach)
+      for (const Collider& c : scene_.colliders)
+        if (c.dynamic() && c.name == name) carrying = name;
     if (dynamic.empty() || !top.has("solvers")) return;
     const YAML::Node list = top.get("solvers");
     for (std::size_t k = 0; k < scene_.solvers.size() && k < list.size(); ++k) {
       const SolverSpec& solver = scene_.solvers[k];
+      if (solver.type == SolverType::bullet_softbody && !carrying.empty())
+        r_.error(list[k]["type"], "solvers." + std::to_string(k) + ".type",
+                 "is bullet_softbody, which cannot carry pins attached to the dynamic collider '" +
+                     carrying +
+                     "': its anchors hold a body only as hard as its links pull the anchored "
+                     "node, and the body falls through (use bullet_deformable or spring_damper)",
+                 list[k]);
       if (solver.type != SolverType::spring_damper || solver.bullet_host) continue;
       r_.error(list[k]["host"], "solvers." + std::to_string(k) + ".host",
                "is none, but collider '" + dynamic +

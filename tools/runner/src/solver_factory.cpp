@@ -41,6 +41,18 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
   // fills before every substep), not collider_pose(t); the runner's `contacts`, which the metrics
   // use, keep the analytic poses.
   auto poses = std::make_shared<ColliderPoseTable>(scene.colliders.size());
+  poses->set_substep(0.0, 0.0);  // the scene's poses until the host's first substep
+  for (std::size_t c = 0; c < scene.colliders.size(); ++c) {
+    ColliderSubstepMotion still;
+    still.start = still.end = collider_pose(scene.colliders[c], 0.0);
+    poses->set(c, still);
+  }
+  if (holds.attachments && holds.attachments->any_on_dynamic()) {
+    // Particles attached to a dynamic collider follow the host's body.
+    auto attachments = std::make_shared<Attachments>(*holds.attachments);
+    attachments->poses = poses;
+    settings.attachments = std::move(attachments);
+  }
   if (contacts)
     settings.contacts = std::make_shared<const ContactModel>(
         contacts->colliders(), contacts->parameters(), contacts->query().radius(), poses);
