@@ -11,31 +11,18 @@
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
 #include "drapelab/distance_constraints.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "fixtures/chains.hpp"
+#include "fixtures/constraint_ends.hpp"
 
 namespace drapelab {
 namespace {
 
-// `count` particles of 20 g on a vertical one-wide grid with no spring force, the first pinned.
+// `count` beads of 20 g, the first pinned, with no spring force.
 std::shared_ptr<const ClothModel> beads(int count) {
-  GridClothSpec spec;
-  spec.nx = 1;
-  spec.ny = count;
-  spec.plane = GridPlane::xy;
-  spec.size = {0.1, 0.1 * (count - 1)};
-  spec.center = {0.0, 1.0, 0.0};
-  spec.mass = 0.02 * count;
-  spec.thickness = 0.005;
-  spec.stretch = spec.shear = spec.bend = {0.0, 0.0};
-  spec.pins = {PinIndex{0}};
-  return std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  return std::make_shared<const ClothModel>(build_grid_cloth(fixtures::beads(count, 0.02, true)));
 }
 
-ConstraintEnd particle_end(int i) {
-  ConstraintEnd end;
-  end.kind = ConstraintEnd::Kind::particle;
-  end.particle = i;
-  return end;
-}
+using fixtures::particle_end;
 
 // Both Bullet cloths for `model` from `initial`, with `constraints`.
 std::unique_ptr<Solver> make(SolverType type, std::shared_ptr<const ClothModel> model,

@@ -13,26 +13,18 @@
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/spring_damper_solver.hpp"
+#include "fixtures/chains.hpp"
+#include "fixtures/constraint_ends.hpp"
 
 namespace drapelab {
 namespace {
 
 constexpr double kG = 9.81;  // m/s^2
 
-// `count` particles of `particle_mass` kg with no springs, none pinned unless asked (a one-wide grid
-// whose springs are all zero: only the constraints act).
 std::shared_ptr<const ClothModel> free_particles(int count, double particle_mass,
                                                  bool pin_first = false) {
-  GridClothSpec spec;
-  spec.nx = 1;
-  spec.ny = count;
-  spec.plane = GridPlane::xy;
-  spec.size = {0.1, 0.1 * (count - 1)};
-  spec.center = {0.0, 1.0, 0.0};
-  spec.mass = particle_mass * count;
-  spec.stretch = spec.shear = spec.bend = {0.0, 0.0};
-  if (pin_first) spec.pins = {PinIndex{0}};
-  return std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  return std::make_shared<const ClothModel>(
+      build_grid_cloth(fixtures::beads(count, particle_mass, pin_first)));
 }
 
 ClothState state_at(const Eigen::Matrix3Xd& x) {
@@ -51,19 +43,8 @@ DistanceConstraint hard(int a, ConstraintEnd b, double length) {
   return c;
 }
 
-ConstraintEnd particle_end(int i) {
-  ConstraintEnd end;
-  end.kind = ConstraintEnd::Kind::particle;
-  end.particle = i;
-  return end;
-}
-
-ConstraintEnd point_end(const Eigen::Vector3d& p) {
-  ConstraintEnd end;
-  end.kind = ConstraintEnd::Kind::point;
-  end.point = p;
-  return end;
-}
+using fixtures::particle_end;
+using fixtures::point_end;
 
 SpringDamperSettings settings_for(Integrator integrator,
                                   std::shared_ptr<const DistanceConstraints> constraints) {
