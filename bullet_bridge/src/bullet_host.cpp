@@ -76,7 +76,7 @@ class BulletHostedSolver final : public BulletWorldSolver {
 
   std::unique_ptr<Solver> guest_;
   std::shared_ptr<ColliderPoseTable> guest_poses_;  // read by the guest's ContactModel
-  double substep_start_ = 0.0;  // s
+  double substep_start_ = 0.0;                      // s
   btSoftBodyRigidBodyCollisionConfiguration configuration_;
   btCollisionDispatcher dispatcher_{&configuration_};
   btDbvtBroadphase broadphase_;

@@ -90,7 +90,6 @@ void BulletSoftBodySolver::build_cloth(const ClothState& initial) {
   cfg.collisions = btSoftBody::fCollision::SDF_RS;
   cloth_->getCollisionShape()->setMargin(options_.margin);
   world_->addSoftBody(cloth_.get());
-
 }
 
 void BulletSoftBodySolver::read_state() { read_soft_body_state(*cloth_, state_); }

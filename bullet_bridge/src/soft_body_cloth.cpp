@@ -9,9 +9,10 @@
 
 namespace drapelab::bullet {
 
-std::unique_ptr<btSoftBody> make_soft_body(
-    btSoftBodyWorldInfo& info, const ClothModel& model, const ClothState& initial,
-    const std::function<double(std::size_t)>& link_stiffness, const Attachments* attachments) {
+std::unique_ptr<btSoftBody> make_soft_body(btSoftBodyWorldInfo& info, const ClothModel& model,
+                                           const ClothState& initial,
+                                           const std::function<double(std::size_t)>& link_stiffness,
+                                           const Attachments* attachments) {
   const int n = model.particle_count();
   std::vector<btVector3> rest(n);
   std::vector<btScalar> masses(n);

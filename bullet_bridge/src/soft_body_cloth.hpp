@@ -25,9 +25,10 @@ namespace drapelab::bullet {
 // (the classic solver's only stiffness).
 // `attachments` (may be null): a pinned particle attached to a dynamic collider keeps its mass, as
 // the anchor that holds it to the body needs (anchor_attached_nodes).
-std::unique_ptr<btSoftBody> make_soft_body(
-    btSoftBodyWorldInfo& info, const ClothModel& model, const ClothState& initial,
-    const std::function<double(std::size_t)>& link_stiffness, const Attachments* attachments);
+std::unique_ptr<btSoftBody> make_soft_body(btSoftBodyWorldInfo& info, const ClothModel& model,
+                                           const ClothState& initial,
+                                           const std::function<double(std::size_t)>& link_stiffness,
+                                           const Attachments* attachments);
 
 void read_soft_body_state(const btSoftBody& body, ClothState& state);
 // Puts the attached nodes (pinned: mass 0) where their colliders carry them at time t (s):
@@ -43,8 +44,8 @@ void anchor_attached_nodes(const Attachments& attachments,
                            btSoftBody& cloth);
 
 // The soft distance constraints as an explicit external force of the substep [t, t + h]: each
-// free node's velocity gains h f / m (what btSoftBody::addForce does in the classic cloth, which the
-// deformable world's solver does not read). `scratch` receives the nodes' state.
+// free node's velocity gains h f / m (what btSoftBody::addForce does in the classic cloth, which
+// the deformable world's solver does not read). `scratch` receives the nodes' state.
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
                            double t, double h, btSoftBody& body, ClothState& scratch);
 // The hard and rope constraints at the substep's end t (s): the nodes' positions and velocities

@@ -1,4 +1,5 @@
-// Distance constraints between particles, points and collider points (see distance_constraints.hpp).
+// Distance constraints between particles, points and collider points (see
+// distance_constraints.hpp).
 #include "drapelab/distance_constraints.hpp"
 
 #include <Eigen/Geometry>
@@ -171,8 +172,8 @@ double DistanceConstraints::largest_error(double t, const Eigen::Matrix3Xd& x) c
   for (const DistanceConstraint& c : list) {
     if (!projected(c)) continue;
     const double l = (x.col(c.a) - end_b(c, t, x, x).first).norm();
-    const double error = c.mode == ConstraintMode::rope ? std::max(0.0, l - c.length)
-                                                        : std::abs(l - c.length);
+    const double error =
+        c.mode == ConstraintMode::rope ? std::max(0.0, l - c.length) : std::abs(l - c.length);
     largest = std::max(largest, error / c.length);
   }
   return largest;

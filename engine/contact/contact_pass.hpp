@@ -32,8 +32,8 @@ struct TouchingContact {
 // The force magnitudes one overlap applied (N), kept beside the block's overlaps until the block's
 // totals are summed from them.
 struct ContactForceMagnitudes {
-  double normal = 0.0;    // N, the penalty force
-  double friction = 0.0;  // N, |friction force|
+  double normal = 0.0;                              // N, the penalty force
+  double friction = 0.0;                            // N, |friction force|
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, normal and friction, on the particle
 };
 

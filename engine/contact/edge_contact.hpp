@@ -65,10 +65,10 @@ ColliderFeatures collider_features(const Collider& collider, double thickness);
 
 // What the edge contacts did to one collider in one force evaluation.
 struct EdgeContactTotals {
-  int contact_count = 0;        // cloth edges and triangles pushed
-  double normal_force = 0.0;    // N
-  double friction_force = 0.0;  // N
-  double max_depth = 0.0;       // m
+  int contact_count = 0;                             // cloth edges and triangles pushed
+  double normal_force = 0.0;                         // N
+  double friction_force = 0.0;                       // N
+  double max_depth = 0.0;                            // m
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, on the collider (ColliderContactTotals)
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // N*m, about the world origin
 };

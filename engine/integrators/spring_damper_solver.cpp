@@ -136,8 +136,9 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
            (c.b.collider < 0 ||
             c.b.collider >= static_cast<int>(settings_.constraints->colliders.size()))) ||
           !(c.length > 0.0))
-        throw std::invalid_argument("a distance constraint names a particle or collider the scene "
-                                    "does not have, or has a length that is not positive");
+        throw std::invalid_argument(
+            "a distance constraint names a particle or collider the scene "
+            "does not have, or has a length that is not positive");
   if (settings_.contacts && settings_.collider_edges && model_->triangles.cols() > 0) {
     edge_contact_ = std::make_unique<EdgeContact>(*model_, *settings_.contacts);
     if (!edge_contact_->active()) edge_contact_.reset();
@@ -299,13 +300,12 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const
           static_cast<double>(stats_.unresolved_fast_steps)}});
   }
   if (settings_.constraints && settings_.constraints->has_hard())
-    all.insert(all.end(),
-               {{"constraint_position_sweeps_max",
-                 static_cast<double>(stats_.constraint_position_sweeps_max)},
-                {"constraint_velocity_sweeps_max",
-                 static_cast<double>(stats_.constraint_velocity_sweeps_max)},
-                {"constraint_unconverged_steps",
-                 static_cast<double>(stats_.constraint_unconverged_steps)}});
+    all.insert(all.end(), {{"constraint_position_sweeps_max",
+                            static_cast<double>(stats_.constraint_position_sweeps_max)},
+                           {"constraint_velocity_sweeps_max",
+                            static_cast<double>(stats_.constraint_velocity_sweeps_max)},
+                           {"constraint_unconverged_steps",
+                            static_cast<double>(stats_.constraint_unconverged_steps)}});
   return all;
 }
 
@@ -501,12 +501,11 @@ void SpringDamperSolver::single_step(double h) {
 // Projection with velocity correction: the positions onto the constraints, then the velocities
 // onto their tangent spaces (distance_constraints.hpp). Verlet, whose velocity is its position
 // difference, takes its velocity from the projected positions first (so the constraint's impulse
-// stays in its history, as SHAKE does); leapfrog's stored end-of-step force was evaluated before the
-// projection, so it evaluates the force afresh at the next step.
+// stays in its history, as SHAKE does); leapfrog's stored end-of-step force was evaluated before
+// the projection, so it evaluates the force afresh at the next step.
 void SpringDamperSolver::project_constraints(double t, double h) {
   const DistanceConstraints& constraints = *settings_.constraints;
-  ConstraintProjection result =
-      constraints.project_positions(t, model_->inverse_mass, state_.x);
+  ConstraintProjection result = constraints.project_positions(t, model_->inverse_mass, state_.x);
   if (result.moved && settings_.integrator == Integrator::verlet)
     state_.v = (state_.x - previous_x_) / h + (0.5 * h) * acceleration_;
   if (result.moved && settings_.integrator == Integrator::leapfrog) two_level_step_ = 0.0;

@@ -1,7 +1,8 @@
-// Two-way coupling with dynamic colliders (colliders[].dynamic): a ball that rests in a cloth pinned
-// at its corners is held by the pins (their forces sum to the weight of ball and cloth), a ball and
-// a cloth falling together trade momentum and nothing else, and a ball dropped onto a cloth gives
-// it energy and takes some back. Our cloth hosted in its Bullet world, and Bullet's two cloths.
+// Two-way coupling with dynamic colliders (colliders[].dynamic): a ball that rests in a cloth
+// pinned at its corners is held by the pins (their forces sum to the weight of ball and cloth), a
+// ball and a cloth falling together trade momentum and nothing else, and a ball dropped onto a
+// cloth gives it energy and takes some back. Our cloth hosted in its Bullet world, and Bullet's two
+// cloths.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -139,9 +140,9 @@ Eigen::Vector3d cloth_momentum(const ClothModel& model, const ClothState& state)
 // force on every pinned particle, add up to the weight of ball and cloth within 1 %. Bullet's
 // cloths: their balls come to rest where ours does, within 2 cm.
 TEST(TwoWayCoupling, PinsCarryTheWeightOfBallAndCloth) {
-  const BallAndSheet scene(/*pinned=*/true, {0.0, 1.1, 0.0});  // centred: it only bobs
+  const BallAndSheet scene(/*pinned=*/true, {0.0, 1.1, 0.0});   // centred: it only bobs
   Solvers solvers = make_solvers(scene, /*air_damping=*/40.0);  // 1/s: the bobbing dies out
-  const double duration = 5.0;  // s
+  const double duration = 5.0;                                  // s
   double ours_height = 0.0;
   for (Solver* solver : {solvers.ours.get(), solvers.classic.get(), solvers.deformable.get()}) {
     SCOPED_TRACE(solver->name());
@@ -191,8 +192,8 @@ TEST(TwoWayCoupling, MomentumOfClothAndBallChangesOnlyByGravity) {
     ours.step(h);
     ASSERT_EQ(ours.status(), SolverStatus::ok) << ours.message();
     const BodyState ball = ball_of(ours);
-    const Eigen::Vector3d p = cloth_momentum(*scene.model, ours.state()) +
-                              scene.ball.dynamic_mass * ball.velocity;
+    const Eigen::Vector3d p =
+        cloth_momentum(*scene.model, ours.state()) + scene.ball.dynamic_mass * ball.velocity;
     const Eigen::Vector3d expected = p0 + mass * kGravity * ours.state().time;
     worst = std::max(worst, (p - expected).norm());
     touched = touched || (ball.velocity - kGravity * ours.state().time).norm() > 0.05;
@@ -241,10 +242,10 @@ TEST(TwoWayCoupling, DroppedBallAndClothTradeEnergy) {
 }
 
 // A ball hanging from the middle of the bottom edge of a sheet pinned at its top corners, the
-// particle there attached to the top of the ball (cloth.pins[].attach on a dynamic collider). Our cloth: the particles' loads
-// carry the ball, and the top pins carry ball and cloth, (M_ball + M_cloth) g within 1 %. Bullet's
-// deformable cloth (its anchor): the ball hangs at rest where ours does, within 2 cm. (The classic
-// cloth cannot carry it: the loader refuses the scene for it.)
+// particle there attached to the top of the ball (cloth.pins[].attach on a dynamic collider). Our
+// cloth: the particles' loads carry the ball, and the top pins carry ball and cloth, (M_ball +
+// M_cloth) g within 1 %. Bullet's deformable cloth (its anchor): the ball hangs at rest where ours
+// does, within 2 cm. (The classic cloth cannot carry it: the loader refuses the scene for it.)
 TEST(TwoWayCoupling, AnAttachedBallHangsFromTheSheet) {
   // The sheet spans y from 0.75 to 1.25 m; the ball's top touches its bottom edge.
   const BallAndSheet scene(/*pinned=*/true, {0.0, 0.75 - 0.11, 0.0}, GridPlane::xy);

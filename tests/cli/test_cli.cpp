@@ -91,10 +91,9 @@ const std::vector<std::string> kContactsColumns = {
     "solver",        "frame",        "time",           "collider",
     "contact_count", "normal_force", "friction_force", "max_penetration"};
 // Empty while the scene has no colliders and no drape support.
-const std::vector<std::string> kEmptyMetricsColumns = {"min_clearance", "max_penetration",
-                                                       "contact_count", "drape_coefficient",
-                                                       "drape_nodes",   "triangle_penetration",
-                                                       "constraint_error"};
+const std::vector<std::string> kEmptyMetricsColumns = {
+    "min_clearance", "max_penetration",      "contact_count",   "drape_coefficient",
+    "drape_nodes",   "triangle_penetration", "constraint_error"};
 
 // A parsed CSV file: header and rows, each row a map from column name to cell.
 struct Csv {

@@ -113,8 +113,9 @@ TEST(HardConstraints, PendulumKeepsItsPeriod) {
       2.0 * std::numbers::pi * std::sqrt(length / kG) * (1.0 + angle * angle / 16.0);
   for (Integrator integrator : all_integrators()) {
     SCOPED_TRACE(integrator_name(integrator));
-    SpringDamperSolver solver("pendulum", model, state_at(x), settings_for(integrator, constraints));
-    const double h = 1e-3;  // s
+    SpringDamperSolver solver("pendulum", model, state_at(x),
+                              settings_for(integrator, constraints));
+    const double h = 1e-3;          // s
     std::vector<double> crossings;  // s: where x goes from + to -, interpolated
     double previous = solver.state().x(0, 1);
     while (solver.state().time < 3.5 * expected) {
@@ -125,7 +126,8 @@ TEST(HardConstraints, PendulumKeepsItsPeriod) {
       previous = now;
     }
     ASSERT_GE(crossings.size(), 3u);
-    const double period = (crossings.back() - crossings.front()) / (static_cast<double>(crossings.size()) - 1.0);
+    const double period =
+        (crossings.back() - crossings.front()) / (static_cast<double>(crossings.size()) - 1.0);
     EXPECT_NEAR(period / expected, 1.0, 2e-3) << "period " << period << " s, expected " << expected;
   }
 }
@@ -164,9 +166,9 @@ TEST(RopeConstraints, SlackChangesNothingAndTautNeverLonger) {
         ASSERT_EQ(tied.state().v.col(1), free.state().v.col(1)) << "step " << k;
       }
     }
-    EXPECT_GT(slack_steps, 100);                   // it flew free for a while ...
-    EXPECT_GT(longest, length * (1.0 - 1e-6));     // ... then the rope caught it ...
-    EXPECT_LE(longest, length * (1.0 + 1e-6));     // ... never longer than its length
+    EXPECT_GT(slack_steps, 100);                // it flew free for a while ...
+    EXPECT_GT(longest, length * (1.0 - 1e-6));  // ... then the rope caught it ...
+    EXPECT_LE(longest, length * (1.0 + 1e-6));  // ... never longer than its length
     EXPECT_LE(rope->largest_error(tied.state().time, tied.state().x), 1e-6);
   }
 }
@@ -175,7 +177,7 @@ TEST(RopeConstraints, SlackChangesNothingAndTautNeverLonger) {
 // from a pinned particle): it settles where the spring holds its weight, extension m g / k.
 TEST(SoftConstraints, StaticSagIsHookes) {
   const double mass = 0.05, k = 20.0, c = 0.5, length = 0.3;  // kg, N/m, N*s/m, m
-  const double sag = mass * kG / k;                            // m
+  const double sag = mass * kG / k;                           // m
   for (bool to_particle : {false, true}) {
     // Particle 0 is the pinned top (only used in the second case), particle 1 hangs.
     auto model = free_particles(2, mass, /*pin_first=*/true);
@@ -192,7 +194,8 @@ TEST(SoftConstraints, StaticSagIsHookes) {
     spring.damping = c;
     constraints->list.push_back(spring);
     for (Integrator integrator : all_integrators()) {
-      SCOPED_TRACE(std::string(integrator_name(integrator)) + (to_particle ? ", to a particle" : ""));
+      SCOPED_TRACE(std::string(integrator_name(integrator)) +
+                   (to_particle ? ", to a particle" : ""));
       SpringDamperSolver solver("soft", model, state_at(x), settings_for(integrator, constraints));
       for (int step = 0; step < 3000; ++step) solver.step(1e-3);  // 3 s: the bob decays as e^-5t
       ASSERT_EQ(solver.status(), SolverStatus::ok) << solver.message();

@@ -219,14 +219,16 @@ std::vector<BadScene> bad_colliders() {
        30,
        "colliders.3.radius",
        {"is not a known key",
-        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, dynamic, center, "
+        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, "
+        "dynamic, center, "
         "half_extents"}},
       {"HalfExtentsOnASphereIsUnknown",
        insert_lines(14, "    half_extents: [1, 1, 1]"),
        15,
        "colliders.0.half_extents",
        {"is not a known key",
-        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, dynamic, center, "
+        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, "
+        "dynamic, center, "
         "radius"}},
       // No key of a sphere is close to `point`, so the message lists the sphere's valid keys.
       {"PointOnASphereIsUnknown",
@@ -234,7 +236,8 @@ std::vector<BadScene> bad_colliders() {
        15,
        "colliders.0.point",
        {"is not a known key",
-        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, dynamic, center, "
+        "valid keys here: name, type, rotation, friction, static_friction, motion, parent, "
+        "dynamic, center, "
         "radius"}},
       {"OtherShapesKeysAreUnknown_SphereHeight",
        insert_lines(14, "    height: 1"),

@@ -1,6 +1,6 @@
-// The scene keys of distance constraints (constraints:) and dynamic colliders (colliders[].dynamic):
-// every rule a bad scene breaks names the file, the line, the key and what was expected, and both
-// survive resolved.yaml unchanged.
+// The scene keys of distance constraints (constraints:) and dynamic colliders
+// (colliders[].dynamic): every rule a bad scene breaks names the file, the line, the key and what
+// was expected, and both survive resolved.yaml unchanged.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -142,7 +142,8 @@ std::vector<BadScene> bad_constraints() {
        {"is bullet_softbody, which cannot carry pins attached to the dynamic collider 'ball'",
         "use bullet_deformable or spring_damper"}},
       {"ADynamicColliderNeedsOurSolverHosted",
-       {replace_line(9, "solvers: [{type: spring_damper, dt: 0.001041666666666666667, host: none}]"),
+       {replace_line(9,
+                     "solvers: [{type: spring_damper, dt: 0.001041666666666666667, host: none}]"),
         insert_lines(14, "    dynamic: {mass: 1}")},
        9,
        "solvers.0.host",
@@ -181,7 +182,8 @@ TEST(ConstraintLoader, ConstraintsAndDynamicCollidersRoundTrip) {
   EXPECT_EQ(first.a, 2 * 5 + 1);  // [i, j] on a 5-wide grid
   EXPECT_EQ(first.mode, ConstraintMode::hard);
   EXPECT_EQ(first.tolerance, 1e-6);
-  EXPECT_NEAR(first.length, (loaded.model->rest_positions.col(11) - Eigen::Vector3d(0, 2, 0)).norm(),
+  EXPECT_NEAR(first.length,
+              (loaded.model->rest_positions.col(11) - Eigen::Vector3d(0, 2, 0)).norm(),
               1e-15);  // the rest distance
   EXPECT_EQ(s.constraints[1].b.particle, 15);
   EXPECT_EQ(s.constraints[1].length, 0.9);

@@ -29,8 +29,8 @@ struct ClothMetrics {
   // empty until it measures them, triangle_penetration also when the scene has no colliders.
   std::optional<int> self_intersections;       // edges crossing a non-adjacent triangle
   std::optional<double> triangle_penetration;  // m, deepest collider reach into a triangle
-  // The hard and rope distance constraints' largest relative length error (distance_constraints.hpp);
-  // empty without such constraints.
+  // The hard and rope distance constraints' largest relative length error
+  // (distance_constraints.hpp); empty without such constraints.
   std::optional<double> constraint_error;
 };
 

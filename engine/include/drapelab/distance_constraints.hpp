@@ -4,8 +4,8 @@
 //   rope: |a - b| <= L, the same projection, only while the rope would be longer than L;
 //   soft: a damped spring between the ends, f_a = -[k (l - L) + c (v_a - v_b).n] n, n = (a - b)/l.
 // Every solver applies them itself: our solver adds the soft ones as forces (implicit for implicit
-// Euler and vbd, as couplings) and projects the hard and rope ones at the end of each step; Bullet's
-// cloths get the same forces and projection through bullet_bridge/.
+// Euler and vbd, as couplings) and projects the hard and rope ones at the end of each step;
+// Bullet's cloths get the same forces and projection through bullet_bridge/.
 #pragma once
 
 #include <Eigen/Core>
@@ -36,9 +36,9 @@ struct DistanceConstraint {
   ConstraintEnd b;
   double length = 0.0;  // m, L
   ConstraintMode mode = ConstraintMode::hard;
-  double stiffness = 0.0;    // N/m (soft)
-  double damping = 0.0;      // N*s/m (soft)
-  double tolerance = 1e-6;   // hard and rope: the largest |l - L| / L a projection leaves
+  double stiffness = 0.0;   // N/m (soft)
+  double damping = 0.0;     // N*s/m (soft)
+  double tolerance = 1e-6;  // hard and rope: the largest |l - L| / L a projection leaves
 };
 
 // What one projection did (hard and rope constraints).
@@ -76,9 +76,9 @@ struct DistanceConstraints {
   // tolerance or max_sweeps. `inverse_mass` is 1/kg per particle, 0 when pinned.
   ConstraintProjection project_positions(double t, const Eigen::VectorXd& inverse_mass,
                                          Eigen::Matrix3Xd& x) const;
-  // Then removes each hard constraint's stretching velocity (v_a - v_b).n, and a taut rope's when it
-  // would lengthen it, by equal and opposite impulses (an inelastic constraint: the kinetic energy
-  // along the constraint is lost). Sweeps until every rate is below tolerance L / h.
+  // Then removes each hard constraint's stretching velocity (v_a - v_b).n, and a taut rope's when
+  // it would lengthen it, by equal and opposite impulses (an inelastic constraint: the kinetic
+  // energy along the constraint is lost). Sweeps until every rate is below tolerance L / h.
   void project_velocities(double t, double h, const Eigen::VectorXd& inverse_mass,
                           const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v,
                           ConstraintProjection& result) const;

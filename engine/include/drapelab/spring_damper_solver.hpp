@@ -190,7 +190,9 @@ class SpringDamperSolver final : public Solver {
                                double h);
   // Whether forces act between the springs and the particle contacts (then the two cannot share
   // one parallel region).
-  bool has_pair_contacts() const { return self_contact_ || edge_contact_ || has_soft_constraints(); }
+  bool has_pair_contacts() const {
+    return self_contact_ || edge_contact_ || has_soft_constraints();
+  }
   bool has_soft_constraints() const {
     return settings_.constraints && settings_.constraints->has_soft();
   }
@@ -252,7 +254,7 @@ class SpringDamperSolver final : public Solver {
   // Self-collision: the state a step restarts from (m, m/s) and the start of its piece (m).
   Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
   std::vector<ColliderContactTotals> contact_totals_;
-  std::vector<ColliderForce> attachment_loads_;  // per collider: force (N), moment (N*m)
+  std::vector<ColliderForce> attachment_loads_;          // per collider: force (N), moment (N*m)
   std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
   std::unique_ptr<ShapeBoundWorkspace>
       shape_bound_;  // adaptive substeps: each particle's springs, for the bound

@@ -45,12 +45,12 @@ struct VbdCouplings {
   const std::int32_t* offsets = nullptr;
   const std::int32_t* contact = nullptr;
   const std::int32_t* slot = nullptr;
-  const std::int32_t* particle = nullptr;  // 4 per contact, -1 unused
-  const double* weight = nullptr;          // 4 per contact
-  const double* normal = nullptr;          // 3 per contact
-  const double* depth = nullptr;           // m per contact, at the step's start
-  const double* stiffness = nullptr;       // N/m per contact
-  const double* damping = nullptr;         // N*s/m per contact
+  const std::int32_t* particle = nullptr;   // 4 per contact, -1 unused
+  const double* weight = nullptr;           // 4 per contact
+  const double* normal = nullptr;           // 3 per contact
+  const double* depth = nullptr;            // m per contact, at the step's start
+  const double* stiffness = nullptr;        // N/m per contact
+  const double* damping = nullptr;          // N*s/m per contact
   const std::uint8_t* two_sided = nullptr;  // 1: pulls as well as pushes (a soft constraint)
 };
 

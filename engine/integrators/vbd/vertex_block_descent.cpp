@@ -298,11 +298,11 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
                       k.damping};
   }
   if (coupled)
-    problem.couplings = {
-        coupling_offsets_.data(),  coupling_contact_.data(),   coupling_slot_.data(),
-        coupling_particle_.data(), coupling_weight_.data(),    coupling_normal_.data(),
-        coupling_depth_.data(),    coupling_stiffness_.data(), coupling_damping_.data(),
-        coupling_two_sided_.data()};
+    problem.couplings = {coupling_offsets_.data(), coupling_contact_.data(),
+                         coupling_slot_.data(),    coupling_particle_.data(),
+                         coupling_weight_.data(),  coupling_normal_.data(),
+                         coupling_depth_.data(),   coupling_stiffness_.data(),
+                         coupling_damping_.data(), coupling_two_sided_.data()};
   problem.color_offsets = color_offsets_.data();
   problem.color_particles = color_particles_.data();
   problem.colors = static_cast<int>(color_offsets_.size()) - 1;

@@ -32,7 +32,7 @@ class ConstraintReader {
       ok = entry.choice("type", {"distance"}, std::nullopt).has_value() && ok;
     const auto mode = entry.choice("mode", {"hard", "rope", "soft"}, "hard");
     if (!mode) return std::nullopt;
-    c.mode = *mode == "hard" ? ConstraintMode::hard
+    c.mode = *mode == "hard"   ? ConstraintMode::hard
              : *mode == "rope" ? ConstraintMode::rope
                                : ConstraintMode::soft;
     const bool soft = c.mode == ConstraintMode::soft;
@@ -105,9 +105,9 @@ class ConstraintReader {
       if (const auto index = end.integer("index", particle_index_range(), std::nullopt))
         selector = PinIndex{static_cast<int>(*index)};
     } else {
-      r_.error(node, path,
-               std::string("must be a particle: ") + kParticleForms + ", got " +
-                   describe_scalar(node));
+      r_.error(
+          node, path,
+          std::string("must be a particle: ") + kParticleForms + ", got " + describe_scalar(node));
     }
     if (!selector) return std::nullopt;
     if (!model_) return 0;
@@ -232,8 +232,7 @@ std::vector<DistanceConstraint> read_constraints(SceneReader& reader, const YAML
   record_item_lines(reader, list, "constraints");
   ConstraintReader constraints(reader, scene, model);
   for (std::size_t k = 0; k < list.size(); ++k)
-    if (auto c = constraints.read(list[k], "constraints." + std::to_string(k)))
-      out.push_back(*c);
+    if (auto c = constraints.read(list[k], "constraints." + std::to_string(k))) out.push_back(*c);
   return out;
 }
 

@@ -141,7 +141,8 @@ void read_bodies(const fs::path& file, const scene::Scene& scene,
   const auto solver_column = column("solver"), frame_column = column("frame"),
              collider_column = column("collider");
   const std::array<std::optional<std::size_t>, 7> pose_columns = {
-      column("x"), column("y"), column("z"), column("qx"), column("qy"), column("qz"), column("qw")};
+      column("x"),  column("y"),  column("z"), column("qx"),
+      column("qy"), column("qz"), column("qw")};
   if (!solver_column || !frame_column || !collider_column) return;
   using run_folder::parse_number;
   for (std::size_t r = 0; r < table->rows.size(); ++r) {
@@ -156,7 +157,8 @@ void read_bodies(const fs::path& file, const scene::Scene& scene,
     const auto frame = parse_number(table->text(r, frame_column));
     int collider = -1;
     for (std::size_t c = 0; c < scene.colliders.size(); ++c)
-      if (scene.colliders[c].name == table->text(r, collider_column)) collider = static_cast<int>(c);
+      if (scene.colliders[c].name == table->text(r, collider_column))
+        collider = static_cast<int>(c);
     if (!complete || !frame || collider < 0) continue;
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = Eigen::Vector3d(value[0], value[1], value[2]);

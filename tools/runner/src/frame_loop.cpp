@@ -59,8 +59,8 @@ std::shared_ptr<const ContactModel> contacts_for(const SceneSetup& setup, const 
                                               scene_contacts.query().radius(), std::move(poses));
 }
 
-FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup,
-                           const Solver& solver, int frame, double time) {
+FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, const Solver& solver,
+                           int frame, double time) {
   const ClothState& state = solver.state();
   const std::shared_ptr<const ContactModel> contacts = contacts_for(setup, solver, time);
   FrameMeasure measure;

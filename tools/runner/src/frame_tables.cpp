@@ -61,10 +61,10 @@ FrameTables::FrameTables(const std::filesystem::path& folder, bool bodies)
       contacts_(folder / "contacts.csv", {"solver", "frame", "time", "collider", "contact_count",
                                           "normal_force", "friction_force", "max_penetration"}) {
   if (bodies)
-    bodies_.emplace(folder / "bodies.csv",
-                    std::vector<std::string>{"solver", "frame", "time", "collider", "x", "y", "z",
-                                             "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy",
-                                             "wz"});
+    bodies_.emplace(
+        folder / "bodies.csv",
+        std::vector<std::string>{"solver", "frame", "time", "collider", "x", "y", "z", "qx", "qy",
+                                 "qz", "qw", "vx", "vy", "vz", "wx", "wy", "wz"});
 }
 
 void FrameTables::add_metrics(const std::string& solver, int frame, double time,
@@ -113,12 +113,11 @@ void FrameTables::add_body(const std::string& solver, int frame, double time,
   const Eigen::Quaterniond q(body.pose.linear());
   const Eigen::Vector3d& v = body.velocity;
   const Eigen::Vector3d& w = body.angular_velocity;
-  bodies_->row({solver, std::to_string(frame), format_number(time), collider,
-                format_number(p.x()), format_number(p.y()), format_number(p.z()),
-                format_number(q.x()), format_number(q.y()), format_number(q.z()),
-                format_number(q.w()), format_number(v.x()), format_number(v.y()),
-                format_number(v.z()), format_number(w.x()), format_number(w.y()),
-                format_number(w.z())});
+  bodies_->row({solver, std::to_string(frame), format_number(time), collider, format_number(p.x()),
+                format_number(p.y()), format_number(p.z()), format_number(q.x()),
+                format_number(q.y()), format_number(q.z()), format_number(q.w()),
+                format_number(v.x()), format_number(v.y()), format_number(v.z()),
+                format_number(w.x()), format_number(w.y()), format_number(w.z())});
 }
 
 void FrameTables::flush() {

@@ -114,8 +114,7 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
   const Holds holds{scene::scene_attachments(scene, initial), scene::scene_constraints(scene)};
   switch (spec.type) {
     case SolverType::spring_damper:
-      return make_spring_damper(scene, spec, std::move(model), initial, holds,
-                                std::move(contacts));
+      return make_spring_damper(scene, spec, std::move(model), initial, holds, std::move(contacts));
     case SolverType::bullet_softbody:
       return make_classic_cloth(scene, spec, std::move(model), initial, holds);
     case SolverType::bullet_deformable:

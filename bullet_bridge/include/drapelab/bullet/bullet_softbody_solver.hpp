@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "drapelab/attachments.hpp"
-#include "drapelab/distance_constraints.hpp"
 #include "drapelab/bullet/parameter_mapping.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/collider.hpp"
+#include "drapelab/distance_constraints.hpp"
 #include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 

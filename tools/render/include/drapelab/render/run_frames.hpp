@@ -5,8 +5,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <filesystem>
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
