@@ -120,6 +120,9 @@ class BulletDeformableSolver final : public BulletClothSolver {
     if (self->options_.constraints && self->options_.constraints->has_soft())
       kick_soft_constraints(*self->options_.constraints, *self->model_, self->substep_start_, h,
                             *self->cloth_, self->state_);
+    if (self->options_.air.enabled)
+      kick_air(self->options_.air, self->wind_, *self->model_, self->substep_start_, h,
+               *self->cloth_, self->state_);
   }
 
   std::string name_;
@@ -130,6 +133,7 @@ class BulletDeformableSolver final : public BulletClothSolver {
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;
   double substep_start_ = 0.0;  // s
+  Wind wind_{options_.air};     // the air's wind over time
 
   btSoftBodyRigidBodyCollisionConfiguration configuration_;
   btCollisionDispatcher dispatcher_{&configuration_};

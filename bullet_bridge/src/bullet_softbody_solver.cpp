@@ -70,6 +70,8 @@ void BulletSoftBodySolver::before_substep(btDynamicsWorld* world, btScalar h) {
   if (self->options_.constraints && self->options_.constraints->has_soft())
     kick_soft_constraints(*self->options_.constraints, *self->model_, self->substep_start_, h,
                           *self->cloth_, self->state_);
+  if (self->options_.air.enabled)
+    self->cloth_->setWindVelocity(to_bullet(self->wind_.at(self->substep_start_)));
 }
 
 void BulletSoftBodySolver::build_cloth(const ClothState& initial) {
@@ -84,7 +86,15 @@ void BulletSoftBodySolver::build_cloth(const ClothState& initial) {
   btSoftBody::Config& cfg = cloth_->m_cfg;
   cfg.piterations = options_.iterations;
   cfg.kDP = 1.0 - std::exp(-options_.air_damping * options_.dt);  // global damping per substep
-  cfg.kDG = cfg.kLF = 0.0;                                        // no aerodynamics
+  cfg.kDG = cfg.kLF = 0.0;  // no aerodynamics, unless the scene has air:
+  if (options_.air.enabled) {
+    // Bullet's two-sided face model with lift and drag (docs/bullet.md, "Air"); the wind is set
+    // before every substep.
+    cfg.aeromodel = btSoftBody::eAeroModel::F_TwoSidedLiftDrag;
+    cfg.kDG = options_.air.drag;
+    cfg.kLF = options_.air.lift;
+    world_->getWorldInfo().air_density = options_.air.density;
+  }
   cfg.kDF = 1.0;              // friction = collider friction (Bullet's own model, not Coulomb)
   cfg.kCHR = cfg.kKHR = 1.0;  // full contact hardness, also against kinematic bodies
   cfg.collisions = btSoftBody::fCollision::SDF_RS;

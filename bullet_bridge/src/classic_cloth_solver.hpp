@@ -52,6 +52,7 @@ class BulletSoftBodySolver final : public BulletClothSolver {
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;
   double substep_start_ = 0.0;  // s
+  Wind wind_{options_.air};     // the air's wind over time
 
   // Bullet's world and its parts; declared in construction order, destroyed in reverse.
   btSoftBodyRigidBodyCollisionConfiguration configuration_;

@@ -85,14 +85,32 @@ void anchor_attached_nodes(const Attachments& attachments,
   }
 }
 
+namespace {
+
+// An explicit force (N, 3 x N) over a substep of h (s): each free node's velocity gains h f / m.
+void kick_nodes(const ClothModel& model, const Eigen::Matrix3Xd& force, double h,
+                btSoftBody& body) {
+  for (int i = 0; i < body.m_nodes.size(); ++i)
+    if (model.inverse_mass[i] > 0.0 && force.col(i).squaredNorm() > 0.0)
+      body.m_nodes[i].m_v += to_bullet((h * model.inverse_mass[i]) * force.col(i));
+}
+
+}  // namespace
+
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
                            double t, double h, btSoftBody& body, ClothState& scratch) {
   read_soft_body_state(body, scratch);
   Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, scratch.x.cols());
   constraints.add_soft_forces(t, scratch.x, scratch.v, force, nullptr);
-  for (int i = 0; i < body.m_nodes.size(); ++i)
-    if (model.inverse_mass[i] > 0.0 && force.col(i).squaredNorm() > 0.0)
-      body.m_nodes[i].m_v += to_bullet((h * model.inverse_mass[i]) * force.col(i));
+  kick_nodes(model, force, h, body);
+}
+
+void kick_air(const AirSettings& air, const Wind& wind, const ClothModel& model, double t, double h,
+              btSoftBody& body, ClothState& scratch) {
+  read_soft_body_state(body, scratch);
+  Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, scratch.x.cols());
+  add_air_forces(model, air, wind, t, scratch.x, scratch.v, force);
+  kick_nodes(model, force, h, body);
 }
 
 ConstraintProjection project_node_constraints(const DistanceConstraints& constraints,

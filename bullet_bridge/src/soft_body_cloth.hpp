@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/air.hpp"
 #include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
@@ -48,6 +49,10 @@ void anchor_attached_nodes(const Attachments& attachments,
 // the deformable world's solver does not read). `scratch` receives the nodes' state.
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
                            double t, double h, btSoftBody& body, ClothState& scratch);
+// Our air (air.hpp) on the deformable world's nodes, which Bullet's aerodynamics do not reach: the
+// triangles' drag and lift at the substep's start change each free node's velocity by h f / m.
+void kick_air(const AirSettings& air, const Wind& wind, const ClothModel& model, double t, double h,
+              btSoftBody& body, ClothState& scratch);
 // The hard and rope constraints at the substep's end t (s): the nodes' positions and velocities
 // projected as our solver projects its particles (distance_constraints.hpp), written back.
 ConstraintProjection project_node_constraints(const DistanceConstraints& constraints,

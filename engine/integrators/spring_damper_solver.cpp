@@ -74,6 +74,7 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
       settings_(std::move(settings)),
       state_(std::move(initial)),
       force_(3, model_->particle_count()),
+      wind_(settings_.air),
       contact_workspace_(std::make_unique<ContactWorkspace>()),
       shape_bound_(std::make_unique<ShapeBoundWorkspace>()) {
   const int n = model_->particle_count();
@@ -189,6 +190,10 @@ void SpringDamperSolver::add_pair_contact_forces(const Eigen::Matrix3Xd& x,
   if (has_soft_constraints()) {
     PhaseTimer timer(stats_, StepPhase::springs);
     settings_.constraints->add_soft_forces(t, x, v, force_, couplings);
+  }
+  if (settings_.air.enabled) {
+    PhaseTimer timer(stats_, StepPhase::body_forces);
+    add_air_forces(*model_, settings_.air, wind_, t, x, v, force_);
   }
 }
 

@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "drapelab/air.hpp"
 #include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
@@ -78,6 +79,10 @@ struct SpringDamperSettings {
   // (couplings of the implicit Euler and vbd solves); the hard and rope ones are projected at the
   // end of every step (and substep), after the attached particles are placed. None when null.
   std::shared_ptr<const DistanceConstraints> constraints;
+  // Aerodynamic drag and lift on the triangles (air.hpp), an explicit force of every evaluation
+  // (implicit Euler and vbd take it at the step's start: its rate rho C_d A |u_n| / m is far below
+  // their steps' limits for cloth in air).
+  AirSettings air;
 };
 
 // Wall time spent in each phase, accumulated over all steps (seconds).
@@ -191,7 +196,7 @@ class SpringDamperSolver final : public Solver {
   // Whether forces act between the springs and the particle contacts (then the two cannot share
   // one parallel region).
   bool has_pair_contacts() const {
-    return self_contact_ || edge_contact_ || has_soft_constraints();
+    return self_contact_ || edge_contact_ || has_soft_constraints() || settings_.air.enabled;
   }
   bool has_soft_constraints() const {
     return settings_.constraints && settings_.constraints->has_soft();
@@ -255,6 +260,7 @@ class SpringDamperSolver final : public Solver {
   Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
   std::vector<ColliderContactTotals> contact_totals_;
   std::vector<ColliderForce> attachment_loads_;          // per collider: force (N), moment (N*m)
+  Wind wind_;                                            // the air's wind over time (settings_.air)
   std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
   std::unique_ptr<ShapeBoundWorkspace>
       shape_bound_;  // adaptive substeps: each particle's springs, for the bound

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <set>
 
+#include "air_reader.hpp"
 #include "cloth_reader.hpp"
 #include "collider_reader.hpp"
 #include "constraint_reader.hpp"
@@ -32,7 +33,7 @@ class SceneBuilder {
   Scene build(const YAML::Node& root) {
     MapReader top(r_, root, "",
                   {"name", "description", "duration", "frame_rate", "gravity", "seed", "cloth",
-                   "colliders", "constraints", "contact", "solvers", "metrics", "output"});
+                   "colliders", "constraints", "air", "contact", "solvers", "metrics", "output"});
     if (!top.valid()) return scene_;
     if (const auto name = top.text("name", std::nullopt)) {
       if (const auto problem = name_problem(*name))
@@ -69,6 +70,7 @@ class SceneBuilder {
     if (top.has("colliders"))
       scene_.colliders = read_colliders(r_, top.get("colliders"), scene_.contact);
     if (top.has("metrics")) read_metrics(top.get("metrics"));
+    if (top.has("air")) scene_.air = read_air(r_, top.get("air"), scene_.seed);
     cloth_reader_.finish();
     if (top.has("output")) read_output(top.get("output"));
     read_solvers(top);

@@ -197,6 +197,16 @@ std::string resolved_scene_yaml(const Scene& s) {
   else
     out << "colliders:\n";
   for (const auto& collider : s.colliders) write_collider(out, collider);
+  if (s.air.enabled) {
+    out << "air:\n"
+        << "  density: " << format_number(s.air.density) << "  # kg/m^3\n"
+        << "  drag: " << format_number(s.air.drag) << "  # C_d along a triangle's normal\n"
+        << "  lift: " << format_number(s.air.lift) << "  # C_l\n"
+        << "  wind: " << format_list(s.air.wind) << "  # m/s\n";
+    if (s.air.gust_amplitude > 0.0)
+      out << "  gusts: {amplitude: " << format_number(s.air.gust_amplitude)
+          << ", period: " << format_number(s.air.gust_period) << "}  # m/s RMS, s\n";
+  }
   if (!s.constraints.empty()) out << "constraints:\n";
   for (const auto& constraint : s.constraints) write_constraint(out, constraint, s.colliders);
   out << "contact:\n"

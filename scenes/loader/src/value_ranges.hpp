@@ -72,6 +72,12 @@ inline Range particle_index_range() {
   return {0.0, true, static_cast<double>(kMaxClothParticles - 1), true};
 }
 inline Range grid_coordinate_range() { return {0.0, true, 1e6 - 1.0, true}; }
+// air: density (kg/m^3), drag and lift coefficients, wind (m/s per component), gusts.
+inline Range air_density_range() { return {0.0, true, 1e4, true}; }
+inline Range air_coefficient_range() { return {0.0, true, 100.0, true}; }
+inline Range wind_range() { return {-1000.0, true, 1000.0, true}; }
+inline Range gust_amplitude_range() { return {0.0, true, 1000.0, true}; }
+inline Range gust_period_range() { return {1e-3, true, 1e6, true}; }
 // constraints[].tolerance: the largest relative length error a hard or rope projection leaves.
 inline Range constraint_tolerance_range() { return {1e-12, true, 0.1, true}; }
 inline Range seed_range() { return {0.0, true, 9.2e18, true}; }

@@ -33,6 +33,7 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
   settings.collider_edges = scene.contact.triangles;
   settings.attachments = holds.attachments;
   settings.constraints = holds.constraints;
+  settings.air = scene.air;
   if (!spec.bullet_host) {
     settings.contacts = std::move(contacts);
     return std::make_unique<SpringDamperSolver>(spec.name, std::move(model), initial, settings);
@@ -78,6 +79,7 @@ std::unique_ptr<Solver> make_classic_cloth(const scene::Scene& scene, const scen
   options.self_collision = scene.cloth.self_collision;  // no effect in Bullet 3.24's classic cloth
   options.attachments = holds.attachments;
   options.constraints = holds.constraints;
+  options.air = scene.air;
   return bullet::make_bullet_softbody_solver(spec.name, std::move(model), initial, scene.colliders,
                                              options);
 }
@@ -98,6 +100,7 @@ std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
   options.self_collision = scene.cloth.self_collision;
   options.attachments = holds.attachments;
   options.constraints = holds.constraints;
+  options.air = scene.air;
   return bullet::make_bullet_deformable_solver(spec.name, std::move(model), initial,
                                                scene.colliders, options);
 }

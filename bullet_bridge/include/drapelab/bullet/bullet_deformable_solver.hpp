@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/air.hpp"
 #include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
@@ -36,6 +37,9 @@ struct BulletDeformableOptions {
   // Distance constraints: the soft ones kick the nodes' velocities before every substep, the hard
   // and rope ones are projected after it (docs/bullet.md, "Constraints"). None when null.
   std::shared_ptr<const DistanceConstraints> constraints;
+  // Air (air:): the classic cloth maps it to Bullet's own face aerodynamics; the deformable world,
+  // which has none, takes ours as an explicit force (docs/bullet.md, "Air").
+  AirSettings air;
 };
 
 std::unique_ptr<Solver> make_bullet_deformable_solver(std::string name,

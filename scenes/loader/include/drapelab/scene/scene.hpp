@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/air.hpp"
 #include "drapelab/attachments.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/disc_cloth.hpp"
@@ -119,6 +120,7 @@ struct Scene {
   std::vector<Collider> colliders;
   // constraints: ends resolved to particle indices and indices into `colliders`, lengths filled in.
   std::vector<DistanceConstraint> constraints;
+  AirSettings air;  // air: drag, lift and wind (enabled only when the scene has the key)
   ContactSpec contact;
   std::vector<SolverSpec> solvers;
   std::optional<DrapeSupportSpec> drape_support;

@@ -1,0 +1,58 @@
+// Air (scene key `air:`): aerodynamic drag and lift on the cloth's triangles, from the velocity of
+// each triangle relative to the wind. For a triangle of area A and unit normal n whose corners move
+// at mean velocity v, in air of density rho blowing at W(t), with u = W - v and u_n = u . n:
+//   drag  F_d = 1/2 rho C_d A |u_n| u_n n                  (the pressure on the plate, along n)
+//   lift  F_l = 1/2 rho C_l A |u_n| |u - u_n n| l          (l: unit, across u, towards the pushed
+//   side)
+// Both sides of a triangle are alike (the signs follow u_n), a triangle moving in its own plane
+// feels neither, and each corner takes a third. The wind is uniform in space; with gusts its speed
+// varies in time by a smooth, seeded sum of sinusoids (Wind).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+
+#include "drapelab/cloth_model.hpp"
+
+namespace drapelab {
+
+struct AirSettings {
+  bool enabled = false;
+  double density = 1.2;                            // kg/m^3, rho
+  double drag = 1.0;                               // C_d of a triangle moving along its normal
+  double lift = 0.0;                               // C_l
+  Eigen::Vector3d wind = Eigen::Vector3d::Zero();  // m/s, the mean wind
+  // Gusts: the wind speed along the mean wind's direction varies by g(t), a sum of four sinusoids
+  // whose periods lie within a factor 2 of `gust_period` and whose phases come from `seed`, scaled
+  // so that the root mean square of g is `gust_amplitude`. 0: steady.
+  double gust_amplitude = 0.0;  // m/s
+  double gust_period = 1.0;     // s
+  std::uint64_t seed = 0;
+};
+
+// The wind velocity W(t) of AirSettings: the same seed gives the same gusts bit for bit.
+class Wind {
+ public:
+  explicit Wind(const AirSettings& air);
+  Eigen::Vector3d at(double t) const;  // m/s at time t (s)
+
+ private:
+  Eigen::Vector3d mean_;               // m/s
+  Eigen::Vector3d direction_;          // unit, the gusts' direction (the mean wind's)
+  std::array<double, 4> weight_{};     // m/s per sinusoid
+  std::array<double, 4> frequency_{};  // rad/s
+  std::array<double, 4> phase_{};      // rad
+};
+
+// Adds the drag and lift of every triangle of `model` at (x, v) and time t (s) to `force` (N,
+// 3 x N). Pinned particles take their share too (it is their holders' to bear).
+void add_air_forces(const ClothModel& model, const AirSettings& air, const Wind& wind, double t,
+                    const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
+
+// The force on one triangle of area `area` (m^2) and unit normal `normal` whose air moves at
+// `relative` (m/s, the wind minus the triangle's velocity): drag plus lift (N).
+Eigen::Vector3d triangle_air_force(const AirSettings& air, double area,
+                                   const Eigen::Vector3d& normal, const Eigen::Vector3d& relative);
+
+}  // namespace drapelab
