@@ -136,6 +136,11 @@ ColliderSubstepMotion KinematicColliders::substep_motion(std::size_t c, double h
   return motion;
 }
 
+void KinematicColliders::write_substep(double t0, double h, ColliderPoseTable& table) const {
+  table.set_substep(t0, t0 + h);
+  for (std::size_t c = 0; c < bodies_.size(); ++c) table.set(c, substep_motion(c, h));
+}
+
 std::vector<BodyState> KinematicColliders::dynamic_bodies() const {
   std::vector<BodyState> out;
   for (std::size_t c = 0; c < bodies_.size(); ++c) {

@@ -50,6 +50,9 @@ class KinematicColliders {
   // dynamic body, called before the world moves it: its pose now, and the end pose its velocities
   // predict.
   ColliderSubstepMotion substep_motion(std::size_t c, double h) const;
+  // Every collider's substep_motion over [t0, t0 + h] (s) into `table`, for a guest or for the
+  // constraints that read the bodies where this world holds them.
+  void write_substep(double t0, double h, ColliderPoseTable& table) const;
   // Collider c's rigid body (to anchor cloth nodes to a dynamic one).
   btRigidBody* rigid_body(std::size_t c) { return bodies_[c].get(); }
   // The dynamic bodies' states, in scene order.

@@ -49,6 +49,11 @@ class BulletDeformableSolver final : public BulletClothSolver {
         self_collision ? deformable_self_friction_factor(options_.self_collision) : 1.0;
     colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_,
                                                       friction_factor);
+    if (options_.constraints && options_.constraints->any_on_dynamic()) {
+      // Soft constraints ending on a dynamic collider follow this world's body.
+      body_poses_ = std::make_shared<ColliderPoseTable>(colliders.size());
+      options_.constraints = constraints_on_own_bodies(options_.constraints, body_poses_);
+    }
 
     cloth_ = make_soft_body(
         info, *model_, initial, [](std::size_t) { return 1.0; },  // kLST unused here
@@ -115,11 +120,13 @@ class BulletDeformableSolver final : public BulletClothSolver {
   static void before_substep(btDynamicsWorld* world, btScalar h) {
     auto* self = static_cast<BulletDeformableSolver*>(world->getWorldUserInfo());
     self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
+    if (self->body_poses_)
+      self->colliders_->write_substep(self->substep_start_, h, *self->body_poses_);
     if (self->options_.attachments)
       place_attached_nodes(*self->options_.attachments, self->substep_start_, *self->cloth_);
     if (self->options_.constraints && self->options_.constraints->has_soft())
       kick_soft_constraints(*self->options_.constraints, *self->model_, self->substep_start_, h,
-                            *self->cloth_, self->state_);
+                            *self->cloth_, self->state_, *self->colliders_);
     if (self->options_.air.enabled)
       kick_air(self->options_.air, self->wind_, *self->model_, self->substep_start_, h,
                *self->cloth_, self->state_);
@@ -130,6 +137,7 @@ class BulletDeformableSolver final : public BulletClothSolver {
   BulletDeformableOptions options_;
   ClothState state_;
   std::vector<ColliderForce> forces_;
+  std::shared_ptr<ColliderPoseTable> body_poses_;  // this world's dynamic bodies, for constraints
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;
   double substep_start_ = 0.0;  // s

@@ -67,9 +67,7 @@ class BulletHostedSolver final : public BulletWorldSolver {
   // Hands the guest the colliders as the world holds them over the substep, steps it, and puts its
   // loads on the dynamic bodies.
   void step_guest(double h) {
-    guest_poses_->set_substep(substep_start_, substep_start_ + h);
-    for (std::size_t c = 0; c < colliders_->size(); ++c)
-      guest_poses_->set(c, colliders_->substep_motion(c, h));
+    colliders_->write_substep(substep_start_, h, *guest_poses_);
     guest_->step(h);
     colliders_->apply_loads(guest_->collider_forces());
   }

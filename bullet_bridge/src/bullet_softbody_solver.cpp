@@ -36,6 +36,11 @@ BulletSoftBodySolver::BulletSoftBodySolver(std::string name,
   info.m_sparsesdf.setDefaultVoxelsz(options_.voxel_size);
   info.m_sparsesdf.Reset();
   colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_);
+  if (options_.constraints && options_.constraints->any_on_dynamic()) {
+    // Soft constraints ending on a dynamic collider follow this world's body.
+    body_poses_ = std::make_shared<ColliderPoseTable>(colliders.size());
+    options_.constraints = constraints_on_own_bodies(options_.constraints, body_poses_);
+  }
   build_cloth(initial);
   previous_velocity_ = state_.v;
   forces_.assign(colliders.size(), ColliderForce{});
@@ -65,11 +70,12 @@ void BulletSoftBodySolver::step(double h) {
 void BulletSoftBodySolver::before_substep(btDynamicsWorld* world, btScalar h) {
   auto* self = static_cast<BulletSoftBodySolver*>(world->getWorldUserInfo());
   self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
+  if (self->body_poses_) self->colliders_->write_substep(self->substep_start_, h, *self->body_poses_);
   if (self->options_.attachments)
     place_attached_nodes(*self->options_.attachments, self->substep_start_, *self->cloth_);
   if (self->options_.constraints && self->options_.constraints->has_soft())
     kick_soft_constraints(*self->options_.constraints, *self->model_, self->substep_start_, h,
-                          *self->cloth_, self->state_);
+                          *self->cloth_, self->state_, *self->colliders_);
   if (self->options_.air.enabled)
     self->cloth_->setWindVelocity(to_bullet(self->wind_.at(self->substep_start_)));
 }

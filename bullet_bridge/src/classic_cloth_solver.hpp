@@ -49,6 +49,7 @@ class BulletSoftBodySolver final : public BulletClothSolver {
   ClothState state_;
   Eigen::Matrix3Xd previous_velocity_;
   std::vector<ColliderForce> forces_;
+  std::shared_ptr<ColliderPoseTable> body_poses_;  // this world's dynamic bodies, for constraints
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;
   double substep_start_ = 0.0;  // s

@@ -98,11 +98,14 @@ void kick_nodes(const ClothModel& model, const Eigen::Matrix3Xd& force, double h
 }  // namespace
 
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
-                           double t, double h, btSoftBody& body, ClothState& scratch) {
+                           double t, double h, btSoftBody& body, ClothState& scratch,
+                           KinematicColliders& bodies) {
   read_soft_body_state(body, scratch);
   Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, scratch.x.cols());
-  constraints.add_soft_forces(t, scratch.x, scratch.v, force, nullptr);
+  std::vector<ColliderForce> body_loads;
+  constraints.add_soft_forces(t, scratch.x, scratch.v, force, nullptr, &body_loads);
   kick_nodes(model, force, h, body);
+  bodies.apply_loads(body_loads);
 }
 
 void kick_air(const AirSettings& air, const Wind& wind, const ClothModel& model, double t, double h,

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bullet_colliders.hpp"
 #include "drapelab/air.hpp"
 #include "drapelab/attachments.hpp"
 #include "drapelab/cloth_model.hpp"
@@ -46,9 +47,11 @@ void anchor_attached_nodes(const Attachments& attachments,
 
 // The soft distance constraints as an explicit external force of the substep [t, t + h]: each
 // free node's velocity gains h f / m (what btSoftBody::addForce does in the classic cloth, which
-// the deformable world's solver does not read). `scratch` receives the nodes' state.
+// the deformable world's solver does not read), and the dynamic bodies some of them end on take
+// the reactions for the substep. `scratch` receives the nodes' state.
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
-                           double t, double h, btSoftBody& body, ClothState& scratch);
+                           double t, double h, btSoftBody& body, ClothState& scratch,
+                           KinematicColliders& bodies);
 // Our air (air.hpp) on the deformable world's nodes, which Bullet's aerodynamics do not reach: the
 // triangles' drag and lift at the substep's start change each free node's velocity by h f / m.
 void kick_air(const AirSettings& air, const Wind& wind, const ClothModel& model, double t, double h,

@@ -34,6 +34,13 @@ bool DistanceConstraints::has_hard() const {
   return std::any_of(list.begin(), list.end(), projected);
 }
 
+bool DistanceConstraints::any_on_dynamic() const {
+  return std::any_of(list.begin(), list.end(), [this](const DistanceConstraint& c) {
+    return c.b.kind == ConstraintEnd::Kind::collider_point &&
+           colliders[static_cast<std::size_t>(c.b.collider)].dynamic();
+  });
+}
+
 std::pair<Eigen::Vector3d, Eigen::Vector3d> DistanceConstraints::end_b(
     const DistanceConstraint& c, double t, const Eigen::Matrix3Xd& x,
     const Eigen::Matrix3Xd& v) const {
@@ -43,7 +50,13 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> DistanceConstraints::end_b(
     case ConstraintEnd::Kind::point:
       return {c.b.point, Eigen::Vector3d::Zero()};
     case ConstraintEnd::Kind::collider_point: {
-      const Collider& collider = colliders[static_cast<std::size_t>(c.b.collider)];
+      const auto index = static_cast<std::size_t>(c.b.collider);
+      const Collider& collider = colliders[index];
+      if (poses && collider.dynamic()) {
+        const ColliderKinematics body = poses->at(index, t);
+        const Eigen::Vector3d position = body.pose * c.b.point;
+        return {position, body.point_velocity(position)};
+      }
       const Eigen::Vector3d position = collider_pose(collider, t) * c.b.point;
       return {position, collider_point_velocity(collider, t, position)};
     }
@@ -53,7 +66,9 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> DistanceConstraints::end_b(
 
 void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
                                           const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
-                                          std::vector<WeightedContact>* couplings) const {
+                                          std::vector<WeightedContact>* couplings,
+                                          std::vector<ColliderForce>* body_loads) const {
+  if (body_loads) body_loads->assign(colliders.size(), ColliderForce{});
   for (const DistanceConstraint& c : list) {
     if (c.mode != ConstraintMode::soft) continue;
     const auto [b, vb] = end_b(c, t, x, v);
@@ -66,6 +81,13 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
     force.col(c.a) += push * n;
     const bool b_particle = c.b.kind == ConstraintEnd::Kind::particle;
     if (b_particle) force.col(c.b.particle) -= push * n;
+    const bool b_body = c.b.kind == ConstraintEnd::Kind::collider_point &&
+                        colliders[static_cast<std::size_t>(c.b.collider)].dynamic();
+    if (body_loads && b_body) {
+      ColliderForce& load = (*body_loads)[static_cast<std::size_t>(c.b.collider)];
+      load.force -= push * n;
+      load.torque -= b.cross(push * n);
+    }
     if (!couplings) continue;
     WeightedContact coupling;
     coupling.particle[0] = c.a;
@@ -187,6 +209,15 @@ double DistanceConstraints::soft_energy(double t, const Eigen::Matrix3Xd& x) con
     energy += 0.5 * c.stiffness * stretch * stretch;
   }
   return energy;
+}
+
+std::shared_ptr<const DistanceConstraints> constraints_on_own_bodies(
+    std::shared_ptr<const DistanceConstraints> constraints,
+    std::shared_ptr<const ColliderPoseTable> poses) {
+  if (!constraints || !constraints->any_on_dynamic()) return constraints;
+  auto own = std::make_shared<DistanceConstraints>(*constraints);
+  own->poses = std::move(poses);
+  return own;
 }
 
 }  // namespace drapelab

@@ -82,6 +82,11 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   coordinate_inverse_mass_ = model_->inverse_mass.transpose().replicate(3, 1);
   weight_ = settings_.gravity * model_->mass.transpose();
   if (settings_.contacts) contact_totals_.resize(settings_.contacts->size());
+  // What holds the cloth is fixed for the run: decide once what each step has to do for it.
+  soft_constraints_ = settings_.constraints && settings_.constraints->has_soft();
+  hard_constraints_ = settings_.constraints && settings_.constraints->has_hard();
+  constraints_on_bodies_ = settings_.constraints && settings_.constraints->any_on_dynamic();
+  attachments_on_bodies_ = settings_.attachments && settings_.attachments->any_on_dynamic();
   // The spring-family fast path serves springs only; the continuum's elements have their own loops.
   if (settings_.fast_springs && !model_->uses_continuum())
     spring_families_ = SpringFamilies::build(*model_);
@@ -187,9 +192,11 @@ void SpringDamperSolver::add_pair_contact_forces(const Eigen::Matrix3Xd& x,
     edge_contact_->add_forces(*settings_.contacts, t, h, x, v, model_->inverse_mass, force_,
                               couplings);
   }
-  if (has_soft_constraints()) {
+  if (soft_constraints_) {
     PhaseTimer timer(stats_, StepPhase::springs);
-    settings_.constraints->add_soft_forces(t, x, v, force_, couplings);
+    // The bodies take the reactions of the step's last evaluation.
+    settings_.constraints->add_soft_forces(t, x, v, force_, couplings,
+                                           constraints_on_bodies_ ? &constraint_loads_ : nullptr);
   }
   if (settings_.air.enabled) {
     PhaseTimer timer(stats_, StepPhase::body_forces);
@@ -257,10 +264,12 @@ std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
   std::vector<ColliderForce> forces;
   for (const auto& total : contact_totals_)
     forces.push_back({total.normal_force, total.friction_force, total.force, total.torque});
-  if (forces.size() < attachment_loads_.size()) forces.resize(attachment_loads_.size());
-  for (std::size_t c = 0; c < attachment_loads_.size(); ++c) {
-    forces[c].force += attachment_loads_[c].force;
-    forces[c].torque += attachment_loads_[c].torque;
+  for (const auto* loads : {&attachment_loads_, &constraint_loads_}) {
+    if (forces.size() < loads->size()) forces.resize(loads->size());
+    for (std::size_t c = 0; c < loads->size(); ++c) {
+      forces[c].force += (*loads)[c].force;
+      forces[c].torque += (*loads)[c].torque;
+    }
   }
   return forces;
 }
@@ -304,7 +313,7 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const
          {"self_collision_unresolved_fast_steps",
           static_cast<double>(stats_.unresolved_fast_steps)}});
   }
-  if (settings_.constraints && settings_.constraints->has_hard())
+  if (hard_constraints_)
     all.insert(all.end(), {{"constraint_position_sweeps_max",
                             static_cast<double>(stats_.constraint_position_sweeps_max)},
                            {"constraint_velocity_sweeps_max",
@@ -482,8 +491,8 @@ void SpringDamperSolver::single_step(double h) {
   // The schemes moved the attached particles with their velocities at the step's start; they end
   // it where their colliders are.
   if (settings_.attachments) settings_.attachments->place(state_.time + h, state_.x, state_.v);
-  if (settings_.attachments && settings_.attachments->any_on_dynamic()) record_attachment_loads();
-  const bool projects = settings_.constraints && settings_.constraints->has_hard();
+  if (attachments_on_bodies_) record_attachment_loads();
+  const bool projects = hard_constraints_;
   if (projects) {
     project_constraints(state_.time + h, h);
     scanned.reset();  // the projection moved particles after the Euler pass scanned them

@@ -127,12 +127,20 @@ std::vector<BadScene> bad_constraints() {
        27,
        "colliders.2.parent",
        {"names 'ball', a dynamic collider, which cannot carry others"}},
-      {"ConstraintsDoNotHoldToADynamicCollider",
+      {"HardConstraintsDoNotHoldToADynamicCollider",
        {insert_lines(14, "    dynamic: {mass: 1}"),
         one_constraint("{type: distance, a: [1, 2], b: {collider: ball, offset: [0, 0, 0]}}")},
        40,
        "constraints.0.b.collider",
-       {"names 'ball', a dynamic collider"}},
+       {"names 'ball', a dynamic collider: a hard constraint holds to kinematic colliders only",
+        "give mode: soft"}},
+      {"RopesDoNotHoldToADynamicCollider",
+       {insert_lines(14, "    dynamic: {mass: 1}"),
+        one_constraint(
+            "{type: distance, a: [1, 2], b: {collider: ball, offset: [0, 0, 0]}, mode: rope}")},
+       40,
+       "constraints.0.b.collider",
+       {"a rope constraint holds to kinematic colliders only"}},
       {"TheClassicClothCannotCarryPinsAttachedToADynamicCollider",
        {replace_line(9, "solvers: [{type: bullet_softbody, dt: 0.001041666666666666667}]"),
         insert_lines(14, "    dynamic: {mass: 1}"),
@@ -172,11 +180,13 @@ TEST(ConstraintLoader, ConstraintsAndDynamicCollidersRoundTrip) {
       "  - {type: distance, a: [1, 2], b: {point: [0, 2, 0]}}\n"
       "  - {type: distance, a: {index: 4}, b: [0, 3], mode: rope, length: 0.9, tolerance: 1e-8}\n"
       "  - {type: distance, a: {index: 7}, b: {collider: pill, offset: [0.1, 0, 0]}, mode: soft,"
-      " stiffness: 50, damping: 0.2}\n";
+      " stiffness: 50, damping: 0.2}\n"
+      "  - {type: distance, a: {index: 3}, b: {collider: ball, offset: [0, 0.3, 0]}, mode: soft,"
+      " stiffness: 80}\n";  // a soft constraint may end on a dynamic collider
   const auto loaded = load(text);
   ASSERT_TRUE(loaded.ok()) << (loaded.errors.empty() ? "" : loaded.errors.front());
   const scene::Scene& s = *loaded.scene;
-  ASSERT_EQ(s.constraints.size(), 3u);
+  ASSERT_EQ(s.constraints.size(), 4u);
   EXPECT_EQ(s.colliders[0].dynamic_mass, 0.75);
   const DistanceConstraint& first = s.constraints[0];
   EXPECT_EQ(first.a, 2 * 5 + 1);  // [i, j] on a 5-wide grid
@@ -191,11 +201,13 @@ TEST(ConstraintLoader, ConstraintsAndDynamicCollidersRoundTrip) {
   EXPECT_EQ(s.constraints[2].b.kind, ConstraintEnd::Kind::collider_point);
   EXPECT_EQ(s.constraints[2].b.collider, 2);
   EXPECT_EQ(s.constraints[2].stiffness, 50.0);
+  EXPECT_EQ(s.constraints[3].b.collider, 0);
+  EXPECT_EQ(s.constraints[3].mode, ConstraintMode::soft);
   const std::string written = scene::resolved_scene_yaml(s);
   const auto again = load(written);
   ASSERT_TRUE(again.ok()) << (again.errors.empty() ? "" : again.errors.front()) << "\n" << written;
-  ASSERT_EQ(again.scene->constraints.size(), 3u);
-  for (std::size_t k = 0; k < 3; ++k) {
+  ASSERT_EQ(again.scene->constraints.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
     const DistanceConstraint& a = s.constraints[k];
     const DistanceConstraint& b = again.scene->constraints[k];
     EXPECT_EQ(a.a, b.a);

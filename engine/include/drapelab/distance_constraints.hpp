@@ -3,17 +3,22 @@
 //   hard: |a - b| = L, held to a relative tolerance after every step by projection;
 //   rope: |a - b| <= L, the same projection, only while the rope would be longer than L;
 //   soft: a damped spring between the ends, f_a = -[k (l - L) + c (v_a - v_b).n] n, n = (a - b)/l.
+// Only a soft constraint may end on a dynamic collider (a rigid body of the solver's world): its
+// end then follows the solver's own body (`poses`) and the body takes the spring's reaction.
 // Every solver applies them itself: our solver adds the soft ones as forces (implicit for implicit
 // Euler and vbd, as couplings) and projects the hard and rope ones at the end of each step;
 // Bullet's cloths get the same forces and projection through bullet_bridge/.
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "drapelab/collider.hpp"
+#include "drapelab/collider_pose_table.hpp"
+#include "drapelab/solver.hpp"
 #include "drapelab/weighted_contact.hpp"
 
 namespace drapelab {
@@ -53,10 +58,15 @@ struct DistanceConstraints {
   std::vector<Collider> colliders;  // the scene's colliders, indexed by ConstraintEnd::collider
   std::vector<DistanceConstraint> list;
   int max_sweeps = 1000;  // the cap of each Gauss-Seidel projection
+  // Where the solver's world holds its dynamic colliders over the current substep (each solver
+  // sets its own copy's). Null: every collider is posed by collider_pose(t).
+  std::shared_ptr<const ColliderPoseTable> poses;
 
   bool empty() const { return list.empty(); }
   bool has_soft() const;
   bool has_hard() const;  // hard or rope
+  // Whether some constraint ends on a dynamic collider (then it is soft: see above).
+  bool any_on_dynamic() const;
 
   // b's position (m) and velocity (m/s) at time t (s), the state x, v (3 x N) holding particles.
   std::pair<Eigen::Vector3d, Eigen::Vector3d> end_b(const DistanceConstraint& c, double t,
@@ -66,9 +76,12 @@ struct DistanceConstraints {
   // Adds the soft constraints' spring-damper forces (N) to `force`. When `couplings` is given, each
   // is also appended as a two-sided weighted contact (normal n = (a - b)/l, weights +1 on a and -1
   // on a particle b, depth L - l, the push f = k (L - l) - c (v_a - v_b).n), so that implicit
-  // Euler and vbd take its stiffness and damping into their solves.
+  // Euler and vbd take its stiffness and damping into their solves. When `body_loads` is given
+  // (one entry per collider), it is reset and receives the reactions on the dynamic colliders:
+  // the force on each (N) and its moment about the world origin (N*m).
   void add_soft_forces(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                       Eigen::Matrix3Xd& force, std::vector<WeightedContact>* couplings) const;
+                       Eigen::Matrix3Xd& force, std::vector<WeightedContact>* couplings,
+                       std::vector<ColliderForce>* body_loads = nullptr) const;
 
   // Moves the particles of x (m) onto the hard and rope constraints at time t (s): Gauss-Seidel
   // sweeps, each moving a constraint's ends along it in proportion to their inverse masses (a
@@ -89,5 +102,11 @@ struct DistanceConstraints {
   // The soft constraints' elastic energy k (l - L)^2 / 2 (J).
   double soft_energy(double t, const Eigen::Matrix3Xd& x) const;
 };
+
+// A solver's own copy of `constraints` whose ends on dynamic colliders follow `poses` (where that
+// solver's world holds its bodies); `constraints` itself when none ends on a dynamic collider.
+std::shared_ptr<const DistanceConstraints> constraints_on_own_bodies(
+    std::shared_ptr<const DistanceConstraints> constraints,
+    std::shared_ptr<const ColliderPoseTable> poses);
 
 }  // namespace drapelab

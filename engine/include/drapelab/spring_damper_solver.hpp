@@ -196,10 +196,7 @@ class SpringDamperSolver final : public Solver {
   // Whether forces act between the springs and the particle contacts (then the two cannot share
   // one parallel region).
   bool has_pair_contacts() const {
-    return self_contact_ || edge_contact_ || has_soft_constraints() || settings_.air.enabled;
-  }
-  bool has_soft_constraints() const {
-    return settings_.constraints && settings_.constraints->has_soft();
+    return self_contact_ || edge_contact_ || soft_constraints_ || settings_.air.enabled;
   }
   // The hard and rope constraints' projection at the step's end (time t, s), with the scheme's
   // velocity bookkeeping (Verlet's history, leapfrog's stored force).
@@ -260,6 +257,11 @@ class SpringDamperSolver final : public Solver {
   Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
   std::vector<ColliderContactTotals> contact_totals_;
   std::vector<ColliderForce> attachment_loads_;          // per collider: force (N), moment (N*m)
+  std::vector<ColliderForce> constraint_loads_;  // soft constraints' reactions, per collider
+  bool soft_constraints_ = false;                // settings_.constraints has soft ones
+  bool hard_constraints_ = false;                // ... hard or rope ones, projected every step
+  bool constraints_on_bodies_ = false;           // ... some ending on a dynamic collider
+  bool attachments_on_bodies_ = false;           // a pin is attached to a dynamic collider
   Wind wind_;                                            // the air's wind over time (settings_.air)
   std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
   std::unique_ptr<ShapeBoundWorkspace>

@@ -66,7 +66,7 @@ class ConstraintReader {
     if (!entry.has("b"))
       entry.missing("b", std::string("the other end: ") + kEndForms);
     else
-      b = read_end(entry.get("b"), entry.path_of("b"));
+      b = read_end(entry.get("b"), entry.path_of("b"), c.mode);
     const auto length = entry.number("length", cloth_length_range(), std::nullopt);
     if (entry.has("length") && !length) ok = false;
     if (!ok || !a || !b) return std::nullopt;
@@ -120,7 +120,8 @@ class ConstraintReader {
     return picked.front();
   }
 
-  std::optional<ConstraintEnd> read_end(const YAML::Node& node, const std::string& path) {
+  std::optional<ConstraintEnd> read_end(const YAML::Node& node, const std::string& path,
+                                        ConstraintMode mode) {
     ConstraintEnd end;
     const bool point_map = node.IsMap() && (node["point"] || node["collider"] || node["offset"]);
     if (!point_map) {
@@ -164,10 +165,13 @@ class ConstraintReader {
                    (near.empty() ? "" : "; did you mean " + near + "?"));
       return std::nullopt;
     }
-    if (scene_.colliders[static_cast<std::size_t>(end.collider)].dynamic()) {
+    // A projection would have to move the body too (its mass and inertia in the correction).
+    if (mode != ConstraintMode::soft &&
+        scene_.colliders[static_cast<std::size_t>(end.collider)].dynamic()) {
       r_.error(m.get("collider"), m.path_of("collider"),
-               "names '" + *name +
-                   "', a dynamic collider: constraints hold to kinematic colliders only");
+               "names '" + *name + "', a dynamic collider: a " + constraint_mode_name(mode) +
+                   " constraint holds to kinematic colliders only; give mode: soft (a spring) "
+                   "to tie the cloth to a dynamic one");
       return std::nullopt;
     }
     end.kind = ConstraintEnd::Kind::collider_point;

@@ -54,6 +54,8 @@ std::unique_ptr<Solver> make_spring_damper(const scene::Scene& scene, const scen
     attachments->poses = poses;
     settings.attachments = std::move(attachments);
   }
+  // Soft constraints ending on a dynamic collider follow the host's body too.
+  settings.constraints = constraints_on_own_bodies(settings.constraints, poses);
   if (contacts)
     settings.contacts = std::make_shared<const ContactModel>(
         contacts->colliders(), contacts->parameters(), contacts->query().radius(), poses);
