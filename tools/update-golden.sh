@@ -18,11 +18,17 @@ mkdir -p tests/golden
 #   incline_slide  the cloth lies on the board from frame 0 and slides at a steady rate, where the
 #                  contact damping does nothing; it acts when the cloth leaves the board (about
 #                  1.1 s) and lands on the floor, so the file records the scene's whole 2 s.
+#   window_curtain the breeze first draws the curtain back onto the window frame at about 1.3 s:
+#                  the file records 2 s.
+#   parachute      the descent reaches its steady speed after about a second: the file records
+#                  the whole 2.5 s.
 #   free_fall      its explicit Euler solver gains energy and becomes unstable at 0.25 s, and
 #                  --update records only runs whose every solver is ok: the file records 0.2 s.
 duration_of() {
   case "$1" in
     incline_slide) echo 2.0 ;;
+    window_curtain) echo 2.0 ;;
+    parachute) echo 2.5 ;;
     free_fall) echo 0.2 ;;
     *) echo 0.5 ;;
   esac

@@ -166,6 +166,16 @@ void KinematicColliders::apply_loads(const std::vector<ColliderForce>& forces) {
   }
 }
 
+void KinematicColliders::apply_impulses(const std::vector<ColliderForce>& forces, double h) {
+  for (std::size_t c = 0; c < bodies_.size() && c < forces.size(); ++c) {
+    if (!colliders_[c].dynamic()) continue;
+    btRigidBody& body = *bodies_[c];
+    const Eigen::Vector3d centre = to_eigen(body.getCenterOfMassPosition());
+    body.applyCentralImpulse(to_bullet(h * forces[c].force));
+    body.applyTorqueImpulse(to_bullet(h * (forces[c].torque - centre.cross(forces[c].force))));
+  }
+}
+
 int KinematicColliders::index_of(const btCollisionObject* body) const {
   for (std::size_t c = 0; c < bodies_.size(); ++c)
     if (bodies_[c].get() == body) return static_cast<int>(c);

@@ -60,6 +60,10 @@ class KinematicColliders {
   // Applies to each dynamic body the load of `forces` (one per collider: force, and moment about
   // the world origin), for the world's next substep.
   void apply_loads(const std::vector<ColliderForce>& forces);
+  // The same loads held over a substep of h (s), given to the bodies at once as the impulse h F
+  // (and h M). The deformable world needs this: its rigid bodies integrate an applied force twice
+  // (once with gravity before its solve, once more inside its constraint solver).
+  void apply_impulses(const std::vector<ColliderForce>& forces, double h);
 
  private:
   btDynamicsWorld& world_;

@@ -70,7 +70,8 @@ void BulletSoftBodySolver::step(double h) {
 void BulletSoftBodySolver::before_substep(btDynamicsWorld* world, btScalar h) {
   auto* self = static_cast<BulletSoftBodySolver*>(world->getWorldUserInfo());
   self->colliders_->move_to(self->substep_start_, self->substep_start_ + h);
-  if (self->body_poses_) self->colliders_->write_substep(self->substep_start_, h, *self->body_poses_);
+  if (self->body_poses_)
+    self->colliders_->write_substep(self->substep_start_, h, *self->body_poses_);
   if (self->options_.attachments)
     place_attached_nodes(*self->options_.attachments, self->substep_start_, *self->cloth_);
   if (self->options_.constraints && self->options_.constraints->has_soft())

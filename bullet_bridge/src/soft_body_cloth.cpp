@@ -105,7 +105,7 @@ void kick_soft_constraints(const DistanceConstraints& constraints, const ClothMo
   std::vector<ColliderForce> body_loads;
   constraints.add_soft_forces(t, scratch.x, scratch.v, force, nullptr, &body_loads);
   kick_nodes(model, force, h, body);
-  bodies.apply_loads(body_loads);
+  bodies.apply_impulses(body_loads, h);
 }
 
 void kick_air(const AirSettings& air, const Wind& wind, const ClothModel& model, double t, double h,

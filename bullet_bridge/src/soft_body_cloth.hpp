@@ -48,7 +48,7 @@ void anchor_attached_nodes(const Attachments& attachments,
 // The soft distance constraints as an explicit external force of the substep [t, t + h]: each
 // free node's velocity gains h f / m (what btSoftBody::addForce does in the classic cloth, which
 // the deformable world's solver does not read), and the dynamic bodies some of them end on take
-// the reactions for the substep. `scratch` receives the nodes' state.
+// the reactions as the impulse h f. `scratch` receives the nodes' state.
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
                            double t, double h, btSoftBody& body, ClothState& scratch,
                            KinematicColliders& bodies);

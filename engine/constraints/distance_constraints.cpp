@@ -49,6 +49,8 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> DistanceConstraints::end_b(
       return {x.col(c.b.particle), v.col(c.b.particle)};
     case ConstraintEnd::Kind::point:
       return {c.b.point, Eigen::Vector3d::Zero()};
+    case ConstraintEnd::Kind::drag:
+      return c.b.drag->target(t);
     case ConstraintEnd::Kind::collider_point: {
       const auto index = static_cast<std::size_t>(c.b.collider);
       const Collider& collider = colliders[index];
@@ -70,15 +72,16 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
                                           std::vector<ColliderForce>* body_loads) const {
   if (body_loads) body_loads->assign(colliders.size(), ColliderForce{});
   for (const DistanceConstraint& c : list) {
-    if (c.mode != ConstraintMode::soft) continue;
+    if (c.mode != ConstraintMode::soft || !acts(c, t)) continue;
+    const int a = particle_a(c);
     const auto [b, vb] = end_b(c, t, x, v);
-    const Eigen::Vector3d d = x.col(c.a) - b;
+    const Eigen::Vector3d d = x.col(a) - b;
     const double l = d.norm();
     if (!(l > 0.0)) continue;  // coincident ends: no direction to pull along
     const Eigen::Vector3d n = d / l;
     // The push along n on a (N): negative while the spring is stretched.
-    const double push = c.stiffness * (c.length - l) - c.damping * (v.col(c.a) - vb).dot(n);
-    force.col(c.a) += push * n;
+    const double push = c.stiffness * (c.length - l) - c.damping * (v.col(a) - vb).dot(n);
+    force.col(a) += push * n;
     const bool b_particle = c.b.kind == ConstraintEnd::Kind::particle;
     if (b_particle) force.col(c.b.particle) -= push * n;
     const bool b_body = c.b.kind == ConstraintEnd::Kind::collider_point &&
@@ -90,7 +93,7 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
     }
     if (!couplings) continue;
     WeightedContact coupling;
-    coupling.particle[0] = c.a;
+    coupling.particle[0] = a;
     coupling.weight[0] = 1.0;
     if (b_particle) {
       coupling.particle[1] = c.b.particle;
@@ -102,6 +105,7 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
     coupling.depth = c.length - l;
     coupling.force = push;
     coupling.two_sided = true;
+    if (!b_particle) coupling.end_rate = n.dot(vb);
     couplings->push_back(coupling);
   }
 }
@@ -204,8 +208,8 @@ double DistanceConstraints::largest_error(double t, const Eigen::Matrix3Xd& x) c
 double DistanceConstraints::soft_energy(double t, const Eigen::Matrix3Xd& x) const {
   double energy = 0.0;
   for (const DistanceConstraint& c : list) {
-    if (c.mode != ConstraintMode::soft) continue;
-    const double stretch = (x.col(c.a) - end_b(c, t, x, x).first).norm() - c.length;
+    if (c.mode != ConstraintMode::soft || !acts(c, t)) continue;
+    const double stretch = (x.col(particle_a(c)) - end_b(c, t, x, x).first).norm() - c.length;
     energy += 0.5 * c.stiffness * stretch * stretch;
   }
   return energy;

@@ -141,7 +141,9 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
           (c.b.kind == ConstraintEnd::Kind::collider_point &&
            (c.b.collider < 0 ||
             c.b.collider >= static_cast<int>(settings_.constraints->colliders.size()))) ||
-          !(c.length > 0.0))
+          (c.b.kind == ConstraintEnd::Kind::drag
+               ? (!c.b.drag || c.b.drag->particle < 0 || c.b.drag->particle >= n)
+               : !(c.length > 0.0)))  // a drag's spring has length 0
         throw std::invalid_argument(
             "a distance constraint names a particle or collider the scene "
             "does not have, or has a length that is not positive");

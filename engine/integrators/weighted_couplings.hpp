@@ -14,7 +14,7 @@ namespace drapelab {
 // For a step of h (s) from velocities v (m/s): fills `couplings` (cleared first) and calls
 // add(i, block, rhs) for every moving particle i of every contact with its diagonal block
 // (h c + h^2 k) w_i^2 n n^T (kg) and its right-hand side term h^2 (K v0)_i =
-// -h^2 k w_i n (n . sum_j w_j v0_j) (N s). `moving(i)` is false for a pinned particle.
+// -h^2 k w_i n (n . sum_j w_j v0_j - end_rate) (N s). `moving(i)` is false for a pinned particle.
 template <typename Moving, typename AddToParticle>
 void build_couplings(const std::vector<WeightedContact>& contacts, const Eigen::Matrix3Xd& v,
                      double h, Moving&& moving, std::vector<kernels::Coupling>& couplings,
@@ -25,7 +25,7 @@ void build_couplings(const std::vector<WeightedContact>& contacts, const Eigen::
     coupling.coefficient = h * touch.damping + h * h * touch.stiffness;
     const Eigen::Vector3d& n = touch.normal;
     for (int c = 0; c < 3; ++c) coupling.normal[c] = n[c];
-    double closing = 0.0;  // m/s: n . sum_j w_j v0_j
+    double closing = -touch.end_rate;  // m/s: n . sum_j w_j v0_j, less the far end's rate
     for (int k = 0; k < 4; ++k) {
       coupling.particle[k] = touch.particle[k];
       coupling.weight[k] = touch.weight[k];

@@ -140,7 +140,7 @@ std::vector<BadScene> bad_constraints() {
             "{type: distance, a: [1, 2], b: {collider: ball, offset: [0, 0, 0]}, mode: rope}")},
        40,
        "constraints.0.b.collider",
-       {"a rope constraint holds to kinematic colliders only"}},
+       {"names 'ball', a dynamic collider: a rope constraint holds to kinematic colliders only"}},
       {"TheClassicClothCannotCarryPinsAttachedToADynamicCollider",
        {replace_line(9, "solvers: [{type: bullet_softbody, dt: 0.001041666666666666667}]"),
         insert_lines(14, "    dynamic: {mass: 1}"),

@@ -18,6 +18,7 @@
 
 #include "drapelab/collider.hpp"
 #include "drapelab/collider_pose_table.hpp"
+#include "drapelab/drag_track.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/weighted_contact.hpp"
 
@@ -28,12 +29,16 @@ const char* constraint_mode_name(ConstraintMode mode);
 
 // The second end of a constraint.
 struct ConstraintEnd {
-  enum class Kind { particle, point, collider_point };
+  enum class Kind { particle, point, collider_point, drag };
   Kind kind = Kind::point;
   int particle = -1;                                // Kind::particle
   int collider = -1;                                // Kind::collider_point: index into colliders
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // m: the world point, or the offset in the
                                                     // collider's own frame
+  // Kind::drag: the moving target; the constraint is soft, of length 0, pulls the track's particle
+  // (not `a`, so that a viewer can move one drag from particle to particle) and acts only while the
+  // track is active.
+  std::shared_ptr<const DragTrack> drag;
 };
 
 struct DistanceConstraint {
@@ -63,6 +68,13 @@ struct DistanceConstraints {
   std::shared_ptr<const ColliderPoseTable> poses;
 
   bool empty() const { return list.empty(); }
+  // The particle a constraint pulls at its first end, and whether it acts at time t (s).
+  static int particle_a(const DistanceConstraint& c) {
+    return c.b.kind == ConstraintEnd::Kind::drag ? c.b.drag->particle : c.a;
+  }
+  static bool acts(const DistanceConstraint& c, double t) {
+    return c.b.kind != ConstraintEnd::Kind::drag || c.b.drag->active(t);
+  }
   bool has_soft() const;
   bool has_hard() const;  // hard or rope
   // Whether some constraint ends on a dynamic collider (then it is soft: see above).

@@ -256,13 +256,13 @@ class SpringDamperSolver final : public Solver {
   // Self-collision: the state a step restarts from (m, m/s) and the start of its piece (m).
   Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
   std::vector<ColliderContactTotals> contact_totals_;
-  std::vector<ColliderForce> attachment_loads_;          // per collider: force (N), moment (N*m)
+  std::vector<ColliderForce> attachment_loads_;  // per collider: force (N), moment (N*m)
   std::vector<ColliderForce> constraint_loads_;  // soft constraints' reactions, per collider
   bool soft_constraints_ = false;                // settings_.constraints has soft ones
   bool hard_constraints_ = false;                // ... hard or rope ones, projected every step
   bool constraints_on_bodies_ = false;           // ... some ending on a dynamic collider
   bool attachments_on_bodies_ = false;           // a pin is attached to a dynamic collider
-  Wind wind_;                                            // the air's wind over time (settings_.air)
+  Wind wind_;                                    // the air's wind over time (settings_.air)
   std::unique_ptr<ContactWorkspace> contact_workspace_;  // the contact phase's per-block results
   std::unique_ptr<ShapeBoundWorkspace>
       shape_bound_;  // adaptive substeps: each particle's springs, for the bound

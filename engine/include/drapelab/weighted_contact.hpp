@@ -21,6 +21,10 @@ struct WeightedContact {
   // A contact only pushes (vbd drops it while f < 0); a soft distance constraint, also a coupling,
   // pulls as well.
   bool two_sided = false;
+  // m/s: how fast an end that is not a particle (a moving collider point) moves along n. The depth
+  // grows by h end_rate over a step wherever the particles stay, so the implicit solves take the
+  // particles' rate relative to it.
+  double end_rate = 0.0;
 };
 
 }  // namespace drapelab

@@ -159,7 +159,8 @@ void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, Block&
       along += c.weight[4 * contact + s] * dot(d, n);
     }
     const double depth = c.depth[contact] - along;
-    const double fn = c.stiffness[contact] * depth - c.damping[contact] * along / p.h;  // N
+    const double rate = along / p.h - c.end_rate[contact];  // m/s, relative to the far end
+    const double fn = c.stiffness[contact] * depth - c.damping[contact] * rate;  // N
     if (fn <= 0.0 && !c.two_sided[contact]) continue;
     const double w = c.weight[4 * contact + c.slot[e]];
     b.add_force(w * fn, n);

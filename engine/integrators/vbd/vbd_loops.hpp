@@ -52,6 +52,7 @@ struct VbdCouplings {
   const double* stiffness = nullptr;        // N/m per contact
   const double* damping = nullptr;          // N*s/m per contact
   const std::uint8_t* two_sided = nullptr;  // 1: pulls as well as pushes (a soft constraint)
+  const double* end_rate = nullptr;         // m/s per contact: its far end's rate along n
 };
 
 struct VbdProblem {

@@ -191,7 +191,7 @@ void VertexBlockDescent::find_planes(const ClothModel& model, const VbdStepInput
 }
 
 void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContact>& couplings,
-                                         const Eigen::Matrix3Xd& x) {
+                                         const Eigen::Matrix3Xd& x, double h) {
   const std::size_t count = couplings.size();
   coupling_particle_.resize(4 * count);
   coupling_weight_.resize(4 * count);
@@ -199,6 +199,7 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
   coupling_depth_.resize(count);
   coupling_stiffness_.resize(count);
   coupling_damping_.resize(count);
+  coupling_end_rate_.resize(count);
   coupling_two_sided_.resize(count);
   coupling_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
   for (std::size_t c = 0; c < count; ++c) {
@@ -214,7 +215,9 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
     for (int s = 0; s < 4; ++s)
       if (w.particle[s] >= 0)
         shift += w.weight[s] * w.normal.dot(start_.col(w.particle[s]) - x.col(w.particle[s]));
-    coupling_depth_[c] = w.depth - shift;
+    // The far end's own motion over the step deepens it (a moving collider point).
+    coupling_depth_[c] = w.depth - shift + h * w.end_rate;
+    coupling_end_rate_[c] = w.end_rate;
     coupling_stiffness_[c] = w.stiffness;
     coupling_damping_[c] = w.damping;
     coupling_two_sided_[c] = w.two_sided ? 1 : 0;
@@ -252,7 +255,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   }
   find_planes(model, input, h, x, v);
   const bool coupled = input.couplings && !input.couplings->empty();
-  if (coupled) index_couplings(n, *input.couplings, x);
+  if (coupled) index_couplings(n, *input.couplings, x, input.h);
   // y = X + b V + b^2 (g + f_explicit / m)
   inertia_ = start_ + h * base_v_;
   inertia_.colwise() += (h * h) * input.gravity;
@@ -298,11 +301,11 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
                       k.damping};
   }
   if (coupled)
-    problem.couplings = {coupling_offsets_.data(), coupling_contact_.data(),
-                         coupling_slot_.data(),    coupling_particle_.data(),
-                         coupling_weight_.data(),  coupling_normal_.data(),
-                         coupling_depth_.data(),   coupling_stiffness_.data(),
-                         coupling_damping_.data(), coupling_two_sided_.data()};
+    problem.couplings = {
+        coupling_offsets_.data(),   coupling_contact_.data(),   coupling_slot_.data(),
+        coupling_particle_.data(),  coupling_weight_.data(),    coupling_normal_.data(),
+        coupling_depth_.data(),     coupling_stiffness_.data(), coupling_damping_.data(),
+        coupling_two_sided_.data(), coupling_end_rate_.data()};
   problem.color_offsets = color_offsets_.data();
   problem.color_particles = color_particles_.data();
   problem.colors = static_cast<int>(color_offsets_.size()) - 1;

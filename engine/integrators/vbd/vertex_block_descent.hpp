@@ -66,8 +66,9 @@ class VertexBlockDescent {
                    const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
   // The per-particle rows of the contacts between particles.
   // `x`: the positions x(n) the contacts were found at.
+  // `h` (s): the step, over which a coupling's far end moves by h end_rate.
   void index_couplings(int n, const std::vector<WeightedContact>& couplings,
-                       const Eigen::Matrix3Xd& x);
+                       const Eigen::Matrix3Xd& x, double h);
   // A Newton step on G over the aggregates' translations, solved exactly (sparse Cholesky): the
   // sweeps move each particle against its neighbours, so a motion of a whole region of the cloth
   // against stiff springs (a fall, a skirt swinging off a collider) spreads one colour at a time.
@@ -114,7 +115,7 @@ class VertexBlockDescent {
   std::vector<std::int32_t> coupling_offsets_, coupling_contact_, coupling_slot_,
       coupling_particle_;
   std::vector<double> coupling_weight_, coupling_normal_, coupling_depth_, coupling_stiffness_,
-      coupling_damping_;
+      coupling_damping_, coupling_end_rate_;
   std::vector<std::uint8_t> coupling_two_sided_;
   // Per step (m, 3 x N): the start X (x(n), or BDF2's blend), the inertial target, the sweep's
   // start (read by the contacts between particles), the iteration's start and the one before

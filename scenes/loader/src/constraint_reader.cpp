@@ -15,6 +15,43 @@ const char* const kEndForms =
     "{index: k}, [i, j] (a grid's column and row), {point: [x, y, z]} or "
     "{collider: NAME, offset: [x, y, z]}";
 
+}  // namespace
+
+// {index: k} or [i, j]: the particle's index, checked on the cloth when it is built.
+std::optional<int> read_cloth_particle(SceneReader& reader, const YAML::Node& node,
+                                       const std::string& path, const Scene& scene,
+                                       const ClothModel* model) {
+  std::optional<PinSelector> selector;
+  if (node.IsSequence()) {
+    if (const auto ij = reader.integers(node, path, 2, grid_coordinate_range()))
+      selector = PinGridCoord{static_cast<int>((*ij)[0]), static_cast<int>((*ij)[1])};
+  } else if (node.IsMap()) {
+    MapReader end(reader, node, path, {"index"});
+    if (!end.valid()) return std::nullopt;
+    if (!end.has("index")) {
+      reader.error(node, path, std::string("must be a particle: ") + kParticleForms);
+      return std::nullopt;
+    }
+    if (const auto index = end.integer("index", particle_index_range(), std::nullopt))
+      selector = PinIndex{static_cast<int>(*index)};
+  } else {
+    reader.error(
+        node, path,
+        std::string("must be a particle: ") + kParticleForms + ", got " + describe_scalar(node));
+  }
+  if (!selector) return std::nullopt;
+  if (!model) return 0;
+  std::string why;
+  const std::vector<int> picked = select_cloth_pins(scene.cloth, *selector, &why);
+  if (picked.size() != 1) {
+    reader.error(node, path, "selects no particle of the cloth: " + why);
+    return std::nullopt;
+  }
+  return picked.front();
+}
+
+namespace {
+
 class ConstraintReader {
  public:
   ConstraintReader(SceneReader& reader, const Scene& scene, const ClothModel* model)
@@ -89,35 +126,8 @@ class ConstraintReader {
   }
 
  private:
-  // {index: k} or [i, j]: the particle's index, checked on the cloth when it is built.
   std::optional<int> read_particle(const YAML::Node& node, const std::string& path) {
-    std::optional<PinSelector> selector;
-    if (node.IsSequence()) {
-      if (const auto ij = r_.integers(node, path, 2, grid_coordinate_range()))
-        selector = PinGridCoord{static_cast<int>((*ij)[0]), static_cast<int>((*ij)[1])};
-    } else if (node.IsMap()) {
-      MapReader end(r_, node, path, {"index"});
-      if (!end.valid()) return std::nullopt;
-      if (!end.has("index")) {
-        r_.error(node, path, std::string("must be a particle: ") + kParticleForms);
-        return std::nullopt;
-      }
-      if (const auto index = end.integer("index", particle_index_range(), std::nullopt))
-        selector = PinIndex{static_cast<int>(*index)};
-    } else {
-      r_.error(
-          node, path,
-          std::string("must be a particle: ") + kParticleForms + ", got " + describe_scalar(node));
-    }
-    if (!selector) return std::nullopt;
-    if (!model_) return 0;
-    std::string why;
-    const std::vector<int> picked = select_cloth_pins(scene_.cloth, *selector, &why);
-    if (picked.size() != 1) {
-      r_.error(node, path, "selects no particle of the cloth: " + why);
-      return std::nullopt;
-    }
-    return picked.front();
+    return read_cloth_particle(r_, node, path, scene_, model_);
   }
 
   std::optional<ConstraintEnd> read_end(const YAML::Node& node, const std::string& path,
@@ -188,7 +198,10 @@ class ConstraintReader {
       return false;
     }
     const bool a_held = model_->is_pinned(c.a);
-    const bool b_held = !b_particle || model_->is_pinned(c.b.particle);
+    // A point on a dynamic collider moves with its body, which the constraint pulls.
+    const bool b_body = c.b.kind == ConstraintEnd::Kind::collider_point &&
+                        scene_.colliders[static_cast<std::size_t>(c.b.collider)].dynamic();
+    const bool b_held = !b_body && (!b_particle || model_->is_pinned(c.b.particle));
     if (a_held && b_held) {
       r_.error(item, path,
                "has both ends held in place (particle " + std::to_string(c.a) +
@@ -212,6 +225,8 @@ class ConstraintReader {
         return (a - collider_pose(scene_.colliders[static_cast<std::size_t>(c.b.collider)], 0.0) *
                         c.b.point)
             .norm();
+      case ConstraintEnd::Kind::drag:  // interactions:, read elsewhere with length 0
+        return 0.0;
     }
     return 0.0;
   }

@@ -16,6 +16,12 @@ namespace drapelab::scene {
 // Reads and checks every constraint against the scene's cloth and colliders; problems go to
 // `reader`. `model` is the scene's cloth (its rest pose gives the default lengths); null when the
 // cloth could not be built, and then the ends are checked for form only.
+// A particle of the scene's cloth given as {index: k} or [i, j] (a grid's column and row); its
+// index, checked on the cloth when `model` is built (0 when it is not). Problems go to `reader`.
+std::optional<int> read_cloth_particle(SceneReader& reader, const YAML::Node& node,
+                                       const std::string& path, const Scene& scene,
+                                       const ClothModel* model);
+
 std::vector<DistanceConstraint> read_constraints(SceneReader& reader, const YAML::Node& list,
                                                  const Scene& scene, const ClothModel* model);
 

@@ -136,11 +136,28 @@ bool has_dynamic_colliders(const Scene& scene) {
 }
 
 std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene) {
-  if (scene.constraints.empty()) return nullptr;
+  if (scene.constraints.empty() && scene.interactions.empty()) return nullptr;
   auto constraints = std::make_shared<DistanceConstraints>();
   constraints->colliders = scene.colliders;
   constraints->list = scene.constraints;
+  for (const DragSpec& drag : scene.interactions)
+    constraints->list.push_back(drag_constraint(drag));
   return constraints;
+}
+
+DistanceConstraint drag_constraint(const DragSpec& drag) {
+  auto track = std::make_shared<DragTrack>();
+  track->particle = drag.particle;
+  track->keyframes = drag.keyframes;
+  DistanceConstraint c;
+  c.a = drag.particle;
+  c.b.kind = ConstraintEnd::Kind::drag;
+  c.b.drag = std::move(track);
+  c.length = 0.0;
+  c.mode = ConstraintMode::soft;
+  c.stiffness = drag.stiffness;
+  c.damping = drag.damping;
+  return c;
 }
 
 std::shared_ptr<const Attachments> scene_attachments(const Scene& scene,

@@ -15,6 +15,7 @@
 #include "drapelab/bounded_file.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
+#include "interaction_reader.hpp"
 #include "overrides.hpp"
 #include "run_limits.hpp"
 #include "solver_reader.hpp"
@@ -31,9 +32,10 @@ class SceneBuilder {
       : r_(reader), cloth_reader_(reader, scene_, folder) {}
 
   Scene build(const YAML::Node& root) {
-    MapReader top(r_, root, "",
-                  {"name", "description", "duration", "frame_rate", "gravity", "seed", "cloth",
-                   "colliders", "constraints", "air", "contact", "solvers", "metrics", "output"});
+    MapReader top(
+        r_, root, "",
+        {"name", "description", "duration", "frame_rate", "gravity", "seed", "cloth", "colliders",
+         "constraints", "interactions", "air", "contact", "solvers", "metrics", "output"});
     if (!top.valid()) return scene_;
     if (const auto name = top.text("name", std::nullopt)) {
       if (const auto problem = name_problem(*name))
@@ -213,6 +215,8 @@ class SceneBuilder {
     // Constraints resolve their ends on the built cloth (and are checked for form without one).
     if (top.has("constraints"))
       scene_.constraints = read_constraints(r_, top.get("constraints"), scene_, model.get());
+    if (top.has("interactions"))
+      scene_.interactions = read_interactions(r_, top.get("interactions"), scene_, model.get());
     if (top.has("solvers")) {
       scene_.solvers = scene::read_solvers(r_, top.get("solvers"), scene_, model.get(), notes);
     } else {

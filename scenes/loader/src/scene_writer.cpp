@@ -37,6 +37,8 @@ std::string end_text(const ConstraintEnd& end, const std::vector<Collider>& coll
     case ConstraintEnd::Kind::collider_point:
       return "{collider: " + colliders[static_cast<std::size_t>(end.collider)].name +
              ", offset: " + format_list(end.point) + "}";
+    case ConstraintEnd::Kind::drag:  // written as interactions:, not as a constraint
+      break;
   }
   return "{}";
 }
@@ -209,6 +211,17 @@ std::string resolved_scene_yaml(const Scene& s) {
   }
   if (!s.constraints.empty()) out << "constraints:\n";
   for (const auto& constraint : s.constraints) write_constraint(out, constraint, s.colliders);
+  if (!s.interactions.empty()) out << "interactions:\n";
+  for (const DragSpec& drag : s.interactions) {
+    out << "  - type: drag\n"
+        << "    particle: {index: " << drag.particle << "}\n"
+        << "    stiffness: " << format_number(drag.stiffness) << "  # N/m\n"
+        << "    damping: " << format_number(drag.damping) << "  # N*s/m\n"
+        << "    keyframes:\n";
+    for (const DragKeyframe& key : drag.keyframes)
+      out << "      - {t: " << format_number(key.t) << ", target: " << format_list(key.target)
+          << "}\n";
+  }
   out << "contact:\n"
       << "  stiffness: " << format_number(s.contact.stiffness) << "  # N/m per particle\n"
       << "  damping: " << format_number(s.contact.damping) << "  # N*s/m\n"

@@ -235,25 +235,32 @@ void PanelRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(cloth.cols()));
     glDisableClientState(GL_VERTEX_ARRAY);
   }
-  draw_constraints(cloth, time);
+  draw_constraints(cloth, time, bodies);
   glDisable(GL_COLOR_MATERIAL);
   glDisable(GL_LIGHTING);
   glDisable(GL_SCISSOR_TEST);
 }
 
-void PanelRenderer::draw_constraints(const Eigen::Matrix3Xd& cloth, double time) const {
+void PanelRenderer::draw_constraints(const Eigen::Matrix3Xd& cloth, double time,
+                                     const BodyPoses* bodies) const {
   if (constraints_.empty()) return;
   glDisable(GL_LIGHTING);
   glLineWidth(2.0f);
   glBegin(GL_LINES);
   for (const DistanceConstraint& c : constraints_.list) {
+    if (!DistanceConstraints::acts(c, time)) continue;  // a drag before or after its keyframes
     // Hard and rope constraints dark like a cord, soft ones lighter like an elastic.
     if (c.mode == ConstraintMode::soft)
       glColor3f(0.45f, 0.55f, 0.30f);
     else
       glColor3f(0.16f, 0.14f, 0.12f);
-    const Eigen::Vector3d a = cloth.col(c.a);
-    const Eigen::Vector3d b = constraints_.end_b(c, time, cloth, cloth).first;
+    const Eigen::Vector3d a = cloth.col(DistanceConstraints::particle_a(c));
+    Eigen::Vector3d b = constraints_.end_b(c, time, cloth, cloth).first;
+    // A string to a dynamic collider ends on this panel's own body.
+    if (bodies && c.b.kind == ConstraintEnd::Kind::collider_point) {
+      const auto body = bodies->find(c.b.collider);
+      if (body != bodies->end()) b = body->second * c.b.point;
+    }
     glVertex3d(a.x(), a.y(), a.z());
     glVertex3d(b.x(), b.y(), b.z());
   }

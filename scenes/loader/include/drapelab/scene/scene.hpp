@@ -108,6 +108,15 @@ struct OutputSpec {
   MeshOutput meshes = MeshOutput::none;  // per-frame OBJ files and/or a .pc2 point cache per solver
 };
 
+// interactions: a scripted drag (what the viewer records): a particle pulled by a spring of rest
+// length 0 toward a target moving through keyframes (drapelab/drag_track.hpp).
+struct DragSpec {
+  int particle = 0;        // index into the cloth
+  double stiffness = 0.0;  // N/m
+  double damping = 0.0;    // N*s/m, along the spring
+  std::vector<DragKeyframe> keyframes;
+};
+
 struct Scene {
   std::filesystem::path source;  // the scene file as given
   std::string name;              // [a-z0-9_-]+
@@ -120,6 +129,7 @@ struct Scene {
   std::vector<Collider> colliders;
   // constraints: ends resolved to particle indices and indices into `colliders`, lengths filled in.
   std::vector<DistanceConstraint> constraints;
+  std::vector<DragSpec> interactions;  // drags, in the scene's order
   AirSettings air;  // air: drag, lift and wind (enabled only when the scene has the key)
   ContactSpec contact;
   std::vector<SolverSpec> solvers;
@@ -154,8 +164,11 @@ std::shared_ptr<const Attachments> scene_attachments(const Scene& scene, const C
 // Whether any collider is a dynamic rigid body (then every solver has its own copy of it).
 bool has_dynamic_colliders(const Scene& scene);
 
-// The scene's distance constraints for a solver (their colliders the scene's); null when none.
+// The scene's distance constraints for a solver (their colliders the scene's), its drags
+// (`interactions`) among them as soft constraints to their moving targets; null when none.
 std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene);
+// A drag as the soft constraint of length 0 every solver applies (its own track).
+DistanceConstraint drag_constraint(const DragSpec& drag);
 
 // Named pin sets of the scene's cloth shape (grid: corners, ...; disc: center, rim; mesh: center).
 std::vector<std::string> pin_set_names(const ClothSpec& cloth);

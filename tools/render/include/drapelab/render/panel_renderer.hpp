@@ -44,7 +44,7 @@ class PanelRenderer {
     DrawMesh mesh;
   };
   // The constraints as lines from particle a to their other end at `time` (s): strings and rods.
-  void draw_constraints(const Eigen::Matrix3Xd& cloth, double time) const;
+  void draw_constraints(const Eigen::Matrix3Xd& cloth, double time, const BodyPoses* bodies) const;
 
   const ClothModel& model_;
   DistanceConstraints constraints_;  // the scene's, drawn as lines
