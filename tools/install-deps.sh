@@ -15,6 +15,8 @@ packages=(
   libosmesa6-dev libgl-dev                       # drapelab render: offscreen OpenGL (Mesa; no display or GPU)
   libfreetype-dev fonts-dejavu-core              # drapelab render: label text and its font
   ffmpeg                                         # drapelab render: render/video.mp4 from the frames
+  libglfw3-dev libimgui-dev                      # drapelab view: its window and input, its controls
+  xvfb                                           # tests: drapelab view in a virtual display
   libgtest-dev libgmock-dev                      # tests
   libxml2-dev libpng-dev                         # tests (HTML report, screenshot); PNG files of drapelab render
   chromium                                       # tests: open the HTML report headless

@@ -80,7 +80,10 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
     if (!(l > 0.0)) continue;  // coincident ends: no direction to pull along
     const Eigen::Vector3d n = d / l;
     // The push along n on a (N): negative while the spring is stretched.
-    const double push = c.stiffness * (c.length - l) - c.damping * (v.col(a) - vb).dot(n);
+    const bool drag = c.b.kind == ConstraintEnd::Kind::drag;
+    const double k = drag ? c.b.drag->stiffness : c.stiffness;    // N/m
+    const double damping = drag ? c.b.drag->damping : c.damping;  // N*s/m
+    const double push = k * (c.length - l) - damping * (v.col(a) - vb).dot(n);
     force.col(a) += push * n;
     const bool b_particle = c.b.kind == ConstraintEnd::Kind::particle;
     if (b_particle) force.col(c.b.particle) -= push * n;
@@ -100,8 +103,8 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
       coupling.weight[1] = -1.0;
     }
     coupling.normal = n;
-    coupling.stiffness = c.stiffness;
-    coupling.damping = c.damping;
+    coupling.stiffness = k;
+    coupling.damping = damping;
     coupling.depth = c.length - l;
     coupling.force = push;
     coupling.two_sided = true;
@@ -210,7 +213,8 @@ double DistanceConstraints::soft_energy(double t, const Eigen::Matrix3Xd& x) con
   for (const DistanceConstraint& c : list) {
     if (c.mode != ConstraintMode::soft || !acts(c, t)) continue;
     const double stretch = (x.col(particle_a(c)) - end_b(c, t, x, x).first).norm() - c.length;
-    energy += 0.5 * c.stiffness * stretch * stretch;
+    const double k = c.b.kind == ConstraintEnd::Kind::drag ? c.b.drag->stiffness : c.stiffness;
+    energy += 0.5 * k * stretch * stretch;
   }
   return energy;
 }

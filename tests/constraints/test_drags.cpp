@@ -27,6 +27,8 @@ constexpr double kReleased = 0.5;   // s: the last keyframe
 std::shared_ptr<const DistanceConstraints> drag_of_centre(const Eigen::Vector3d& start) {
   auto track = std::make_shared<DragTrack>();
   track->particle = kCentre;
+  track->stiffness = kStiffness;
+  track->damping = 0.01;
   // Pulled 0.3 m sideways and up, along a straight path over 0.45 s.
   track->keyframes = {{kPressed, start}, {kReleased, start + Eigen::Vector3d(0.3, 0.2, 0.0)}};
   auto constraints = std::make_shared<DistanceConstraints>();

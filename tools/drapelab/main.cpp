@@ -80,6 +80,13 @@ int main(int argc, char** argv) {
       app.add_subcommand("report", "Write one self-contained HTML page for a run or sweep folder");
   drapelab::cli::add_report_options(*report, report_arguments);
 
+  // Listed for --help; its own program parses its options (drapelab view --help).
+  app.add_subcommand("view",
+                     "Play a scene live in a window and grab the cloth with the mouse "
+                     "(drapelab view SCENE; options: drapelab view --help)")
+      ->allow_extras();
+  if (argc >= 2 && std::string(argv[1]) == "view") return drapelab::cli::view_verb(argc, argv);
+
   std::string command_line;
   for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
   try {

@@ -10,6 +10,9 @@ namespace drapelab::cli {
 
 inline constexpr int kExitBadInput = 2;
 
+// drapelab view ...: replaces this process with drapelab-view and the arguments after "view".
+int view_verb(int argc, char** argv);
+
 struct RunArguments {
   std::string scene;
   std::string out;

@@ -36,8 +36,8 @@ struct ConstraintEnd {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // m: the world point, or the offset in the
                                                     // collider's own frame
   // Kind::drag: the moving target; the constraint is soft, of length 0, pulls the track's particle
-  // (not `a`, so that a viewer can move one drag from particle to particle) and acts only while the
-  // track is active.
+  // with the track's stiffness and damping (not the constraint's own, so that a viewer can move one
+  // drag from particle to particle and change its spring) and acts only while the track is active.
   std::shared_ptr<const DragTrack> drag;
 };
 

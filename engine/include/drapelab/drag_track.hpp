@@ -19,6 +19,8 @@ struct DragKeyframe {
 
 struct DragTrack {
   int particle = 0;                     // the particle pulled
+  double stiffness = 0.0;               // N/m, of the spring
+  double damping = 0.0;                 // N*s/m, along it
   std::vector<DragKeyframe> keyframes;  // in increasing time
   bool held = false;                    // acts on after the last keyframe (a live drag)
 

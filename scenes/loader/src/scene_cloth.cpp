@@ -148,6 +148,8 @@ std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene)
 DistanceConstraint drag_constraint(const DragSpec& drag) {
   auto track = std::make_shared<DragTrack>();
   track->particle = drag.particle;
+  track->stiffness = drag.stiffness;
+  track->damping = drag.damping;
   track->keyframes = drag.keyframes;
   DistanceConstraint c;
   c.a = drag.particle;

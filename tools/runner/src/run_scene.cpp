@@ -15,12 +15,12 @@
 #include "drapelab/run_folder/run_transaction.hpp"
 #include "drapelab/runner/mesh_output.hpp"
 #include "drapelab/runner/scene_setup.hpp"
+#include "drapelab/runner/solver_factory.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/scene/scene_writer.hpp"
 #include "frame_loop.hpp"
 #include "frame_tables.hpp"
 #include "run_summary.hpp"
-#include "solver_factory.hpp"
 
 namespace drapelab::runner {
 namespace {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drapelab/runner/solver_factory.hpp"
 #include "frame_loop.hpp"
-#include "solver_factory.hpp"
 
 namespace drapelab::runner {
 namespace {

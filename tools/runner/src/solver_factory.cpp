@@ -1,4 +1,4 @@
-#include "solver_factory.hpp"
+#include "drapelab/runner/solver_factory.hpp"
 
 #include <stdexcept>
 
@@ -112,11 +112,20 @@ std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
 std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
                                     std::shared_ptr<const ClothModel> model,
                                     const ClothState& initial,
-                                    std::shared_ptr<const ContactModel> contacts) {
+                                    std::shared_ptr<const ContactModel> contacts,
+                                    const std::vector<DistanceConstraint>& extra_constraints) {
   // The cloth as this solver runs it: the continuum's elements for our solver with model:
   // continuum, the springs for the others.
   model = scene::cloth_for_solver(scene, spec, std::move(model));
-  const Holds holds{scene::scene_attachments(scene, initial), scene::scene_constraints(scene)};
+  std::shared_ptr<const DistanceConstraints> constraints = scene::scene_constraints(scene);
+  if (!extra_constraints.empty()) {
+    auto all = constraints ? std::make_shared<DistanceConstraints>(*constraints)
+                           : std::make_shared<DistanceConstraints>();
+    all->colliders = scene.colliders;
+    all->list.insert(all->list.end(), extra_constraints.begin(), extra_constraints.end());
+    constraints = std::move(all);
+  }
+  const Holds holds{scene::scene_attachments(scene, initial), std::move(constraints)};
   switch (spec.type) {
     case SolverType::spring_damper:
       return make_spring_damper(scene, spec, std::move(model), initial, holds, std::move(contacts));
