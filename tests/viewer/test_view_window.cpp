@@ -37,10 +37,12 @@ class Xvfb {
       ::_exit(127);  // not installed
     }
     ::close(pipe_fds[1]);
-    char text[32] = {};
-    const ssize_t got = ::read(pipe_fds[0], text, sizeof(text) - 1);  // "N\n" once it listens
+    // Xvfb writes "N\n" once it listens, possibly in more than one write: read up to the newline.
+    std::string number;
+    char c = 0;
+    while (::read(pipe_fds[0], &c, 1) == 1 && c != '\n') number += c;
     ::close(pipe_fds[0]);
-    if (got > 0) display_ = ":" + std::string(text, static_cast<std::size_t>(got) - 1);
+    if (!number.empty()) display_ = ":" + number;
   }
   ~Xvfb() {
     if (pid_ > 0) {
