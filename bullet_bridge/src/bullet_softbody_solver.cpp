@@ -77,8 +77,16 @@ void BulletSoftBodySolver::before_substep(btDynamicsWorld* world, btScalar h) {
   if (self->options_.constraints && self->options_.constraints->has_soft())
     kick_soft_constraints(*self->options_.constraints, *self->model_, self->substep_start_, h,
                           *self->cloth_, self->state_, *self->colliders_);
-  if (self->options_.air.enabled)
-    self->cloth_->setWindVelocity(to_bullet(self->wind_.at(self->substep_start_)));
+  if (self->options_.air.enabled) {
+    // One wind per soft body in Bullet: with turbulence, the wind at the cloth's centre.
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    if (self->wind_.varies_in_space()) {
+      const btSoftBody::tNodeArray& nodes = self->cloth_->m_nodes;
+      for (int i = 0; i < nodes.size(); ++i) centre += to_eigen(nodes[i].m_x);
+      centre /= std::max(1, nodes.size());
+    }
+    self->cloth_->setWindVelocity(to_bullet(self->wind_.at(self->substep_start_, centre)));
+  }
 }
 
 void BulletSoftBodySolver::build_cloth(const ClothState& initial) {

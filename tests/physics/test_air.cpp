@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <string>
 
 #include "drapelab/air.hpp"
@@ -211,6 +212,98 @@ TEST(Air, GustsAreSmoothReproducibleAndOfTheirAmplitude) {
   // weights' spread), far from a jump.
   EXPECT_LT(steepest, 4.0 * 1.5 * 2.0 * std::numbers::pi / 1.0);
   EXPECT_GT(difference, 0.5);  // another seed, other gusts
+}
+
+// Turbulence: over space its |u'| has the RMS it is given and no mean, it is divergence-free
+// (incompressible), frozen in the air that the mean wind carries, the same for the same seed, and
+// leaves the gusts as they were.
+TEST(Air, TurbulenceHasItsIntensityNoDivergenceAndMovesWithTheWind) {
+  AirSettings air = still_air();
+  air.wind = {2.0, 0.0, 1.0};
+  air.gust_amplitude = 0.5;
+  air.gust_period = 2.0;
+  air.turbulence_intensity = 0.8;  // m/s
+  air.turbulence_length = 0.5;     // m
+  air.seed = 11;
+  const Wind wind(air), twin(air);
+  AirSettings calm = air;
+  calm.turbulence_intensity = 0.0;
+  const Wind gusts_only(calm);
+  ASSERT_TRUE(wind.varies_in_space());
+  ASSERT_FALSE(gusts_only.varies_in_space());
+  std::mt19937_64 random(3);
+  const auto uniform = [&random] { return static_cast<double>(random() >> 11) * 0x1.0p-53; };
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double sum_of_squares = 0.0, worst_divergence = 0.0, worst_frozen = 0.0;
+  const int samples = 20000;
+  const double h = 1e-5;  // m, for the central differences
+  for (int k = 0; k < samples; ++k) {
+    const Eigen::Vector3d x(20.0 * uniform(), 20.0 * uniform(), 20.0 * uniform());  // m
+    const double t = 10.0 * uniform();                                              // s
+    const Eigen::Vector3d u = wind.eddies(t, x);
+    ASSERT_EQ(u, twin.eddies(t, x));          // the same seed: the same bits
+    ASSERT_EQ(wind.at(t), gusts_only.at(t));  // the gusts are untouched
+    ASSERT_EQ(wind.at(t, x), Eigen::Vector3d(wind.at(t) + u));
+    mean += u;
+    sum_of_squares += u.squaredNorm();
+    if (k < 500) {
+      double divergence = 0.0;
+      for (int d = 0; d < 3; ++d) {
+        const Eigen::Vector3d step = h * Eigen::Vector3d::Unit(d);
+        divergence += (wind.eddies(t, x + step)[d] - wind.eddies(t, x - step)[d]) / (2.0 * h);
+      }
+      worst_divergence = std::max(worst_divergence, std::abs(divergence));
+      // Carried by the mean wind: 0.7 s later the same eddy is 0.7 W further on.
+      const Eigen::Vector3d later = wind.eddies(t + 0.7, x + 0.7 * air.wind);
+      worst_frozen = std::max(worst_frozen, (later - u).norm());
+    }
+  }
+  mean /= samples;
+  EXPECT_NEAR(std::sqrt(sum_of_squares / samples) / 0.8, 1.0, 0.03);
+  EXPECT_LT(mean.norm(), 0.03 * 0.8);
+  // The eddies' velocity gradients are about 0.8 m/s over 0.1 m: the divergence is rounding.
+  EXPECT_LT(worst_divergence, 1e-5 * 0.8 / 0.1);
+  EXPECT_LT(worst_frozen, 1e-12);
+  RecordProperty("turbulence_rms_over_intensity",
+                 std::to_string(std::sqrt(sum_of_squares / samples) / 0.8));
+}
+
+// With turbulence each triangle feels the wind at its centroid: a sheet's air force is the sum of
+// triangle_air_force with that wind, a third to each corner.
+TEST(Air, EachTriangleFeelsTheWindAtItsCentroid) {
+  GridClothSpec spec;
+  spec.nx = spec.ny = 5;
+  spec.size = {0.4, 0.4};
+  spec.plane = GridPlane::xy;
+  spec.center = {0.0, 1.0, 0.0};
+  spec.mass = 0.01;
+  const ClothModel model = build_grid_cloth(spec);
+  const ClothState state = initial_grid_state(model, spec, 0.0, 0);
+  AirSettings air = still_air();
+  air.wind = {0.0, 0.0, 3.0};
+  air.turbulence_intensity = 1.0;
+  air.turbulence_length = 0.2;
+  air.seed = 5;
+  const Wind wind(air);
+  const double t = 0.3;  // s
+  Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, model.particle_count());
+  add_air_forces(model, air, wind, t, state.x, state.v, force);
+  Eigen::Matrix3Xd expected = Eigen::Matrix3Xd::Zero(3, model.particle_count());
+  double spread = 0.0;  // N: how much the triangles' forces differ (the eddies matter)
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  for (Eigen::Index k = 0; k < model.triangles.cols(); ++k) {
+    const Eigen::Vector3d a = state.x.col(model.triangles(0, k));
+    const Eigen::Vector3d b = state.x.col(model.triangles(1, k));
+    const Eigen::Vector3d c = state.x.col(model.triangles(2, k));
+    const Eigen::Vector3d doubled = (b - a).cross(c - a);
+    const Eigen::Vector3d f = triangle_air_force(air, 0.5 * doubled.norm(), doubled.normalized(),
+                                                 wind.at(t, (a + b + c) / 3.0));
+    if (k == 0) first = f;
+    spread = std::max(spread, (f - first).norm());
+    for (int corner = 0; corner < 3; ++corner) expected.col(model.triangles(corner, k)) += f / 3.0;
+  }
+  EXPECT_LT((force - expected).norm(), 1e-14);
+  EXPECT_GT(spread, 0.1 * first.norm());
 }
 
 }  // namespace

@@ -46,6 +46,16 @@ std::vector<BadScene> bad_air() {
        39,
        "air.gusts",
        {"vary the wind's speed along its direction, but air.wind is zero"}},
+      {"TurbulenceNeedsALength",
+       air("  wind: [3, 0, 0]\n  turbulence: {intensity: 1}\n"),
+       40,
+       "air.turbulence.length",
+       {"is required", "m, > 0"}},
+      {"TurbulenceLengthMustBePositive",
+       air("  wind: [3, 0, 0]\n  turbulence: {intensity: 1, length: 0}\n"),
+       40,
+       "air.turbulence.length",
+       {"must be >= 0.001, got 0"}},
       {"AirMustBeAMap", append_text("air: 3\n"), 38, "air", {"must be a map of keys, got '3'"}},
   };
 }
@@ -60,10 +70,11 @@ TEST_P(AirErrors, NameTheLineTheKeyAndTheExpectedValue) {
 INSTANTIATE_TEST_SUITE_P(AirLoader, AirErrors, ::testing::ValuesIn(bad_air()), RowName());
 
 TEST(AirLoader, AirRoundTripsThroughResolvedYaml) {
-  const auto loaded = load(kScene +
-                           "seed: 9\n"
-                           "air: {density: 1.1, drag: 1.3, lift: 0.25, wind: [4, 0.5, -1],"
-                           " gusts: {amplitude: 1.5, period: 2}}\n");
+  const auto loaded =
+      load(kScene +
+           "seed: 9\n"
+           "air: {density: 1.1, drag: 1.3, lift: 0.25, wind: [4, 0.5, -1],"
+           " gusts: {amplitude: 1.5, period: 2}, turbulence: {intensity: 0.7, length: 0.4}}\n");
   ASSERT_TRUE(loaded.ok()) << (loaded.errors.empty() ? "" : loaded.errors.front());
   const AirSettings& a = loaded.scene->air;
   EXPECT_TRUE(a.enabled);
@@ -73,12 +84,15 @@ TEST(AirLoader, AirRoundTripsThroughResolvedYaml) {
   EXPECT_EQ(a.wind, Eigen::Vector3d(4, 0.5, -1));
   EXPECT_EQ(a.gust_amplitude, 1.5);
   EXPECT_EQ(a.gust_period, 2.0);
-  EXPECT_EQ(a.seed, 9u);  // the gusts take the scene's seed
+  EXPECT_EQ(a.turbulence_intensity, 0.7);
+  EXPECT_EQ(a.turbulence_length, 0.4);
+  EXPECT_EQ(a.seed, 9u);  // the gusts and eddies take the scene's seed
   const std::string written = scene::resolved_scene_yaml(*loaded.scene);
   const auto again = load(written);
   ASSERT_TRUE(again.ok()) << (again.errors.empty() ? "" : again.errors.front()) << written;
   EXPECT_EQ(again.scene->air.wind, a.wind);
   EXPECT_EQ(again.scene->air.gust_period, a.gust_period);
+  EXPECT_EQ(again.scene->air.turbulence_length, a.turbulence_length);
   EXPECT_EQ(scene::resolved_scene_yaml(*again.scene), written);
   // Without the key there is no air at all.
   EXPECT_FALSE(load(kScene).scene->air.enabled);

@@ -5,13 +5,16 @@
 //   lift  F_l = 1/2 rho C_l A |u_n| |u - u_n n| l          (l: unit, across u, towards the pushed
 //   side)
 // Both sides of a triangle are alike (the signs follow u_n), a triangle moving in its own plane
-// feels neither, and each corner takes a third. The wind is uniform in space; with gusts its speed
-// varies in time by a smooth, seeded sum of sinusoids (Wind).
+// feels neither, and each corner takes a third. The mean wind is uniform in space; with gusts its
+// speed varies in time by a smooth, seeded sum of sinusoids, and with turbulence a seeded field of
+// eddies, carried along by the mean wind, adds to it from place to place (Wind); a triangle feels
+// the wind at its centroid.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "drapelab/cloth_model.hpp"
 
@@ -28,16 +31,36 @@ struct AirSettings {
   // so that the root mean square of g is `gust_amplitude`. 0: steady.
   double gust_amplitude = 0.0;  // m/s
   double gust_period = 1.0;     // s
+  // Turbulence: a frozen field of eddies u'(x - W t) carried by the mean wind W (Taylor's
+  // hypothesis), the sum of 16 seeded sinusoidal shear waves whose wavelengths lie within a factor
+  // 2 of `turbulence_length`; each wave's velocity is normal to its wave vector, so the field is
+  // divergence-free (incompressible), and the root mean square of |u'| over space is
+  // `turbulence_intensity`. 0: none.
+  double turbulence_intensity = 0.0;  // m/s
+  double turbulence_length = 1.0;     // m
   std::uint64_t seed = 0;
 };
 
-// The wind velocity W(t) of AirSettings: the same seed gives the same gusts bit for bit.
+// The wind velocity of AirSettings: the same seed gives the same gusts and eddies bit for bit.
 class Wind {
  public:
   explicit Wind(const AirSettings& air);
-  Eigen::Vector3d at(double t) const;  // m/s at time t (s)
+  Eigen::Vector3d at(double t) const;  // m/s at time t (s): the mean wind and its gusts
+  // m/s at time t (s) and place x (m): at(t) plus the turbulence there.
+  Eigen::Vector3d at(double t, const Eigen::Vector3d& x) const;
+  bool varies_in_space() const { return !turbulence_.empty(); }
+  // The turbulence alone at x (m) and time t (s).
+  Eigen::Vector3d eddies(double t, const Eigen::Vector3d& x) const;
 
  private:
+  struct ShearWave {
+    Eigen::Vector3d wave_vector;  // rad/m
+    Eigen::Vector3d velocity;     // m/s, normal to wave_vector
+    double phase = 0.0;           // rad
+  };
+  void add_turbulence(const AirSettings& air);
+
+  std::vector<ShearWave> turbulence_;
   Eigen::Vector3d mean_;               // m/s
   Eigen::Vector3d direction_;          // unit, the gusts' direction (the mean wind's)
   std::array<double, 4> weight_{};     // m/s per sinusoid

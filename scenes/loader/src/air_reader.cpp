@@ -5,9 +5,27 @@
 
 namespace drapelab::scene {
 
+namespace {
+
+// air.turbulence: {intensity, length}, the eddies carried by the mean wind.
+void read_turbulence(SceneReader& reader, MapReader& air_map, AirSettings& air) {
+  MapReader map(reader, air_map.get("turbulence"), air_map.path_of("turbulence"),
+                {"intensity", "length"});
+  if (!map.valid()) return;
+  if (!map.has("intensity")) map.missing("intensity", "the eddies' RMS speed in m/s, >= 0");
+  if (!map.has("length")) map.missing("length", "the eddies' typical size in m, > 0");
+  const auto intensity = map.number("intensity", gust_amplitude_range(), std::nullopt);
+  const auto length = map.number("length", turbulence_length_range(), std::nullopt);
+  if (!intensity || !length) return;
+  air.turbulence_intensity = *intensity;
+  air.turbulence_length = *length;
+}
+
+}  // namespace
+
 AirSettings read_air(SceneReader& reader, const YAML::Node& node, std::uint64_t seed) {
   AirSettings air;
-  MapReader map(reader, node, "air", {"density", "drag", "lift", "wind", "gusts"});
+  MapReader map(reader, node, "air", {"density", "drag", "lift", "wind", "gusts", "turbulence"});
   if (!map.valid()) return air;
   air.enabled = true;
   air.seed = seed;
@@ -16,6 +34,7 @@ AirSettings read_air(SceneReader& reader, const YAML::Node& node, std::uint64_t 
   air.lift = map.number("lift", air_coefficient_range(), air.lift).value_or(air.lift);
   if (const auto wind = map.numbers("wind", 3, wind_range(), Eigen::Vector3d::Zero()))
     air.wind = *wind;
+  if (map.has("turbulence")) read_turbulence(reader, map, air);
   if (!map.has("gusts")) return air;
   MapReader gusts(reader, map.get("gusts"), map.path_of("gusts"), {"amplitude", "period"});
   if (!gusts.valid()) return air;

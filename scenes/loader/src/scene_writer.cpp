@@ -208,6 +208,9 @@ std::string resolved_scene_yaml(const Scene& s) {
     if (s.air.gust_amplitude > 0.0)
       out << "  gusts: {amplitude: " << format_number(s.air.gust_amplitude)
           << ", period: " << format_number(s.air.gust_period) << "}  # m/s RMS, s\n";
+    if (s.air.turbulence_intensity > 0.0)
+      out << "  turbulence: {intensity: " << format_number(s.air.turbulence_intensity)
+          << ", length: " << format_number(s.air.turbulence_length) << "}  # m/s RMS, m\n";
   }
   if (!s.constraints.empty()) out << "constraints:\n";
   for (const auto& constraint : s.constraints) write_constraint(out, constraint, s.colliders);

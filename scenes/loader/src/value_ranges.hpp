@@ -78,6 +78,7 @@ inline Range air_coefficient_range() { return {0.0, true, 100.0, true}; }
 inline Range wind_range() { return {-1000.0, true, 1000.0, true}; }
 inline Range gust_amplitude_range() { return {0.0, true, 1000.0, true}; }
 inline Range gust_period_range() { return {1e-3, true, 1e6, true}; }
+inline Range turbulence_length_range() { return {1e-3, true, 1e4, true}; }  // m
 // constraints[].tolerance: the largest relative length error a hard or rope projection leaves.
 inline Range constraint_tolerance_range() { return {1e-12, true, 0.1, true}; }
 inline Range seed_range() { return {0.0, true, 9.2e18, true}; }
