@@ -1,15 +1,20 @@
 // The viewer's session without a window: a drag made live pulls the grabbed particle toward the
 // target in every solver, and the scene it saves (interactions:) replays it exactly: run from the
-// saved file, every solver moves the same particle along the same path.
+// saved file, in a session and by `drapelab run`, every solver moves the same particle along the
+// same path.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "drapelab/run_folder/point_cache.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/cli.hpp"
 #include "fixtures/scene_text.hpp"
 #include "live_session.hpp"
 
@@ -38,6 +43,12 @@ std::filesystem::path write_text(const std::string& name, const std::string& tex
   const auto path = std::filesystem::temp_directory_path() / name;
   std::ofstream(path) << text;
   return path;
+}
+
+std::string scientific(double value) {
+  std::ostringstream text;
+  text << std::scientific << std::setprecision(3) << value;
+  return text.str();
 }
 
 viewer::LiveSession session_of(const std::filesystem::path& file) {
@@ -93,8 +104,29 @@ TEST(LiveSession, ADragIsReplayedExactlyFromTheSavedScene) {
     // The saved keyframes are the live ones, written to 17 significant digits: the same targets.
     EXPECT_LT(worst, 1e-9);
     RecordProperty(live.solvers()[k].solver->name() + "_replay_difference_m",
-                   std::to_string(worst));
+                   scientific(worst));
   }
+
+  // drapelab run on the saved scene: its point caches (float32) hold the same path.
+  const auto out = std::filesystem::temp_directory_path() / "drapelab_drag_sheet_run";
+  const auto run = fixtures::run_drapelab({"run", saved.string(), "--out", out.string(), "--force",
+                                           "--meshes", "pc2", "--set", "duration=1", "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (std::size_t k = 0; k < live.solvers().size(); ++k) {
+    const std::string name = live.solvers()[k].solver->name();
+    SCOPED_TRACE(name);
+    const auto cache = out / "meshes" / (name + ".pc2");
+    const int points = live.model().particle_count();
+    double worst = 0.0;  // m
+    for (std::size_t f = 0; f < live_path[k].size(); ++f) {
+      const auto x = run_folder::read_pc2_frame(cache, points, static_cast<int>(f) + 1);
+      ASSERT_TRUE(x) << cache;
+      worst = std::max(worst, (Eigen::Vector3d(x->col(kParticle)) - live_path[k][f]).norm());
+    }
+    EXPECT_LT(worst, 1e-6);  // float32 positions of about 1 m
+    RecordProperty(name + "_drapelab_run_difference_m", scientific(worst));
+  }
+  std::filesystem::remove_all(out);
 }
 
 // A slider's change: every solver continues from where it was, with the new springs (a stiffer
