@@ -103,8 +103,7 @@ TEST(LiveSession, ADragIsReplayedExactlyFromTheSavedScene) {
       worst = std::max(worst, (live_path[k][f] - replay_path[k][f]).norm());
     // The saved keyframes are the live ones, written to 17 significant digits: the same targets.
     EXPECT_LT(worst, 1e-9);
-    RecordProperty(live.solvers()[k].solver->name() + "_replay_difference_m",
-                   scientific(worst));
+    RecordProperty(live.solvers()[k].solver->name() + "_replay_difference_m", scientific(worst));
   }
 
   // drapelab run on the saved scene: its point caches (float32) hold the same path.
