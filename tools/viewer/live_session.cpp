@@ -109,6 +109,7 @@ void LiveSession::finish_frame() {
 void LiveSession::reset() {
   if (dragging()) release();
   live_->keyframes.clear();
+  finished_.clear();
   frame_open_ = false;
   build_solvers();
 }

@@ -47,7 +47,8 @@ class LiveSession {
   // step of each unfinished solver), so that a window keeps drawing while a slow scene computes;
   // true when the frame completed. A frame spread over calls steps exactly as advance_frame.
   bool advance_for(double budget);
-  // Every solver back to the scene's start; the recorded drags are kept.
+  // Every solver back to the scene's start, and the recording cleared: its drags acted on the run
+  // that is gone, and a replay from the start would not meet the cloth they met.
   void reset();
 
   // The parameters the viewer's sliders change while the scene runs.
