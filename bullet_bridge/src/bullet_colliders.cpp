@@ -156,23 +156,27 @@ std::vector<BodyState> KinematicColliders::dynamic_bodies() const {
 }
 
 void KinematicColliders::apply_loads(const std::vector<ColliderForce>& forces) {
-  for (std::size_t c = 0; c < bodies_.size() && c < forces.size(); ++c) {
-    if (!colliders_[c].dynamic()) continue;
-    btRigidBody& body = *bodies_[c];
-    const Eigen::Vector3d centre = to_eigen(body.getCenterOfMassPosition());
-    body.applyCentralForce(to_bullet(forces[c].force));
-    // The moment about the centre of mass from the moment about the world origin.
-    body.applyTorque(to_bullet(forces[c].torque - centre.cross(forces[c].force)));
-  }
+  apply(forces, /*impulse_step=*/0.0);
 }
 
 void KinematicColliders::apply_impulses(const std::vector<ColliderForce>& forces, double h) {
+  apply(forces, h);
+}
+
+void KinematicColliders::apply(const std::vector<ColliderForce>& forces, double impulse_step) {
   for (std::size_t c = 0; c < bodies_.size() && c < forces.size(); ++c) {
     if (!colliders_[c].dynamic()) continue;
     btRigidBody& body = *bodies_[c];
     const Eigen::Vector3d centre = to_eigen(body.getCenterOfMassPosition());
-    body.applyCentralImpulse(to_bullet(h * forces[c].force));
-    body.applyTorqueImpulse(to_bullet(h * (forces[c].torque - centre.cross(forces[c].force))));
+    // The moment about the centre of mass from the moment about the world origin.
+    const Eigen::Vector3d moment = forces[c].torque - centre.cross(forces[c].force);
+    if (impulse_step > 0.0) {
+      body.applyCentralImpulse(to_bullet(impulse_step * forces[c].force));
+      body.applyTorqueImpulse(to_bullet(impulse_step * moment));
+    } else {
+      body.applyCentralForce(to_bullet(forces[c].force));
+      body.applyTorque(to_bullet(moment));
+    }
   }
 }
 

@@ -66,6 +66,9 @@ class KinematicColliders {
   void apply_impulses(const std::vector<ColliderForce>& forces, double h);
 
  private:
+  // Forces (impulse_step 0) or the impulses impulse_step F (s).
+  void apply(const std::vector<ColliderForce>& forces, double impulse_step);
+
   btDynamicsWorld& world_;
   std::vector<Collider> colliders_;
   std::vector<BulletShape> shapes_;

@@ -49,11 +49,8 @@ class BulletDeformableSolver final : public BulletClothSolver {
         self_collision ? deformable_self_friction_factor(options_.self_collision) : 1.0;
     colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_,
                                                       friction_factor);
-    if (options_.constraints && options_.constraints->any_on_dynamic()) {
-      // Soft constraints ending on a dynamic collider follow this world's body.
-      body_poses_ = std::make_shared<ColliderPoseTable>(colliders.size());
-      options_.constraints = constraints_on_own_bodies(options_.constraints, body_poses_);
-    }
+    // Soft constraints ending on a dynamic collider follow this world's body.
+    body_poses_ = follow_own_bodies(options_.constraints, colliders.size());
 
     cloth_ = make_soft_body(
         info, *model_, initial, [](std::size_t) { return 1.0; },  // kLST unused here

@@ -36,11 +36,8 @@ BulletSoftBodySolver::BulletSoftBodySolver(std::string name,
   info.m_sparsesdf.setDefaultVoxelsz(options_.voxel_size);
   info.m_sparsesdf.Reset();
   colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_);
-  if (options_.constraints && options_.constraints->any_on_dynamic()) {
-    // Soft constraints ending on a dynamic collider follow this world's body.
-    body_poses_ = std::make_shared<ColliderPoseTable>(colliders.size());
-    options_.constraints = constraints_on_own_bodies(options_.constraints, body_poses_);
-  }
+  // Soft constraints ending on a dynamic collider follow this world's body.
+  body_poses_ = follow_own_bodies(options_.constraints, colliders.size());
   build_cloth(initial);
   previous_velocity_ = state_.v;
   forces_.assign(colliders.size(), ColliderForce{});

@@ -97,6 +97,14 @@ void kick_nodes(const ClothModel& model, const Eigen::Matrix3Xd& force, double h
 
 }  // namespace
 
+std::shared_ptr<ColliderPoseTable> follow_own_bodies(
+    std::shared_ptr<const DistanceConstraints>& constraints, std::size_t colliders) {
+  if (!constraints || !constraints->any_on_dynamic()) return nullptr;
+  auto poses = std::make_shared<ColliderPoseTable>(colliders);
+  constraints = constraints_on_own_bodies(constraints, poses);
+  return poses;
+}
+
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
                            double t, double h, btSoftBody& body, ClothState& scratch,
                            KinematicColliders& bodies) {

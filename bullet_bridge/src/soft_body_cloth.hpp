@@ -49,6 +49,12 @@ void anchor_attached_nodes(const Attachments& attachments,
 // free node's velocity gains h f / m (what btSoftBody::addForce does in the classic cloth, which
 // the deformable world's solver does not read), and the dynamic bodies some of them end on take
 // the reactions as the impulse h f. `scratch` receives the nodes' state.
+// When some of `constraints` end on a dynamic collider: replaces them with this solver's own copy,
+// whose ends follow the returned pose table (to fill from this world's bodies before every substep
+// with KinematicColliders::write_substep); null otherwise.
+std::shared_ptr<ColliderPoseTable> follow_own_bodies(
+    std::shared_ptr<const DistanceConstraints>& constraints, std::size_t colliders);
+
 void kick_soft_constraints(const DistanceConstraints& constraints, const ClothModel& model,
                            double t, double h, btSoftBody& body, ClothState& scratch,
                            KinematicColliders& bodies);

@@ -19,18 +19,22 @@ LiveSession::LiveSession(scene::Scene scene, std::shared_ptr<const ClothModel> l
   build_solvers();
 }
 
-void LiveSession::build_solvers() {
-  solvers_.clear();
+std::unique_ptr<Solver> LiveSession::make_live_solver(const scene::SolverSpec& spec,
+                                                      const ClothState& start) const {
   // The live drag: a soft constraint of length 0 to the live track, in every solver.
   DistanceConstraint live;
   live.b.kind = ConstraintEnd::Kind::drag;
   live.b.drag = live_;
   live.mode = ConstraintMode::soft;
+  return runner::make_solver(scene_, spec, setup_.model, start, setup_.contacts, {live});
+}
+
+void LiveSession::build_solvers() {
+  solvers_.clear();
   for (const scene::SolverSpec& spec : scene_.solvers) {
     LiveSolver entry;
     entry.spec = &spec;
-    entry.solver =
-        runner::make_solver(scene_, spec, setup_.model, setup_.initial, setup_.contacts, {live});
+    entry.solver = make_live_solver(spec, setup_.initial);
     measure(entry);
     solvers_.push_back(std::move(entry));
   }
@@ -142,15 +146,10 @@ void LiveSession::set_parameters(const Parameters& changed) {
   std::vector<ClothState> states;
   for (const LiveSolver& live : solvers_) states.push_back(live.solver->state());
   setup_ = runner::build_scene_setup(scene_);
-  DistanceConstraint drag;
-  drag.b.kind = ConstraintEnd::Kind::drag;
-  drag.b.drag = live_;
-  drag.mode = ConstraintMode::soft;
   for (std::size_t k = 0; k < solvers_.size(); ++k) {
     LiveSolver& live = solvers_[k];
     std::vector<float> history = std::move(live.max_stretch_history);
-    live.solver =
-        runner::make_solver(scene_, *live.spec, setup_.model, states[k], setup_.contacts, {drag});
+    live.solver = make_live_solver(*live.spec, states[k]);
     live.max_stretch_history = std::move(history);
   }
 }

@@ -88,6 +88,9 @@ class LiveSession {
 
  private:
   void build_solvers();
+  // `spec`'s solver from `start`, with the live drag among its constraints.
+  std::unique_ptr<Solver> make_live_solver(const scene::SolverSpec& spec,
+                                           const ClothState& start) const;
   void measure(LiveSolver& live) const;
   void keyframe_now();  // the live target, for the end of the frame about to be stepped
   void start_frame();   // the pending press, the live keyframe, the step counts

@@ -156,9 +156,7 @@ DistanceConstraint drag_constraint(const DragSpec& drag) {
   c.b.kind = ConstraintEnd::Kind::drag;
   c.b.drag = std::move(track);
   c.length = 0.0;
-  c.mode = ConstraintMode::soft;
-  c.stiffness = drag.stiffness;
-  c.damping = drag.damping;
+  c.mode = ConstraintMode::soft;  // its spring is the track's
   return c;
 }
 
