@@ -17,6 +17,9 @@ packages=(
   ffmpeg                                         # drapelab render: render/video.mp4 from the frames
   libglfw3-dev libimgui-dev                      # drapelab view: its window and input, its controls
   xvfb                                           # tests: drapelab view in a virtual display
+  python3-dev pybind11-dev python3-numpy         # the Python module (import drapelab)
+  python3-pytest python3-matplotlib              # its tests; the sweep-plotting example
+  slurmctld slurmd slurm-client munge            # tests: sweeps on a one-node Slurm (tools/slurm-local.sh)
   libgtest-dev libgmock-dev                      # tests
   libxml2-dev libpng-dev                         # tests (HTML report, screenshot); PNG files of drapelab render
   chromium                                       # tests: open the HTML report headless

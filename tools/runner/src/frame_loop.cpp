@@ -15,7 +15,8 @@ bool interrupted(const std::atomic<bool>* interrupt) {
   return interrupt && interrupt->load(std::memory_order_relaxed);
 }
 
-// Steps one solver through a frame; stops early when it leaves `ok` or on Ctrl-C.
+}  // namespace
+
 void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* interrupt) {
   const auto start = Clock::now();
   for (int s = 0; s < run.spec->steps_per_frame; ++s) {
@@ -30,6 +31,8 @@ void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* inter
   run.stopped_by = StopCause::solver;
   run.stopped_at_frame = frame;
 }
+
+namespace {
 
 // The metrics of one state: cloth metrics and the self-intersection audit, plus clearance and
 // triangle penetration when there are colliders (the same queries for every solver).
@@ -91,8 +94,23 @@ StopCause stretch_check(const scene::SolverSpec& spec, const ClothMetrics& metri
   return StopCause::none;
 }
 
+}  // namespace
+
+FrameMeasure measure_and_check(const scene::Scene& scene, const SceneSetup& setup, SolverRun& run,
+                               int frame, double stretch_limit) {
+  const double time = frame / scene.frame_rate;  // s
+  FrameMeasure measure = measure_frame(scene, setup, *run.solver, frame, time);
+  measure.failed = stretch_check(*run.spec, measure.metrics, stretch_limit);
+  run.last_metrics = measure.metrics;
+  run.rest.add(time, measure.metrics.kinetic_energy, measure.metrics.gravity_energy,
+               setup.model->total_mass());
+  ++run.frames_recorded;
+  return measure;
+}
+
 void stop_for_stretch(SolverRun& run, const ClothModel& model, const FrameMeasure& measure,
                       double stretch_limit) {
+  if (measure.failed == StopCause::none) return;
   const bool runaway = measure.failed == StopCause::runaway_stretch;
   run.status = SolverStatus::unstable;
   run.stopped_by = measure.failed;
@@ -104,8 +122,6 @@ void stop_for_stretch(SolverRun& run, const ClothModel& model, const FrameMeasur
       ") at frame " + std::to_string(measure.frame) + ", step " + std::to_string(run.steps) +
       (runaway ? ". Try: a smaller dt, stiffer stretch springs, or more damping." : "");
 }
-
-}  // namespace
 
 FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup,
                             std::vector<SolverRun>& runs, const FrameLoopOptions& options,
@@ -122,15 +138,10 @@ FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup,
     const double time = frame / scene.frame_rate;  // s
     for (auto& run : runs) {
       if (!run.running()) continue;
-      FrameMeasure measure = measure_frame(scene, setup, *run.solver, frame, time);
-      measure.failed = stretch_check(*run.spec, measure.metrics, options.stretch_limit);
-      run.last_metrics = measure.metrics;
-      run.rest.add(time, measure.metrics.kinetic_energy, measure.metrics.gravity_energy,
-                   setup.model->total_mass());
-      ++run.frames_recorded;
+      const FrameMeasure measure =
+          measure_and_check(scene, setup, run, frame, options.stretch_limit);
       observer.measured(run, measure);
-      if (measure.failed != StopCause::none)
-        stop_for_stretch(run, *setup.model, measure, options.stretch_limit);
+      stop_for_stretch(run, *setup.model, measure, options.stretch_limit);
     }
     observer.frame_done(frame, time, runs);
     end.last_frame = frame;

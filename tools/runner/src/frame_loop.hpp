@@ -50,6 +50,18 @@ struct FrameLoopEnd {
       false;  // stopped by options.interrupt (a partly stepped frame is not measured)
 };
 
+// The loop's pieces, for callers that step solvers one at a time (simulation.hpp).
+// Steps one solver through frame `frame` (its steps_per_frame steps); stops early when it leaves
+// `ok` or on `interrupt`.
+void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* interrupt);
+// Measures `run`'s state at `frame` and checks its stretch (measure.failed); records the frame in
+// `run` (last metrics, rest tracker, frames recorded).
+FrameMeasure measure_and_check(const scene::Scene& scene, const SceneSetup& setup, SolverRun& run,
+                               int frame, double stretch_limit);
+// Stops `run` as unstable, with its message, when `measure` failed a stretch check.
+void stop_for_stretch(SolverRun& run, const ClothModel& model, const FrameMeasure& measure,
+                      double stretch_limit);
+
 // Runs `runs` (built from `setup`) through scene.duration, frame by frame.
 FrameLoopEnd run_frame_loop(const scene::Scene& scene, const SceneSetup& setup,
                             std::vector<SolverRun>& runs, const FrameLoopOptions& options,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drapelab/runner/metric_columns.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/surface_distance.hpp"
 
@@ -12,8 +13,11 @@ namespace {
 std::string optional_cell(const std::optional<double>& value) {
   return value ? format_number(*value) : std::string();
 }
-std::string optional_cell(const std::optional<int>& value) {
-  return value ? std::to_string(*value) : std::string();
+
+std::vector<std::string> metrics_header() {
+  std::vector<std::string> header{"solver", "frame", "time"};
+  for (const MetricColumn& column : metric_columns()) header.push_back(column.name);
+  return header;
 }
 
 }  // namespace
@@ -35,27 +39,7 @@ StateDifference compare_states(const ClothModel& model, const ClothState& a, con
 }
 
 FrameTables::FrameTables(const std::filesystem::path& folder, bool bodies)
-    : metrics_(folder / "metrics.csv", {"solver",
-                                        "frame",
-                                        "time",
-                                        "kinetic_energy",
-                                        "gravity_energy",
-                                        "spring_energy",
-                                        "max_stretch",
-                                        "mean_stretch",
-                                        "min_clearance",
-                                        "max_penetration",
-                                        "contact_count",
-                                        "centroid_x",
-                                        "centroid_y",
-                                        "centroid_z",
-                                        "lowest_y",
-                                        "projected_area",
-                                        "drape_coefficient",
-                                        "drape_nodes",
-                                        "self_intersections",
-                                        "triangle_penetration",
-                                        "constraint_error"}),
+    : metrics_(folder / "metrics.csv", metrics_header()),
       compare_(folder / "compare.csv", {"solver_a", "solver_b", "frame", "time", "rms_distance",
                                         "max_distance", "hausdorff_distance"}),
       contacts_(folder / "contacts.csv", {"solver", "frame", "time", "collider", "contact_count",
@@ -69,27 +53,10 @@ FrameTables::FrameTables(const std::filesystem::path& folder, bool bodies)
 
 void FrameTables::add_metrics(const std::string& solver, int frame, double time,
                               const ClothMetrics& m) {
-  metrics_.row({solver,
-                std::to_string(frame),
-                format_number(time),
-                format_number(m.kinetic_energy),
-                format_number(m.gravity_energy),
-                format_number(m.spring_energy),
-                format_number(m.max_stretch),
-                format_number(m.mean_stretch),
-                optional_cell(m.min_clearance),
-                optional_cell(m.max_penetration),
-                optional_cell(m.contact_count),
-                format_number(m.centroid.x()),
-                format_number(m.centroid.y()),
-                format_number(m.centroid.z()),
-                format_number(m.lowest_y),
-                format_number(m.projected_area),
-                optional_cell(m.drape_coefficient),
-                optional_cell(m.drape_nodes),
-                optional_cell(m.self_intersections),
-                optional_cell(m.triangle_penetration),
-                optional_cell(m.constraint_error)});
+  std::vector<std::string> cells{solver, std::to_string(frame), format_number(time)};
+  for (const MetricColumn& column : metric_columns())
+    cells.push_back(optional_cell(column.value(m)));
+  metrics_.row(cells);
 }
 
 void FrameTables::add_comparison(const std::string& solver_a, const std::string& solver_b,

@@ -59,10 +59,13 @@ std::string sweep_json(const SweepRecord& record, const SweepPlan& plan,
   j["varied"] = varied;
   j["order"] = "combination index counts like an odometer: the last varied key changes fastest";
   j["jobs"] = record.jobs;
+  j["engine"] = record.engine;
+  if (record.engine == "slurm") j["slurm_job"] = record.job_id;
   j["state"] = record.state;
   std::size_t done = 0, ok = 0;
   ordered_json combinations = ordered_json::array();
-  const std::string waiting = record.state == "running" ? "pending" : "not_run";
+  const bool waits = record.state == "running" || record.state == "submitted";
+  const std::string waiting = waits ? "pending" : "not_run";
   for (std::size_t index = 0; index < plan.count(); ++index) {
     ordered_json c;
     c["index"] = index;

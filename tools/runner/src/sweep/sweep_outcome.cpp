@@ -141,6 +141,16 @@ CombinationOutcome unstarted_outcome(std::size_t index, const std::string& folde
   return outcome;
 }
 
+CombinationOutcome silent_outcome(std::size_t index, const std::string& folder,
+                                  const std::string& status, const std::string& message) {
+  CombinationOutcome outcome;
+  outcome.index = index;
+  outcome.folder = folder;
+  outcome.rows.push_back(whole_run_row(status, message));
+  settle(outcome);
+  return outcome;
+}
+
 CombinationOutcome finished_outcome(std::size_t index, const ChildExit& exit,
                                     const fs::path& run_dir, const fs::path& log,
                                     const std::string& folder, bool stopped_by_sweep) {

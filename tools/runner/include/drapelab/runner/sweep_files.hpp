@@ -31,8 +31,10 @@ struct SweepRecord {
   std::string scene_file;
   std::string scene_name;
   std::vector<std::string> overrides;  // --set, applied to every combination before its own values
-  int jobs = 1;
-  std::string state;  // running | complete | interrupted
+  int jobs = 1;                  // local: runs at a time; slurm: the array's throttle (0: none)
+  std::string engine = "local";  // local | slurm
+  std::string job_id;            // slurm: the job array's id
+  std::string state;  // running | complete | interrupted; slurm also submitted (--detach)
 };
 
 // sweep.json. A combination not finished is "pending" while the sweep runs and "not_run" once it

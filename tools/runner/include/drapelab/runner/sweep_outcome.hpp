@@ -20,9 +20,10 @@ const std::vector<std::string>& sweep_solver_measures();
 
 // One row of sweep.csv for one solver of one combination.
 struct SweepRow {
-  std::string solver;   // empty when the run gave no per-solver results (bad input, crash)
-  std::string type;     // the solver's type (spring_damper, bullet_softbody, ...)
-  std::string status;   // ok | unstable | error | bad_input | interrupted | crashed
+  std::string solver;  // empty when the run gave no per-solver results (bad input, crash)
+  std::string type;    // the solver's type (spring_damper, bullet_softbody, ...)
+  // ok | unstable | error | bad_input | interrupted | crashed, and for Slurm: cancelled | lost
+  std::string status;
   std::string message;  // why not ok; one line
   // Cells of sweep_final_metrics() then sweep_solver_measures(), as text (empty = no value).
   std::vector<std::string> measures;
@@ -46,6 +47,12 @@ CombinationOutcome refused_outcome(std::size_t index, const std::string& error);
 // A combination whose child could not be started.
 CombinationOutcome unstarted_outcome(std::size_t index, const std::string& folder,
                                      const std::string& error);
+
+// A combination whose run left no word of how it ended: a Slurm task cancelled before it started
+// (`status` cancelled) or one that vanished from the queue without writing its status (lost: a
+// node failure, or SIGKILL at the time limit). `message` says which.
+CombinationOutcome silent_outcome(std::size_t index, const std::string& folder,
+                                  const std::string& status, const std::string& message);
 
 // A finished child. `run_dir` and `log` are paths to read; `folder` is how sweep.csv names the run
 // folder; `stopped_by_sweep` is set when the sweep itself stopped the child (Ctrl-C), so a signal

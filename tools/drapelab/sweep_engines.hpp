@@ -1,0 +1,42 @@
+// The two ways a sweep's runs are carried out once the sweep is validated and its folder prepared:
+// child processes on this machine (local) or one Slurm job array (slurm).
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "drapelab/runner/sweep_plan.hpp"
+#include "drapelab/runner/sweep_validation.hpp"
+#include "sweep_folder.hpp"
+#include "verbs.hpp"
+
+namespace drapelab::cli {
+
+// What both engines start from.
+struct SweepStart {
+  const SweepArguments& arguments;
+  const runner::SweepPlan& plan;
+  const runner::SweepValidation& validation;
+  SweepFolder& folder;  // refused combinations are already rows
+  const std::atomic<bool>& interrupt;
+};
+
+// The combinations to run, in order: those the validation did not refuse.
+std::vector<std::size_t> combinations_to_run(const SweepStart& start);
+
+// `drapelab run` of combination `index`, as the program's arguments (arguments[0] the program's
+// name): the scene, its run folder with --force (a run replaces only drapelab's own files), the
+// --set overrides and then the combination's values.
+std::vector<std::string> run_arguments(const SweepStart& start, std::size_t index,
+                                       const std::string& program);
+
+// Up to --jobs child processes at a time. Returns the sweep's exit code.
+int run_local_sweep(SweepStart& start);
+
+// Submits the job array and waits for it (or, with --detach, returns once it is submitted).
+int run_slurm_sweep(SweepStart& start);
+
+// drapelab sweep --collect DIR: waits for a submitted Slurm sweep and writes its tables.
+int collect_slurm_sweep(const std::string& out, const std::atomic<bool>& interrupt);
+
+}  // namespace drapelab::cli

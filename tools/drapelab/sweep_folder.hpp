@@ -1,0 +1,65 @@
+// The sweep folder while a sweep runs or is collected: preparing it (its lock, --force), and the
+// finished combinations, printed as progress lines and written to sweep.csv and sweep.json after
+// each one. Shared by the local and the Slurm engines.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "drapelab/run_folder/folder_lock.hpp"
+#include "drapelab/runner/sweep_files.hpp"
+#include "drapelab/runner/sweep_outcome.hpp"
+#include "drapelab/runner/sweep_plan.hpp"
+
+namespace drapelab::cli {
+
+// Checks and prepares the sweep folder, and locks it for the sweep (one sweep per folder at a
+// time); returns an error message when it may not be used.
+std::optional<std::string> prepare_sweep_folder(const std::filesystem::path& out, bool force,
+                                                std::unique_ptr<run_folder::FolderLock>& lock);
+
+// "cloth.springs.bend.ks=100, duration=0.5"
+std::string describe_values(const runner::SweepPlan& plan, std::size_t index);
+
+class SweepFolder {
+ public:
+  SweepFolder(std::filesystem::path out, runner::SweepRecord record, const runner::SweepPlan& plan)
+      : out_(std::move(out)), record_(std::move(record)), plan_(plan) {}
+
+  const std::filesystem::path& out() const { return out_; }
+  const runner::SweepRecord& record() const { return record_; }
+  runner::SweepRecord& record() { return record_; }
+  std::string folder(std::size_t index) const { return "runs/" + plan_.folder_name(index); }
+  std::filesystem::path run_dir(std::size_t index) const {
+    return out_ / "runs" / plan_.folder_name(index);
+  }
+  std::filesystem::path log(std::size_t index) const {
+    return out_ / "runs" / (plan_.folder_name(index) + ".log");
+  }
+  const std::map<std::size_t, runner::CombinationOutcome>& finished() const { return finished_; }
+  bool is_finished(std::size_t index) const { return finished_.count(index) > 0; }
+
+  // Records a finished combination, prints its progress line and rewrites both files.
+  void finish(runner::CombinationOutcome outcome);
+  // Records one already known (collecting a sweep again): no progress line, no rewrite.
+  void restore(runner::CombinationOutcome outcome);
+  void set_state(const std::string& state);
+  // Both files, replaced atomically: valid whenever the sweep stops.
+  void write() const;
+
+ private:
+  std::filesystem::path out_;
+  runner::SweepRecord record_;
+  const runner::SweepPlan& plan_;
+  std::map<std::size_t, runner::CombinationOutcome> finished_;
+};
+
+// The closing lines of a sweep ("4 combinations: 3 ok, 1 unstable", the table's path) and its exit
+// code: 0 when every combination is ok, else 1.
+int print_tally(const SweepFolder& folder, const runner::SweepPlan& plan);
+
+}  // namespace drapelab::cli
