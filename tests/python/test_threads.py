@@ -4,6 +4,7 @@ import signal
 import threading
 import time
 
+import numpy as np
 import pytest
 
 import drapelab
@@ -48,3 +49,21 @@ def test_ctrl_c_stops_stepping_after_the_current_step():
     assert len(sim.metrics("ours")["frame"]) == stopped_at + 1
     sim.step(2)
     assert sim.frame("ours") == stopped_at + 2
+
+
+def test_reads_from_another_thread_see_whole_frames():
+    sim = drapelab.load(TINY_SCENE, overrides=LONG)
+    stepper = threading.Thread(target=sim.step_to_end)
+    stepper.start()
+    reads = 0
+    while stepper.is_alive():
+        metrics = sim.metrics("ours")
+        frames = metrics["frame"]
+        # Every frame measured so far, none half-written, and the positions of a whole frame.
+        assert np.array_equal(frames, np.arange(len(frames)))
+        assert all(len(values) == len(frames) for values in metrics.values())
+        assert sim.positions("ours").shape == (625, 3)
+        reads += 1
+    stepper.join()
+    assert reads > 10  # the reads went on while the solver stepped
+    assert len(sim.metrics("ours")["frame"]) == sim.frame_count + 1

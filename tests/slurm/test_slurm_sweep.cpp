@@ -1,7 +1,7 @@
 // drapelab sweep --engine slurm on a one-node Slurm cluster (tools/slurm-local.sh): the same
 // sweep.csv as a local sweep but for the cost columns; a crashed task, a Ctrl-C (scancel) and an
-// outside scancel each leave a row per combination and valid files; a refused submission leaves
-// nothing.
+// outside scancel each leave a row per combination and valid files; --force is refused while the
+// job runs; a refused submission leaves nothing.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -204,6 +204,12 @@ TEST_F(SlurmSweep, ACrashedTaskIsARowAndDetachedSweepsAreCollected) {
   EXPECT_EQ(read_json(out / "sweep.json").at("state"), "submitted");
   ASSERT_TRUE(wait_until([&] { return run_is_stepping(out, "000_duration=600"); }, 60))
       << "the first task never started";
+  // While its tasks run, --force may not replace the sweep (they would write into the new one).
+  const CommandResult forced = run_drapelab(
+      {"sweep", scene().string(), "--vary", "duration=0.05", "--out", out.string(), "--force"});
+  EXPECT_EQ(forced.exit_code, 2) << forced.output;
+  EXPECT_NE(forced.output.find("before --force"), std::string::npos) << forced.output;
+
   const pid_t run = run_process("000_duration=600");
   ASSERT_GT(run, 0);
   ASSERT_EQ(::kill(run, SIGKILL), 0);

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <atomic>
+#include <filesystem>
+#include <optional>
 #include <string>
 
 #include "drapelab/runner/sweep_plan.hpp"
@@ -35,6 +37,11 @@ int run_local_sweep(SweepStart& start);
 
 // Submits the job array and waits for it (or, with --detach, returns once it is submitted).
 int run_slurm_sweep(SweepStart& start);
+
+// Why --force may not replace the sweep in `out`: a Slurm job array of its still has tasks queued
+// or running (they would write into the new sweep's folders). Nothing when there is none, or when
+// squeue cannot be asked.
+std::optional<std::string> queued_slurm_job(const std::filesystem::path& out);
 
 // drapelab sweep --collect DIR: waits for a submitted Slurm sweep and writes its tables.
 int collect_slurm_sweep(const std::string& out, const std::atomic<bool>& interrupt);

@@ -270,6 +270,21 @@ int run_slurm_sweep(SweepStart& start) {
   return wait_and_close(folder, start.plan, {*job_id, indices}, start.interrupt, true);
 }
 
+std::optional<std::string> queued_slurm_job(const fs::path& out) {
+  const auto text = run_folder::read_file_bytes(submission_path(out));
+  if (!text) return std::nullopt;
+  const auto j = ordered_json::parse(*text, nullptr, false);
+  if (j.is_discarded() || !j.contains("job_id") || !j["job_id"].is_string()) return std::nullopt;
+  const std::string job_id = j["job_id"].get<std::string>();
+  std::string problem;
+  const auto queued = missing_slurm_command() ? std::nullopt : queued_tasks(job_id, &problem);
+  if (!queued || queued->empty()) return std::nullopt;
+  return out.string() + " holds Slurm job " + job_id + ", which still has " +
+         std::to_string(queued->size()) + " task" + (queued->size() == 1 ? "" : "s") +
+         " queued or running; cancel it (scancel " + job_id +
+         ") or wait for it (drapelab sweep --collect " + out.string() + ") before --force";
+}
+
 int collect_slurm_sweep(const std::string& out_text, const std::atomic<bool>& interrupt) {
   const fs::path out = out_text;
   const auto text = run_folder::read_file_bytes(submission_path(out));

@@ -153,6 +153,8 @@ int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
   }
   const PollingSection polling;  // Ctrl-C: the runs stop, and sweep.csv keeps the finished ones
   const fs::path out = arguments.out;
+  if (arguments.force)
+    if (const auto problem = queued_slurm_job(out)) return refuse(*problem);
   std::unique_ptr<run_folder::FolderLock> lock;  // held until the sweep ends
   if (const auto problem = prepare_sweep_folder(out, arguments.force, lock))
     return refuse(*problem);

@@ -3,10 +3,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "bindings.hpp"
 #include "drapelab/runner/metric_columns.hpp"
@@ -46,7 +49,37 @@ class PySimulation {
     simulation_ = std::make_unique<runner::Simulation>(*loaded.result.scene, loaded.result.model);
   }
 
+  // The scene, the model and the solvers' names: fixed once built, read without the lock.
   const runner::Simulation& simulation() const { return *simulation_; }
+
+  // The solvers' state, read while no other thread steps them: the lock is taken with the GIL
+  // released (the stepping thread holds the lock without the GIL, so waiting for it with the GIL
+  // would stall every Python thread), and held until the end of the full expression.
+  class Locked {
+   public:
+    Locked(std::mutex& mutex, std::atomic<int>& waiting, const runner::Simulation& simulation)
+        : lock_(mutex, std::defer_lock), simulation_(simulation) {
+      if (lock_.try_lock()) return;
+      ++waiting;  // the stepping thread lets a waiting reader in between two frames
+      {
+        const py::gil_scoped_release unlocked;
+        lock_.lock();
+      }
+      --waiting;
+    }
+    const runner::Simulation* operator->() const { return &simulation_; }
+
+   private:
+    std::unique_lock<std::mutex> lock_;
+    const runner::Simulation& simulation_;
+  };
+  Locked locked() const { return Locked(stepping_, readers_waiting_, *simulation_); }
+
+  // Between two frames: a reader waiting for the lock takes it before the next frame does (a
+  // mutex taken again at once would starve it).
+  void let_readers_in() const {
+    while (readers_waiting_.load() > 0) std::this_thread::yield();
+  }
 
   // A solver named by its name or its index in the scene's list.
   std::size_t solver_index(const py::object& solver) const {
@@ -84,6 +117,8 @@ class PySimulation {
       const py::gil_scoped_release unlocked;
       for (int f = 0; f < frames; ++f) {
         if (guard.flag() && guard.flag()->load()) break;
+        let_readers_in();
+        const std::lock_guard<std::mutex> lock(stepping_);  // a frame at a time: reads go between
         for (const std::size_t k : indices) simulation_->advance(k, 1, guard.flag());
       }
     }
@@ -99,6 +134,8 @@ class PySimulation {
       const int last = simulation_->scene().frame_count();
       for (int frame = 1; frame <= last; ++frame) {
         if (guard.flag() && guard.flag()->load()) break;
+        let_readers_in();
+        const std::lock_guard<std::mutex> lock(stepping_);
         for (const std::size_t k : indices)
           if (simulation_->frame(k) < frame) simulation_->advance(k, 1, guard.flag());
       }
@@ -108,7 +145,8 @@ class PySimulation {
 
   // Every measured frame of a solver: frame, time, then metrics.csv's columns.
   py::dict metrics(const py::object& solver) const {
-    const auto& records = simulation_->records(solver_index(solver));
+    const Locked simulation = locked();
+    const auto& records = simulation->records(solver_index(solver));
     const auto count = static_cast<py::ssize_t>(records.size());
     py::dict columns;
     py::array_t<std::int64_t> frames(count);
@@ -131,7 +169,7 @@ class PySimulation {
 
   py::dict bodies(const py::object& solver) const {
     py::dict bodies;
-    for (const BodyState& body : simulation_->bodies(solver_index(solver))) {
+    for (const BodyState& body : locked()->bodies(solver_index(solver))) {
       const Eigen::Quaterniond q(body.pose.rotation());
       py::array_t<double> orientation(4);
       orientation.mutable_at(0) = q.x();
@@ -154,11 +192,12 @@ class PySimulation {
   }
 
   std::string repr() const {
+    const Locked simulation = locked();
     std::ostringstream text;
-    text << "<drapelab.Simulation '" << simulation_->scene().name << "':";
-    for (std::size_t k = 0; k < simulation_->solver_count(); ++k)
-      text << (k ? "," : "") << " " << simulation_->solver_name(k) << " frame "
-           << simulation_->frame(k) << " (" << solver_status_name(simulation_->status(k)) << ")";
+    text << "<drapelab.Simulation '" << simulation->scene().name << "':";
+    for (std::size_t k = 0; k < simulation->solver_count(); ++k)
+      text << (k ? "," : "") << " " << simulation->solver_name(k) << " frame "
+           << simulation->frame(k) << " (" << solver_status_name(simulation->status(k)) << ")";
     text << ">";
     return text.str();
   }
@@ -167,6 +206,8 @@ class PySimulation {
   std::string scene_text_;
   std::vector<std::string> overrides_;
   std::unique_ptr<runner::Simulation> simulation_;
+  mutable std::mutex stepping_;  // held while a thread steps the solvers through a frame
+  mutable std::atomic<int> readers_waiting_{0};
 };
 
 }  // namespace
@@ -221,37 +262,37 @@ void bind_simulation(py::module_& module) {
       .def(
           "frame",
           [](const PySimulation& s, const py::object& solver) {
-            return s.simulation().frame(s.solver_index(solver));
+            return s.locked()->frame(s.solver_index(solver));
           },
           py::arg("solver"), "The solver's last measured frame (0: the initial state).")
       .def(
           "time",
           [](const PySimulation& s, const py::object& solver) {
-            return s.simulation().time(s.solver_index(solver));
+            return s.locked()->time(s.solver_index(solver));
           },
           py::arg("solver"), "The simulated time of that frame (s).")
       .def(
           "status",
           [](const PySimulation& s, const py::object& solver) {
-            return std::string(solver_status_name(s.simulation().status(s.solver_index(solver))));
+            return std::string(solver_status_name(s.locked()->status(s.solver_index(solver))));
           },
           py::arg("solver"), "'ok', 'unstable' or 'error'.")
       .def(
           "message",
           [](const PySimulation& s, const py::object& solver) {
-            return s.simulation().message(s.solver_index(solver));
+            return s.locked()->message(s.solver_index(solver));
           },
           py::arg("solver"), "Why the solver stopped (which particle, which step, what to try).")
       .def(
           "positions",
           [](const PySimulation& s, const py::object& solver) {
-            return rows_of_points(s.simulation().state(s.solver_index(solver)).x);
+            return rows_of_points(s.locked()->state(s.solver_index(solver)).x);
           },
           py::arg("solver"), "(N, 3) array of the particles' positions, m (a copy).")
       .def(
           "velocities",
           [](const PySimulation& s, const py::object& solver) {
-            return rows_of_points(s.simulation().state(s.solver_index(solver)).v);
+            return rows_of_points(s.locked()->state(s.solver_index(solver)).v);
           },
           py::arg("solver"), "(N, 3) array of the particles' velocities, m/s (a copy).")
       .def("metrics", &PySimulation::metrics, py::arg("solver"),
@@ -263,13 +304,13 @@ void bind_simulation(py::module_& module) {
       .def(
           "steps",
           [](const PySimulation& s, const py::object& solver) {
-            return s.simulation().steps(s.solver_index(solver));
+            return s.locked()->steps(s.solver_index(solver));
           },
           py::arg("solver"))
       .def(
           "wall_seconds",
           [](const PySimulation& s, const py::object& solver) {
-            return s.simulation().wall_seconds(s.solver_index(solver));
+            return s.locked()->wall_seconds(s.solver_index(solver));
           },
           py::arg("solver"), "Wall-clock seconds spent stepping the solver.")
       .def("run", &PySimulation::run, py::arg("out"), py::kw_only(), py::arg("force") = false,
