@@ -78,8 +78,8 @@ std::string cell(const CsvTable& table, std::size_t row, const std::string& colu
   return table.text(row, table.column(column));
 }
 
-// The process id of the `drapelab run` writing into a folder whose name holds `folder_part`, or 0.
-pid_t run_process(const std::string& folder_part) {
+// The process id of the `drapelab run` writing into `folder` (its --out argument), or 0.
+pid_t run_process(const fs::path& folder) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator("/proc", ec)) {
     const std::string name = entry.path().filename().string();
@@ -90,7 +90,7 @@ pid_t run_process(const std::string& folder_part) {
     while (std::getline(in, argument, '\0')) arguments.push_back(argument);
     if (arguments.size() < 4 || arguments[1] != "run") continue;
     for (const auto& a : arguments)
-      if (a.find(folder_part) != std::string::npos) return static_cast<pid_t>(std::stol(name));
+      if (a == folder.string()) return static_cast<pid_t>(std::stol(name));
   }
   return 0;
 }
@@ -210,7 +210,8 @@ TEST_F(SlurmSweep, ACrashedTaskIsARowAndDetachedSweepsAreCollected) {
   EXPECT_EQ(forced.exit_code, 2) << forced.output;
   EXPECT_NE(forced.output.find("before --force"), std::string::npos) << forced.output;
 
-  const pid_t run = run_process("000_duration=600");
+  // The full path: another test's sweep may run a folder of the same name at the same time.
+  const pid_t run = run_process(out / "runs" / "000_duration=600");
   ASSERT_GT(run, 0);
   ASSERT_EQ(::kill(run, SIGKILL), 0);
 
