@@ -273,8 +273,9 @@ TEST_F(SlurmSweep, AnOutsideScancelLeavesValidFilesAndARowPerCombination) {
   const CommandResult cancelled = run_shell("scancel " + job);
   ASSERT_EQ(cancelled.exit_code, 0) << cancelled.output;
 
-  // The second task never ran and wrote no status: it is lost once 30 s have passed.
-  const CommandResult collected = run_drapelab({"sweep", "--collect", out.string()});
+  // The second task never ran and wrote no status: it is lost once --lost-after has passed.
+  const CommandResult collected =
+      run_drapelab({"sweep", "--collect", out.string(), "--lost-after", "3"});
   EXPECT_EQ(collected.exit_code, 1) << collected.output;
   const CsvTable table = read_sweep_table(out);
   ASSERT_EQ(table.rows.size(), 2u) << read_text(out / "sweep.csv");

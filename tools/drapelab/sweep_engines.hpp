@@ -9,8 +9,8 @@
 
 #include "drapelab/runner/sweep_plan.hpp"
 #include "drapelab/runner/sweep_validation.hpp"
+#include "sweep_arguments.hpp"
 #include "sweep_folder.hpp"
-#include "verbs.hpp"
 
 namespace drapelab::cli {
 
@@ -44,6 +44,8 @@ int run_slurm_sweep(SweepStart& start);
 std::optional<std::string> queued_slurm_job(const std::filesystem::path& out);
 
 // drapelab sweep --collect DIR: waits for a submitted Slurm sweep and writes its tables.
-int collect_slurm_sweep(const std::string& out, const std::atomic<bool>& interrupt);
+// `lost_after`: as --lost-after (s; 0: the default).
+int collect_slurm_sweep(const std::string& out, double lost_after,
+                        const std::atomic<bool>& interrupt);
 
 }  // namespace drapelab::cli

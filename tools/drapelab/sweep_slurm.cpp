@@ -29,9 +29,14 @@ namespace {
 
 constexpr auto kStatusPollPeriod = std::chrono::milliseconds(250);  // status files: cheap reads
 constexpr auto kQueuePollPeriod = std::chrono::seconds(2);          // squeue asks the controller
-// A task gone from the queue without a status file is lost only after this long: on a shared
-// filesystem a file written on a compute node may take a few seconds to be seen here.
-constexpr auto kLostAfter = std::chrono::seconds(30);
+// A task gone from the queue without a status file is lost only after this long (--lost-after):
+// on a shared filesystem a file written on a compute node may take a few seconds to be seen here.
+constexpr double kDefaultLostAfter = 30.0;  // s
+
+Clock::duration lost_after_duration(double seconds) {
+  return std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(seconds > 0.0 ? seconds : kDefaultLostAfter));
+}
 // After scancel: the longest wait for the tasks to leave the queue (Slurm sends SIGTERM, then
 // SIGKILL after its KillWait, 30 s by default), and then for their last status files.
 constexpr auto kCancelWait = std::chrono::seconds(90);
@@ -83,8 +88,8 @@ CombinationOutcome task_outcome(const SweepFolder& folder, std::size_t index, co
 // Waits on one submitted array.
 class ArrayWatch {
  public:
-  ArrayWatch(SweepFolder& folder, Submission submission)
-      : folder_(folder), submission_(std::move(submission)) {}
+  ArrayWatch(SweepFolder& folder, Submission submission, Clock::duration lost_after)
+      : folder_(folder), submission_(std::move(submission)), lost_after_(lost_after) {}
 
   bool all_finished() const {
     for (const std::size_t index : submission_.indices)
@@ -102,7 +107,7 @@ class ArrayWatch {
   }
 
   // Asks squeue which tasks remain; false when it could not say. Tasks gone from the queue for
-  // kLostAfter without a status file are rows with status lost.
+  // lost_after without a status file are rows with status lost.
   bool check_queue() {
     std::string problem;
     const auto queued = queued_tasks(submission_.job_id, &problem);
@@ -123,12 +128,12 @@ class ArrayWatch {
       }
     }
     for (const auto& [index, since] : gone_since_) {
-      if (folder_.is_finished(index) || now - since < kLostAfter) continue;
+      if (folder_.is_finished(index) || now - since < lost_after_) continue;
       if (const auto end = read_task_end(task_status_path(folder_.out(), index))) continue;
       folder_.finish(silent_outcome(
           index, folder_.folder(index), "lost",
-          "the Slurm task left the queue without a status: a node failure, or SIGKILL at its "
-          "time limit; see slurm/task_" +
+          "the Slurm task left the queue without a status: cancelled from outside before it "
+          "started, a node failure, or SIGKILL after its time limit; see slurm/task_" +
               std::to_string(index) + ".out"));
     }
     return true;
@@ -174,6 +179,7 @@ class ArrayWatch {
  private:
   SweepFolder& folder_;
   Submission submission_;
+  Clock::duration lost_after_;
   std::map<std::size_t, Clock::time_point> gone_since_;
   bool queue_empty_ = false;
   bool warned_ = false;
@@ -181,9 +187,10 @@ class ArrayWatch {
 
 // Waits for the array and closes the sweep; shared by a sweep that waits and by --collect.
 int wait_and_close(SweepFolder& folder, const SweepPlan& plan, Submission submission,
-                   const std::atomic<bool>& interrupt, bool cancel_on_interrupt) {
+                   double lost_after, const std::atomic<bool>& interrupt,
+                   bool cancel_on_interrupt) {
   const std::string job_id = submission.job_id;
-  ArrayWatch watch(folder, std::move(submission));
+  ArrayWatch watch(folder, std::move(submission), lost_after_duration(lost_after));
   if (watch.wait(interrupt)) {
     folder.set_state("complete");
     return print_tally(folder, plan);
@@ -267,7 +274,8 @@ int run_slurm_sweep(SweepStart& start) {
     std::cout << "collect it with: drapelab sweep --collect " << folder.out().string() << "\n";
     return kExitOk;
   }
-  return wait_and_close(folder, start.plan, {*job_id, indices}, start.interrupt, true);
+  return wait_and_close(folder, start.plan, {*job_id, indices}, a.lost_after, start.interrupt,
+                        true);
 }
 
 std::optional<std::string> queued_slurm_job(const fs::path& out) {
@@ -285,7 +293,8 @@ std::optional<std::string> queued_slurm_job(const fs::path& out) {
          ") or wait for it (drapelab sweep --collect " + out.string() + ") before --force";
 }
 
-int collect_slurm_sweep(const std::string& out_text, const std::atomic<bool>& interrupt) {
+int collect_slurm_sweep(const std::string& out_text, double lost_after,
+                        const std::atomic<bool>& interrupt) {
   const fs::path out = out_text;
   const auto text = run_folder::read_file_bytes(submission_path(out));
   if (!text) {
@@ -328,7 +337,7 @@ int collect_slurm_sweep(const std::string& out_text, const std::atomic<bool>& in
   std::cout << "collecting Slurm job " << record.job_id << " (" << submission.indices.size()
             << " tasks) into " << out.string() << std::endl;
   const PollingSection polling;  // Ctrl-C stops waiting; the job goes on
-  return wait_and_close(folder, plan, submission, interrupt, false);
+  return wait_and_close(folder, plan, submission, lost_after, interrupt, false);
 }
 
 }  // namespace drapelab::cli

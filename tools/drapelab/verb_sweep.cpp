@@ -37,20 +37,21 @@ int refuse(const std::string& problem) {
 
 // The arguments that belong together: a new sweep or --collect; Slurm's options with slurm only.
 std::optional<std::string> check_argument_set(const SweepArguments& a) {
+  const bool submission_options = !a.partition.empty() || !a.time_limit.empty() ||
+                                  a.cpus_per_task > 0 || !a.sbatch_args.empty() || a.detach;
   if (!a.collect.empty()) {
     if (!a.scene.empty() || !a.varies.empty() || !a.out.empty() || !a.overrides.empty() ||
-        a.detach || a.force)
-      return "--collect DIR takes no scene, --vary, --out, --set, --detach or --force: it "
-             "gathers the sweep already submitted into DIR";
+        a.force || a.engine != "local" || submission_options)
+      return "--collect DIR takes no other option but --lost-after: it gathers the sweep "
+             "already submitted into DIR";
     return std::nullopt;
   }
   if (a.scene.empty()) return "a scene file is required (or --collect DIR)";
   if (a.varies.empty()) return "--vary key.path=v1,v2,... is required";
   if (a.out.empty()) return "--out DIR is required: the sweep folder";
-  const bool slurm_options = !a.partition.empty() || !a.time_limit.empty() || a.cpus_per_task > 0 ||
-                             !a.sbatch_args.empty() || a.detach;
-  if (a.engine != "slurm" && slurm_options)
-    return "--partition, --time, --cpus-per-task, --sbatch-arg and --detach need --engine slurm";
+  if (a.engine != "slurm" && (submission_options || a.lost_after > 0.0))
+    return "--partition, --time, --cpus-per-task, --sbatch-arg, --detach and --lost-after need "
+           "--engine slurm";
   return std::nullopt;
 }
 
@@ -96,6 +97,10 @@ void add_sweep_options(CLI::App& verb, SweepArguments& arguments) {
                   "slurm: one more sbatch argument, passed as given (--sbatch-arg=--mem=2G); may "
                   "be repeated")
       ->allow_extra_args(false);
+  verb.add_option("--lost-after", arguments.lost_after,
+                  "slurm: seconds a task may be gone from the queue without its status file "
+                  "before its row is lost (default 30; more for a slow shared filesystem)")
+      ->check(CLI::PositiveNumber);
   verb.footer(
       "Runs every combination of the varied values, the last --vary key changing fastest, each as "
       "its own 'drapelab run' into DIR/runs/NNN_key=value_...; every combination is validated "
@@ -113,7 +118,8 @@ void add_sweep_options(CLI::App& verb, SweepArguments& arguments) {
 int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt) {
   if (const auto problem = check_argument_set(arguments)) return refuse(*problem);
-  if (!arguments.collect.empty()) return collect_slurm_sweep(arguments.collect, interrupt);
+  if (!arguments.collect.empty())
+    return collect_slurm_sweep(arguments.collect, arguments.lost_after, interrupt);
 
   // 1. The arguments, before any scene is read.
   std::vector<VariedKey> keys;

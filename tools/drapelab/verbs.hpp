@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "sweep_arguments.hpp"
+
 namespace drapelab::cli {
 
 inline constexpr int kExitBadInput = 2;
@@ -71,22 +73,6 @@ void add_study_options(CLI::App& verb, StudyArguments& arguments);
 int study_verb(const StudyArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt);
 
-// drapelab sweep: one `drapelab run` child process per combination of the varied keys' values.
-struct SweepArguments {
-  std::string scene;
-  std::vector<std::string> varies;       // --vary key.path=v1,v2,... (commas inside [] or {} stay)
-  std::string out;                       // the sweep folder: sweep.csv, sweep.json, runs/
-  int jobs = 0;                          // runs at a time; 0 = the number of cores
-  std::vector<std::string> overrides;    // --set key.path=value, in every run
-  bool force = false;                    // replace a sweep already in the folder
-  std::string engine = "local";          // local | slurm
-  bool detach = false;                   // slurm: return once submitted
-  std::string collect;                   // --collect DIR: gather a submitted Slurm sweep
-  std::string partition;                 // slurm: sbatch --partition
-  std::string time_limit;                // slurm: sbatch --time, per task
-  int cpus_per_task = 0;                 // slurm: sbatch --cpus-per-task; 0 = 1
-  std::vector<std::string> sbatch_args;  // slurm: more sbatch arguments, as given
-};
 void add_sweep_options(CLI::App& verb, SweepArguments& arguments);
 int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt);
