@@ -34,17 +34,9 @@ using drapelab::fixtures::write_text;
 using drapelab::run_folder::CsvTable;
 using drapelab::run_folder::parse_csv;
 
-// Runs a shell command; its output (stdout and stderr) and exit status.
+// A shell command's output, stderr included.
 CommandResult run_shell(const std::string& command) {
-  CommandResult result;
-  std::FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  while (const std::size_t got = std::fread(buffer, 1, sizeof buffer, pipe))
-    result.output.append(buffer, got);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return drapelab::fixtures::run_shell(command + " 2>&1");
 }
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_text(file)); }

@@ -278,13 +278,33 @@ int run_slurm_sweep(SweepStart& start) {
                         true);
 }
 
-std::optional<std::string> queued_slurm_job(const fs::path& out) {
+namespace {
+
+// slurm/submission.json as drapelab wrote it; `problem` says why not when it is missing or is not
+// a submission (job_id, indices, varied, record).
+std::optional<ordered_json> read_submission(const fs::path& out, std::string* problem) {
   const auto text = run_folder::read_file_bytes(submission_path(out));
-  if (!text) return std::nullopt;
-  const auto j = ordered_json::parse(*text, nullptr, false);
-  if (j.is_discarded() || !j.contains("job_id") || !j["job_id"].is_string()) return std::nullopt;
-  const std::string job_id = j["job_id"].get<std::string>();
+  if (!text) {
+    *problem = submission_path(out).string() + " is missing";
+    return std::nullopt;
+  }
+  auto j = ordered_json::parse(*text, nullptr, false);
+  if (j.is_discarded() || !j.contains("job_id") || !j["job_id"].is_string() ||
+      !j.contains("indices") || !j.contains("varied") || !j.contains("record")) {
+    *problem = submission_path(out).string() +
+               " is not a submission drapelab wrote (job_id, indices, varied, record)";
+    return std::nullopt;
+  }
+  return j;
+}
+
+}  // namespace
+
+std::optional<std::string> queued_slurm_job(const fs::path& out) {
   std::string problem;
+  const auto j = read_submission(out, &problem);
+  if (!j) return std::nullopt;
+  const std::string job_id = (*j)["job_id"].get<std::string>();
   const auto queued = missing_slurm_command() ? std::nullopt : queued_tasks(job_id, &problem);
   if (!queued || queued->empty()) return std::nullopt;
   return out.string() + " holds Slurm job " + job_id + ", which still has " +
@@ -296,20 +316,14 @@ std::optional<std::string> queued_slurm_job(const fs::path& out) {
 int collect_slurm_sweep(const std::string& out_text, double lost_after,
                         const std::atomic<bool>& interrupt) {
   const fs::path out = out_text;
-  const auto text = run_folder::read_file_bytes(submission_path(out));
-  if (!text) {
-    std::cerr << "error: " << submission_path(out).string()
-              << " is missing: --collect gathers a sweep submitted with --engine slurm into "
-              << out_text << "\n";
+  std::string problem;
+  const auto submission_file = read_submission(out, &problem);
+  if (!submission_file) {
+    std::cerr << "error: " << problem << ": --collect gathers a sweep submitted with --engine "
+              << "slurm into " << out_text << "\n";
     return kExitBadInput;
   }
-  const auto j = ordered_json::parse(*text, nullptr, false);
-  if (j.is_discarded() || !j.contains("job_id") || !j.contains("indices") ||
-      !j.contains("varied") || !j.contains("record")) {
-    std::cerr << "error: " << submission_path(out).string()
-              << " is not a submission drapelab wrote (job_id, indices, varied, record)\n";
-    return kExitBadInput;
-  }
+  const ordered_json& j = *submission_file;
   std::vector<VariedKey> keys;
   for (const auto& key : j["varied"])
     keys.push_back({key["key"].get<std::string>(), key["values"].get<std::vector<std::string>>()});
