@@ -75,7 +75,7 @@ daemon_pid() {
   pid=$(cat "$dir/run/$name.pid" 2>/dev/null || true)
   [[ "$pid" =~ ^[0-9]+$ ]] || return 1
   [[ "$(cat "/proc/$pid/comm" 2>/dev/null)" == "$name" ]] || return 1
-  cmdline=$(tr '\0' ' ' <"/proc/$pid/cmdline" 2>/dev/null) || return 1
+  cmdline=$(tr '\0' ' ' 2>/dev/null <"/proc/$pid/cmdline") || return 1
   [[ "$cmdline" == *"$dir/"* ]] || return 1
   echo "$pid"
 }
@@ -110,7 +110,8 @@ stop_daemons() {
   done
   for pid in "${pids[@]}"; do
     if process_alive "$pid"; then
-      echo "slurm-local: $(cat "/proc/$pid/comm") (pid $pid) ignored SIGTERM; killing it" >&2
+      echo "slurm-local: $(cat "/proc/$pid/comm" 2>/dev/null) (pid $pid) ignored SIGTERM;" \
+        "killing it" >&2
       "${as_root[@]}" kill -KILL "$pid" 2>/dev/null || true
     fi
   done
@@ -146,8 +147,11 @@ cancel_jobs() {
 # killed with all its descendants (the batch script and whatever it started).
 kill_orphan_steps() {
   local comm name pid steps=() tree
+  # A process may end between the glob and the read: its files are then gone. Redirections apply
+  # left to right, so stderr goes to /dev/null before the file is opened, or bash's own "No such
+  # file or directory" for the failed open would still reach the terminal.
   for comm in /proc/[0-9]*/comm; do
-    read -r name <"$comm" 2>/dev/null || continue
+    read -r name 2>/dev/null <"$comm" || continue
     [[ "$name" == slurmstepd ]] || continue
     pid=${comm#/proc/}
     pid=${pid%/comm}
