@@ -89,7 +89,7 @@ ColliderFeatures collider_features(const Collider& collider, double thickness) {
 }
 
 EdgeContact::EdgeContact(const ClothModel& model, const ContactModel& contacts)
-    : model_(model), thickness_(model.thickness) {
+    : model_(model), thickness_(model.thickness), loads_(model.particle_count()) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     features_.push_back(collider_features(contacts.collider(c), thickness_));
     active_ = active_ || !features_.back().empty();
@@ -118,6 +118,21 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
                              std::vector<WeightedContact>* active) {
   std::fill(totals_.begin(), totals_.end(), EdgeContactTotals{});
   if (!active_) return;
+  find_contacts(contacts, t, x);
+  push_and_rub(contacts, h, x, v, inverse_mass, force, active);
+}
+
+double EdgeContact::stored_energy(const ContactModel& contacts, double t,
+                                  const Eigen::Matrix3Xd& x) {
+  if (!active_) return 0.0;
+  find_contacts(contacts, t, x);
+  const double k = contacts.parameters().stiffness;  // N/m
+  double energy = 0.0;                               // J
+  for (const Found& f : found_) energy += 0.5 * k * f.depth * f.depth;
+  return energy;
+}
+
+void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x) {
   found_.clear();
   const double h2 = thickness_ * thickness_;
   // Where a cloth point at `cloth` touches a collider feature at `feature` with outward `outward`:
@@ -207,22 +222,37 @@ void EdgeContact::add_forces(const ContactModel& contacts, double t, double h,
       if (best.particle[0] >= 0) found_.push_back(best);
     }
   }
+}
 
-  // Penalty pushes first, then friction from the forces with every push in.
+void EdgeContact::push_and_rub(const ContactModel& contacts, double h, const Eigen::Matrix3Xd& x,
+                               const Eigen::Matrix3Xd& v, const Eigen::VectorXd& inverse_mass,
+                               Eigen::Matrix3Xd& force, std::vector<WeightedContact>* active) {
+  // Penalty pushes first, then friction from the forces with every push in. An explicit scheme
+  // (no `active` list) takes each push bounded for its step (explicit_contact_bound.hpp).
   const ContactParameters& p = contacts.parameters();
+  const bool bounded = active == nullptr;
+  if (bounded) {
+    loads_.clear();
+    for (const Found& f : found_) loads_.add(f.particle, f.weight);
+  }
   std::vector<double>& pushes = pushes_;
   pushes.assign(found_.size(), 0.0);
   for (std::size_t e = 0; e < found_.size(); ++e) {
     Found& f = found_[e];
     Eigen::Vector3d u = -f.surface_velocity;  // m/s, the cloth point relative to the surface
-    bool moves = false;
+    double inverse_effective_mass = 0.0;      // 1/kg
     for (int s = 0; s < 3; ++s)
       if (f.particle[s] >= 0) {
         u += f.weight[s] * v.col(f.particle[s]);
-        moves = moves || inverse_mass[f.particle[s]] > 0.0;
+        inverse_effective_mass += f.weight[s] * f.weight[s] * inverse_mass[f.particle[s]];
       }
-    if (!moves) continue;
-    const double fn = penalty_normal_force(f.depth, f.normal.dot(u), p.stiffness, p.damping);
+    if (!(inverse_effective_mass > 0.0)) continue;  // every particle of it is pinned
+    const PenaltyRates rates =
+        bounded ? step_bounded_penalty(p.stiffness, p.damping, inverse_effective_mass,
+                                       loads_.load(f.particle, f.weight), h)
+                : PenaltyRates{p.stiffness, p.damping};
+    const double fn =
+        penalty_normal_force(f.depth, f.normal.dot(u), rates.stiffness, rates.damping);
     if (fn <= 0.0) continue;
     pushes[e] = fn;
     for (int s = 0; s < 3; ++s)

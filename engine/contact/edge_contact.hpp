@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "contact/explicit_contact_bound.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/contact_model.hpp"
@@ -86,8 +87,17 @@ class EdgeContact {
                   const Eigen::Matrix3Xd& v, const Eigen::VectorXd& inverse_mass,
                   Eigen::Matrix3Xd& force, std::vector<WeightedContact>* active);
   const std::vector<EdgeContactTotals>& totals() const { return totals_; }
+  // The energy (J) the contacts at positions x and time t store in their penalty springs: 1/2 k d^2
+  // over every contact, d its depth (m). Finds the contacts afresh; totals() is left as it was.
+  double stored_energy(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x);
 
  private:
+  // The contacts at (x, t), into found_.
+  void find_contacts(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x);
+  // Their penalty and friction forces (add_forces after the search).
+  void push_and_rub(const ContactModel& contacts, double h, const Eigen::Matrix3Xd& x,
+                    const Eigen::Matrix3Xd& v, const Eigen::VectorXd& inverse_mass,
+                    Eigen::Matrix3Xd& force, std::vector<WeightedContact>* active);
   struct Found {
     std::array<int, 3> particle{-1, -1, -1};
     std::array<double, 3> weight{};
@@ -110,6 +120,7 @@ class EdgeContact {
   std::vector<ColliderFeatures::Edge> posed_edges_;      // one collider's, in the world
   std::vector<ColliderFeatures::Corner> posed_corners_;  // one collider's, in the world
   std::vector<double> pushes_;                           // N, per found contact
+  ContactLoads loads_;  // contacts per particle, for the explicit schemes' bound
   std::vector<EdgeContactTotals> totals_;
 };
 

@@ -43,6 +43,7 @@ SelfContact::SelfContact(const ClothModel& model, const SelfCollisionSettings& s
       thickness_(settings.thickness_or(model.thickness)),
       margin_(2.0 * thickness_) {
   const int n = model.particle_count();
+  loads_ = ContactLoads(n);
   edges_ = mesh_edges(model.triangles);
   neighbour_start_.assign(static_cast<std::size_t>(n) + 1, 0);
   for (const auto& e : edges_) {
@@ -226,18 +227,32 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
   const double k = settings_.stiffness, c = settings_.damping;
   normal_force_.assign(contacts_.size(), 0.0);
   normal_.resize(contacts_.size());
-  // Penalty: every contact's push at once, so friction below sees all of them.
+  // Penalty: every contact's push at once, so friction below sees all of them. An explicit scheme
+  // (no `active` list) takes each push bounded for its step (explicit_contact_bound.hpp).
+  const bool bounded = active == nullptr;
+  if (bounded) {
+    loads_.clear();
+    for (const Contact& contact : contacts_) loads_.add(contact.particle, contact.weight);
+  }
   double normal_total = 0.0;
   std::int64_t pushing = 0;
   for (std::size_t e = 0; e < contacts_.size(); ++e) {
     const Contact& contact = contacts_[e];
     Eigen::Vector3d r = Eigen::Vector3d::Zero(), u = Eigen::Vector3d::Zero();
+    double inverse_effective_mass = 0.0;  // 1/kg
     for (int s = 0; s < 4; ++s)
       if (contact.particle[s] >= 0) {
-        r += contact.weight[s] * x.col(contact.particle[s]);
-        u += contact.weight[s] * v.col(contact.particle[s]);
+        const int j = contact.particle[s];
+        r += contact.weight[s] * x.col(j);
+        u += contact.weight[s] * v.col(j);
+        inverse_effective_mass += contact.weight[s] * contact.weight[s] * inverse_mass[j];
       }
-    const PairPenalty push = pair_penalty(r, u, contact.fallback_normal, thickness_, k, c);
+    const PenaltyRates rates =
+        bounded ? step_bounded_penalty(k, c, inverse_effective_mass,
+                                       loads_.load(contact.particle, contact.weight), h)
+                : PenaltyRates{k, c};
+    const PairPenalty push =
+        pair_penalty(r, u, contact.fallback_normal, thickness_, rates.stiffness, rates.damping);
     normal_[e] = push.normal;
     if (push.force <= 0.0) continue;
     normal_force_[e] = push.force;

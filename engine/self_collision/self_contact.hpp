@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "contact/explicit_contact_bound.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/self_collision.hpp"
 #include "drapelab/weighted_contact.hpp"
@@ -98,6 +99,7 @@ class SelfContact {
   std::vector<Contact> contacts_;
   std::vector<SharedFeature> shared_;
   std::vector<double> normal_force_;       // N, per contact
+  ContactLoads loads_;                     // contacts per particle, for the explicit schemes' bound
   std::vector<Eigen::Vector3d> normal_;    // per contact
   std::vector<Eigen::Vector3d> friction_;  // N, per contact
   SelfContactStats stats_;

@@ -32,6 +32,15 @@ struct ClothMetrics {
   // The hard and rope distance constraints' largest relative length error
   // (distance_constraints.hpp); empty without such constraints.
   std::optional<double> constraint_error;
+  // The energy audit (docs/metrics.md, "Energy audit"), filled in by the run's frame loop (J):
+  // elastic_energy is the springs' (spring_energy) or, for our continuum solver, the membranes' and
+  // hinges'; contact_energy the penalty springs' 1/2 k d^2 (empty without colliders);
+  // constraint_energy the soft constraints' and drags' (empty without them); total_energy
+  // kinetic + gravity + elastic + contact + constraint.
+  std::optional<double> elastic_energy;
+  std::optional<double> contact_energy;
+  std::optional<double> constraint_energy;
+  std::optional<double> total_energy;
 };
 
 ClothMetrics compute_cloth_metrics(const ClothModel& model, const ClothState& state,

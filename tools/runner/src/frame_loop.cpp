@@ -62,8 +62,17 @@ std::shared_ptr<const ContactModel> contacts_for(const SceneSetup& setup, const 
                                               scene_contacts.query().radius(), std::move(poses));
 }
 
-FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, const Solver& solver,
+// "symplectic_euler, dt = 8.6e-05 s": the solver's step, for the energy audit's causes.
+std::string step_hint(const scene::SolverSpec& spec) {
+  const std::string method = spec.type == SolverType::spring_damper
+                                 ? std::string(integrator_name(spec.integrator))
+                                 : std::string(solver_type_name(spec.type));
+  return method + ", dt = " + format_number(spec.dt) + " s";
+}
+
+FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, SolverRun& run,
                            int frame, double time) {
+  const Solver& solver = *run.solver;
   const ClothState& state = solver.state();
   const std::shared_ptr<const ContactModel> contacts = contacts_for(setup, solver, time);
   FrameMeasure measure;
@@ -81,6 +90,11 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, c
     measure.metrics.triangle_penetration =
         triangle_penetration(*setup.model, state.x, *contacts, time);
   }
+  if (!run.energy)
+    run.energy = std::make_unique<EnergyAudit>(
+        scene::cloth_for_solver(scene, *run.spec, setup.model), scene, setup.contacts.get());
+  run.energy->measure(setup, contacts.get(), state, time, measure.metrics);
+  run.energy->check(frame, time, measure.metrics, step_hint(*run.spec));
   return measure;
 }
 
@@ -99,7 +113,7 @@ StopCause stretch_check(const scene::SolverSpec& spec, const ClothMetrics& metri
 FrameMeasure measure_and_check(const scene::Scene& scene, const SceneSetup& setup, SolverRun& run,
                                int frame, double stretch_limit) {
   const double time = frame / scene.frame_rate;  // s
-  FrameMeasure measure = measure_frame(scene, setup, *run.solver, frame, time);
+  FrameMeasure measure = measure_frame(scene, setup, run, frame, time);
   measure.failed = stretch_check(*run.spec, measure.metrics, stretch_limit);
   run.last_metrics = measure.metrics;
   run.rest.add(time, measure.metrics.kinetic_energy, measure.metrics.gravity_energy,

@@ -21,9 +21,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
-// Adds every row of one CSV table; `key_columns` name the row (joined by '/'). A table that is
-// absent adds nothing: a scene with one solver writes no compare.csv, one without colliders no
-// contacts.csv.
+// Adds every row of one CSV table; `key_columns` name the row (joined by '/'). A table with its
+// header alone (compare.csv of a scene with one solver, contacts.csv of one without colliders)
+// adds nothing, and so does an absent one.
 void read_table(const fs::path& path, const std::vector<std::string>& key_columns,
                 std::map<int, GoldenRows>& out) {
   if (!fs::exists(path)) return;
@@ -242,7 +242,9 @@ std::string golden_kind(const std::string& column) {
   if (column == "centroid_x" || column == "centroid_y" || column == "centroid_z" ||
       column == "lowest_y")
     return "position";
-  if (column == "kinetic_energy" || column == "gravity_energy" || column == "spring_energy")
+  if (column == "kinetic_energy" || column == "gravity_energy" || column == "spring_energy" ||
+      column == "elastic_energy" || column == "contact_energy" || column == "constraint_energy" ||
+      column == "total_energy")
     return "energy";
   if (column == "max_stretch" || column == "mean_stretch") return "strain";
   if (column == "max_penetration") return "penetration";

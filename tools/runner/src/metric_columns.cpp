@@ -32,6 +32,10 @@ const std::vector<MetricColumn>& metric_columns() {
       {"self_intersections", [](M m) { return as_double(m.self_intersections); }},
       {"triangle_penetration", [](M m) { return m.triangle_penetration; }},
       {"constraint_error", [](M m) { return m.constraint_error; }},
+      {"elastic_energy", [](M m) { return m.elastic_energy; }},
+      {"contact_energy", [](M m) { return m.contact_energy; }},
+      {"constraint_energy", [](M m) { return m.constraint_energy; }},
+      {"total_energy", [](M m) { return m.total_energy; }},
   };
   return columns;
 }

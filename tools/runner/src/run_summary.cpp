@@ -38,6 +38,11 @@ ordered_json metrics_json(const ClothMetrics& m) {
   j["triangle_penetration"] =
       m.triangle_penetration ? ordered_json(*m.triangle_penetration) : ordered_json();
   j["constraint_error"] = m.constraint_error ? ordered_json(*m.constraint_error) : ordered_json();
+  for (const auto& [key, value] : {std::pair{"elastic_energy", m.elastic_energy},
+                                   {"contact_energy", m.contact_energy},
+                                   {"constraint_energy", m.constraint_energy},
+                                   {"total_energy", m.total_energy}})
+    j[key] = value ? ordered_json(*value) : ordered_json();
   return j;
 }
 
@@ -74,6 +79,17 @@ ordered_json solver_json(const SolverRun& run) {
   j["settle_time"] = settle ? ordered_json(*settle) : ordered_json();
   j["rest_jitter"] = jitter ? ordered_json(*jitter) : ordered_json();
   j["final"] = run.last_metrics ? metrics_json(*run.last_metrics) : ordered_json::object();
+  if (run.energy) {
+    const EnergyAudit& audit = *run.energy;
+    j["energy_audit"] = {{"passive", audit.passive()},
+                         {"tolerance_J", audit.tolerance()},
+                         {"worst_rise_J", audit.worst_rise()}};
+    ordered_json warnings = ordered_json::array();
+    for (const EnergyWarning& w : audit.warnings())
+      warnings.push_back(
+          {{"frame", w.frame}, {"time", w.time}, {"rise_J", w.rise}, {"cause", w.cause}});
+    j["energy_warnings"] = warnings;
+  }
   return j;
 }
 

@@ -8,6 +8,7 @@
 
 #include "drapelab/cloth_metrics.hpp"
 #include "drapelab/run_folder/point_cache.hpp"
+#include "drapelab/runner/energy_audit.hpp"
 #include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene.hpp"
 #include "drapelab/solver.hpp"
@@ -27,7 +28,8 @@ struct SolverRun {
   std::int64_t steps = 0;
   int frames_recorded = 0;  // frames measured, frame 0 included
   std::optional<ClothMetrics> last_metrics;
-  RestTracker rest;  // settle time and rest jitter, from every measured frame
+  RestTracker rest;                     // settle time and rest jitter, from every measured frame
+  std::unique_ptr<EnergyAudit> energy;  // built at the first measured frame
   std::unique_ptr<run_folder::Pc2Writer> point_cache;  // drapelab run with meshes: pc2
 
   bool running() const { return status == SolverStatus::ok; }
