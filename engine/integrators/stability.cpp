@@ -34,8 +34,8 @@ Eigen::VectorXd continuum_row_radii(const ClothModel& model) {
 
 }  // namespace
 
-NetworkRates network_rate_bounds(const ClothModel& model, double air_damping,
-                                 ContactRates contact) {
+NetworkRates network_rate_bounds(const ClothModel& model, double air_damping, ContactRates contact,
+                                 const ParticleRates& extra) {
   // Row i of the stiffness matrix holds sum_j k_ij on the diagonal and -k_ij (times a direction
   // projector) off it, so its Gershgorin disc reaches 2 sum_j k_ij; the damping matrix likewise.
   // A continuum cloth's discs are its elements' Hessian rows at rest, and its damping is alpha
@@ -54,6 +54,10 @@ NetworkRates network_rate_bounds(const ClothModel& model, double air_damping,
       row_damping[s.v0[e]] += 2.0 * s.kd[e];
       row_damping[s.v1[e]] += 2.0 * s.kd[e];
     }
+  }
+  if (!extra.empty()) {
+    row_stiffness += extra.stiffness;
+    row_damping += extra.damping;
   }
   NetworkRates rates;
   for (int i = 0; i < count; ++i) {
@@ -163,11 +167,11 @@ double damping_ratio_step(const ClothModel& model, ContactRates contact) {
 }
 
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
-                            Integrator integrator) {
+                            Integrator integrator, const ParticleRates& extra) {
   if (contact_at_step_end(integrator)) contact = {};  // the network alone bounds the step
   const bool ratio_bounds_step =
       integrator == Integrator::explicit_euler || integrator == Integrator::midpoint;
-  return step_from_rates(network_rate_bounds(model, air_damping, contact), integrator,
+  return step_from_rates(network_rate_bounds(model, air_damping, contact, extra), integrator,
                          ratio_bounds_step ? damping_ratio_step(model, contact) : 0.0);
 }
 

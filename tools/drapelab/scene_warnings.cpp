@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "drapelab/scene/number_format.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
 
@@ -66,10 +67,26 @@ void add_self_collision_warnings(const scene::Scene& scene, const ClothModel& mo
   }
 }
 
+// A solver expected to run for over ten minutes, with the faster choice when there is one.
+void add_long_run_warnings(const scene::Scene& scene, std::vector<std::string>& warnings) {
+  for (const auto& solver : scene.solvers) {
+    if (!(solver.estimated_seconds > 600.0)) continue;
+    std::string line = "solver " + solver.name + " is expected to take about " +
+                       describe_seconds(solver.estimated_seconds) + " (" +
+                       format_number(static_cast<double>(solver.steps_per_frame)) +
+                       " steps per frame)";
+    line += solver.faster_choice.empty()
+                ? "; a larger dt, fewer particles or a shorter duration would shorten it"
+                : "; faster: " + solver.faster_choice;
+    warnings.push_back(line);
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> scene_warnings(const scene::Scene& scene, const ClothModel& model) {
   std::vector<std::string> warnings;
+  add_long_run_warnings(scene, warnings);
   add_stability_warnings(scene, model, warnings);
   add_self_collision_warnings(scene, model, warnings);
   return warnings;

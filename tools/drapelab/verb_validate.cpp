@@ -85,7 +85,10 @@ int validate_verb(const ValidateArguments& arguments) {
       std::cout << ", " << solver.iterations << " iteration(s)";
     if (solver.type != SolverType::spring_damper)
       std::cout << ", margin " << solver.margin << " m, voxel " << solver.voxel_size << " m";
-    std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)\n";
+    std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)";
+    if (solver.estimated_seconds > 0.0)
+      std::cout << ", about " << describe_seconds(solver.estimated_seconds) << " of wall time";
+    std::cout << "\n";
     if (solver.type != SolverType::spring_damper || !solver.adaptive_substeps) continue;
     // The shape bound at the start; it is re-evaluated at every dt as the cloth moves.
     const double shape_step =

@@ -30,9 +30,18 @@ struct ContactRates {
   double damping = 0.0;    // N*s/m
 };
 
+// What else acts on single particles as an explicit spring-damper, per particle (empty: nothing):
+// self-contact, soft distance constraints, drags and the air (step_rates.hpp of the scene loader
+// builds them). Each adds to its particle's Gershgorin row as the contact does.
+struct ParticleRates {
+  Eigen::VectorXd stiffness;  // N/m
+  Eigen::VectorXd damping;    // N*s/m
+  bool empty() const { return stiffness.size() == 0; }
+};
+
 // Gershgorin bounds over the free particles; pinned particles do not move and are skipped.
 NetworkRates network_rate_bounds(const ClothModel& model, double air_damping,
-                                 ContactRates contact = {});
+                                 ContactRates contact = {}, const ParticleRates& extra = {});
 
 // A step (s) for which symplectic Euler is stable on the whole network (sufficient, from the bounds
 // above; typically within a factor 2 of the true limit). Infinity when nothing constrains it.
@@ -76,6 +85,6 @@ double step_from_rates(const NetworkRates& rates, Integrator integrator, double 
 // imaginary axis and 2.79 on the negative real axis); min(damping_ratio_step, symplectic bound) for
 // explicit Euler and midpoint; infinity for implicit Euler.
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
-                            Integrator integrator);
+                            Integrator integrator, const ParticleRates& extra = {});
 
 }  // namespace drapelab

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace drapelab {
 
@@ -17,6 +18,19 @@ std::string format_list(const Eigen::VectorXd& values) {
   for (Eigen::Index k = 0; k < values.size(); ++k)
     text += (k ? ", " : "") + format_number(values[k]);
   return text + "]";
+}
+
+std::string describe_seconds(double seconds) {
+  char buffer[32];
+  const auto two_figures = [&](double value, const char* unit) {
+    std::snprintf(buffer, sizeof buffer, value < 10.0 ? "%.1f %s" : "%.0f %s", value, unit);
+    return std::string(buffer);
+  };
+  if (!(seconds < 120.0)) {
+    const double minutes = seconds / 60.0;
+    return minutes < 120.0 ? two_figures(minutes, "min") : two_figures(minutes / 60.0, "h");
+  }
+  return two_figures(seconds, "s");
 }
 
 }  // namespace drapelab

@@ -8,6 +8,7 @@
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
 #include "run_limits.hpp"
+#include "step_rates.hpp"
 #include "text_checks.hpp"
 #include "value_ranges.hpp"
 
@@ -78,6 +79,7 @@ class SolverReader {
       spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);
     else
       spec.dt = automatic_step(spec);
+    estimate_cost(spec);
     spec.round_dt = solver.boolean("round_dt", false).value_or(false);
     const double free_fall_speed = scene_.gravity.norm() * std::max(scene_.duration, 0.0);  // m/s
     const double default_max_speed = 100.0 + 2.0 * free_fall_speed;
@@ -92,6 +94,7 @@ class SolverReader {
 
  private:
   void read_integrator(MapReader& solver, const std::string& path, SolverSpec& spec) {
+    spec.integrator_named = solver.has("integrator");
     if (solver.has("integrator"))
       if (const auto name =
               r_.choice(solver.get("integrator"), path + ".integrator", integrator_names()))
@@ -223,7 +226,7 @@ class SolverReader {
                " sweeps per step";
     } else {
       double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(),
-                                          spec.integrator);
+                                          spec.integrator, explicit_particle_rates(scene_, model));
       double factor = 0.9;
       if (bound ==
           0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step at all
@@ -238,7 +241,48 @@ class SolverReader {
     const double steps = std::max(1.0, std::ceil(frame_period / target));
     spec.note =
         "dt chosen automatically: " + format_number(steps) + " steps per frame (" + reason + ")";
+    const double dt = frame_period / steps;
+    if (spec.type == SolverType::spring_damper && !spec.integrator_named && !spec.adaptive_substeps)
+      return choose_integrator(spec, model, dt);
+    return dt;
+  }
+
+  // No integrator named and no dt: symplectic Euler at its stable step, unless that would take over
+  // a minute and more than four times as long as vbd at its own step, which then takes the scene
+  // (it is unconditionally stable; implicit Euler, also, costs about five times vbd at the
+  // scenes of scenes/). Returns the step of the method chosen.
+  double choose_integrator(SolverSpec& spec, const ClothModel& model, double explicit_dt) {
+    SolverSpec explicit_run = spec;
+    explicit_run.dt = explicit_dt;
+    const double explicit_seconds = estimated_wall_seconds(model, explicit_run, scene_.duration);
+    SolverSpec vbd_run = spec;
+    vbd_run.integrator = Integrator::vbd;
+    vbd_run.dt = kVbdDefaultStep;
+    const double vbd_seconds = estimated_wall_seconds(model, vbd_run, scene_.duration);
+    if (explicit_seconds <= 60.0 || explicit_seconds <= 4.0 * vbd_seconds) return explicit_dt;
+    const double frame_period = scene_.frame_period();
+    const double steps = std::max(1.0, std::ceil(frame_period / kVbdDefaultStep));
+    spec.integrator = Integrator::vbd;
+    spec.note = "integrator chosen automatically: vbd, " + format_number(steps) +
+                " steps per frame with " + std::to_string(spec.vbd.iterations) +
+                " sweeps each (symplectic_euler's stable step of " + format_number(explicit_dt) +
+                " s would take about " + describe_seconds(explicit_seconds) + "; vbd about " +
+                describe_seconds(vbd_seconds) + ")";
     return frame_period / steps;
+  }
+
+  // The run's estimated wall time, and, for an explicit run of over ten minutes, the faster choice.
+  void estimate_cost(SolverSpec& spec) {
+    if (!model_ || !(spec.dt > 0.0)) return;
+    spec.estimated_seconds = estimated_wall_seconds(*model_, spec, scene_.duration);
+    if (spec.type != SolverType::spring_damper || spec.estimated_seconds <= 600.0) return;
+    if (spec.integrator == Integrator::vbd || spec.integrator == Integrator::implicit_euler) return;
+    SolverSpec vbd_run = spec;
+    vbd_run.integrator = Integrator::vbd;
+    vbd_run.dt = kVbdDefaultStep;
+    spec.faster_choice =
+        "integrator: vbd without a dt, about " +
+        describe_seconds(estimated_wall_seconds(*model_, vbd_run, scene_.duration));
   }
 
   bool whole_steps_per_frame(MapReader& solver, const std::string& path, SolverSpec& spec) {

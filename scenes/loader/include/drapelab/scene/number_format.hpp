@@ -9,5 +9,7 @@ namespace drapelab {
 std::string format_number(double value);
 // "[a, b, c]", each number as format_number writes it.
 std::string format_list(const Eigen::VectorXd& values);
+// A duration for people, to two significant figures: "0.8 s", "40 s", "13 min", "2.5 h".
+std::string describe_seconds(double seconds);
 
 }  // namespace drapelab

@@ -81,6 +81,13 @@ struct SolverSpec {
   double max_speed = 0.0;         // m/s, a faster particle stops the solver as unstable
   double runaway_stretch = 10.0;  // a stretch spring longer than (1 + this) x rest is unstable
   std::string note;               // what the loader chose or changed (automatic or rounded dt)
+  // spring_damper: whether the scene names the integrator (otherwise the loader chooses it, with
+  // the step, by its cost at the scene: step_rates.hpp).
+  bool integrator_named = false;
+  // The run's estimated wall time on the reference machine (s), and, when another integrator would
+  // be much faster, what it is and its estimate ("vbd, about 4 s"); empty otherwise.
+  double estimated_seconds = 0.0;
+  std::string faster_choice;
   // spring_damper only: stepped as an action inside a Bullet world (host: bullet) or bare (host:
   // none).
   bool bullet_host = true;
