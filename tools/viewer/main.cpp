@@ -11,8 +11,9 @@
 #include "view_window.hpp"
 
 int main(int argc, char** argv) {
+  // Named as it is typed: users run it as `drapelab view`, never by its own file name.
   CLI::App app{"Play a scene live: every solver side by side, grab the cloth with the mouse",
-               "view"};
+               "drapelab view"};
   std::string scene_file, size = "1280x720";
   std::vector<std::string> overrides;
   drapelab::viewer::ViewOptions options;

@@ -170,8 +170,8 @@ void Window::grab(double x, double y) {
   grab_point_ = positions.col(picked);
   grab_normal_ = (camera.eye - camera.target).normalized();
   session_.press(picked, grab_point_, drag_stiffness_);
-  status_line_ = "dragging particle " + std::to_string(picked) + " (" +
-                 session_.model().describe_particle(picked) + ")";
+  // describe_particle names the particle itself: "particle 50 (grid i=6, j=5)".
+  status_line_ = "dragging " + session_.model().describe_particle(picked);
 }
 
 void Window::drag_to(double x, double y) {
