@@ -9,6 +9,7 @@
 
 #include "drapelab/run_folder/output_file.hpp"
 #include "interrupt.hpp"
+#include "unknown_verb.hpp"
 #include "verbs.hpp"
 
 namespace {
@@ -98,6 +99,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // A misspelt verb is named, with the nearest verb; CLI11 alone would say that one is missing.
+    if (const auto unknown = drapelab::cli::unknown_verb_message(argc, argv, app)) {
+      std::cerr << "error: " << *unknown << "\n";
+      return drapelab::cli::kExitBadInput;
+    }
     app.exit(e);
     return drapelab::cli::kExitBadInput;  // usage errors are bad input too
   }
