@@ -3,6 +3,7 @@
 // failed, 2 bad input (nothing was run) or a file that could not be written, 3 an internal error (a
 // bug), 130 interrupted (files hold the frames recorded so far).
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -19,6 +20,10 @@ constexpr int kExitInternalError = 3;
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Every line reaches a pipe or a log as it is printed: stdout is otherwise fully buffered when it
+  // is not a terminal, and a long run's first line ("running ...") would arrive only at its end,
+  // after the progress lines and warnings on stderr (unbuffered).
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
   CLI::App app{
       "drapelab: a cloth laboratory. Runs cloth solvers side by side on the same scene and "
       "records drape metrics frame by frame."};

@@ -23,7 +23,8 @@ struct SweepArguments {
   std::string time_limit;                // slurm: sbatch --time, per task
   int cpus_per_task = 0;                 // slurm: sbatch --cpus-per-task; 0 = 1
   std::vector<std::string> sbatch_args;  // slurm: more sbatch arguments, as given
-  double lost_after = 0.0;  // slurm: s a task may be gone without its status; 0 = the default
+  double lost_after = 0.0;   // slurm: s a task may be gone without its status; 0 = the default
+  bool no_progress = false;  // no progress line (runs done of total) on stderr
 };
 
 }  // namespace drapelab::cli

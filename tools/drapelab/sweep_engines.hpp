@@ -27,8 +27,8 @@ struct SweepStart {
 std::vector<std::size_t> combinations_to_run(const SweepStart& start);
 
 // `drapelab run` of combination `index`, as the program's arguments (arguments[0] the program's
-// name): the scene, its run folder with --force (a run replaces only drapelab's own files), the
-// --set overrides and then the combination's values.
+// name): the scene, its run folder with --force (a run replaces only drapelab's own files) and
+// --no-progress, the --set overrides and then the combination's values.
 std::vector<std::string> run_arguments(const SweepStart& start, std::size_t index,
                                        const std::string& program);
 
@@ -45,7 +45,7 @@ std::optional<std::string> queued_slurm_job(const std::filesystem::path& out);
 
 // drapelab sweep --collect DIR: waits for a submitted Slurm sweep and writes its tables.
 // `lost_after`: as --lost-after (s; 0: the default).
-int collect_slurm_sweep(const std::string& out, double lost_after,
+int collect_slurm_sweep(const std::string& out, double lost_after, ProgressMode progress,
                         const std::atomic<bool>& interrupt);
 
 }  // namespace drapelab::cli

@@ -1,5 +1,8 @@
 #include "sweep_folder.hpp"
 
+#include <unistd.h>
+
+#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -7,6 +10,7 @@
 #include "drapelab/run_folder/files.hpp"
 #include "drapelab/run_folder/run_transaction.hpp"
 #include "drapelab/runner/run_scene.hpp"
+#include "progress/progress_line.hpp"
 
 namespace drapelab::cli {
 
@@ -117,6 +121,7 @@ void print_progress(std::size_t done, const SweepPlan& plan, const CombinationOu
 void SweepFolder::finish(CombinationOutcome outcome) {
   const std::size_t index = outcome.index;
   finished_[index] = std::move(outcome);
+  clear_progress();
   print_progress(finished_.size(), plan_, finished_[index]);
   write();
 }
@@ -127,8 +132,32 @@ void SweepFolder::restore(CombinationOutcome outcome) {
 }
 
 void SweepFolder::set_state(const std::string& state) {
+  clear_progress();  // the sweep ends or stops waiting: its closing lines follow
   record_.state = state;
   write();
+}
+
+void SweepFolder::start_progress(ProgressMode mode) {
+  progress_ =
+      std::make_unique<ProgressDisplay>(mode, std::cerr, plain_progress_interval(), STDERR_FILENO);
+  progress_start_ = ProgressDisplay::Clock::now();
+  finished_at_progress_start_ = finished_.size();
+}
+
+void SweepFolder::show_progress(std::optional<std::size_t> running) {
+  if (!progress_ || progress_->mode() == ProgressMode::none) return;
+  SweepProgress sweep;
+  sweep.done = finished_.size();
+  sweep.total = plan_.count();
+  sweep.ran = finished_.size() - finished_at_progress_start_;
+  sweep.running = running;
+  sweep.wall_seconds =
+      std::chrono::duration<double>(ProgressDisplay::Clock::now() - progress_start_).count();
+  progress_->update({format_sweep_progress(sweep)});
+}
+
+void SweepFolder::clear_progress() const {
+  if (progress_) progress_->clear();
 }
 
 void SweepFolder::write() const {
@@ -136,6 +165,7 @@ void SweepFolder::write() const {
     run_folder::write_file_atomically(out_ / "sweep.csv", sweep_csv(plan_, finished_));
     run_folder::write_file_atomically(out_ / "sweep.json", sweep_json(record_, plan_, finished_));
   } catch (const std::exception& e) {
+    clear_progress();
     std::cerr << "warning: " << e.what() << "; trying again after the next run\n";
   }
 }

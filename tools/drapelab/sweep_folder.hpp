@@ -14,6 +14,7 @@
 #include "drapelab/runner/sweep_files.hpp"
 #include "drapelab/runner/sweep_outcome.hpp"
 #include "drapelab/runner/sweep_plan.hpp"
+#include "progress/progress_display.hpp"
 
 namespace drapelab::cli {
 
@@ -43,7 +44,7 @@ class SweepFolder {
   const std::map<std::size_t, runner::CombinationOutcome>& finished() const { return finished_; }
   bool is_finished(std::size_t index) const { return finished_.count(index) > 0; }
 
-  // Records a finished combination, prints its progress line and rewrites both files.
+  // Records a finished combination, prints its line and rewrites both files.
   void finish(runner::CombinationOutcome outcome);
   // Records one already known (collecting a sweep again): no progress line, no rewrite.
   void restore(runner::CombinationOutcome outcome);
@@ -51,11 +52,22 @@ class SweepFolder {
   // Both files, replaced atomically: valid whenever the sweep stops.
   void write() const;
 
+  // The progress line on stderr (runs done of total, docs/cli.md "Progress"), its clock started
+  // now: the combinations finished so far took none of its time.
+  void start_progress(ProgressMode mode);
+  // Shows the line when it is due; `running`: the runs in progress, when the engine knows them.
+  void show_progress(std::optional<std::size_t> running);
+  // Erases the line from a terminal before other output; the next show_progress draws it again.
+  void clear_progress() const;
+
  private:
   std::filesystem::path out_;
   runner::SweepRecord record_;
   const runner::SweepPlan& plan_;
   std::map<std::size_t, runner::CombinationOutcome> finished_;
+  std::unique_ptr<ProgressDisplay> progress_;  // none until start_progress
+  ProgressDisplay::Clock::time_point progress_start_;
+  std::size_t finished_at_progress_start_ = 0;
 };
 
 // The closing lines of a sweep ("4 combinations: 3 ok, 1 unstable", the table's path) and its exit

@@ -41,9 +41,14 @@ std::vector<std::size_t> combinations_to_run(const SweepStart& start) {
 
 std::vector<std::string> run_arguments(const SweepStart& start, std::size_t index,
                                        const std::string& program) {
-  std::vector<std::string> arguments{
-      program,  "run", start.arguments.scene, "--out", start.folder.run_dir(index).string(),
-      "--force"};
+  // The run's output goes into its log, which holds no progress lines.
+  std::vector<std::string> arguments{program,
+                                     "run",
+                                     start.arguments.scene,
+                                     "--out",
+                                     start.folder.run_dir(index).string(),
+                                     "--force",
+                                     "--no-progress"};
   std::vector<std::string> overrides = start.arguments.overrides;
   const auto varied = start.plan.overrides(index);
   overrides.insert(overrides.end(), varied.begin(), varied.end());
@@ -87,6 +92,7 @@ int run_local_sweep(SweepStart& start) {
       it = running.erase(it);
       any_ended = true;
     }
+    folder.show_progress(running.size());
     if (!any_ended) std::this_thread::sleep_for(kChildPollPeriod);
   }
 

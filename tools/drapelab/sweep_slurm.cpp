@@ -112,7 +112,10 @@ class ArrayWatch {
     std::string problem;
     const auto queued = queued_tasks(submission_.job_id, &problem);
     if (!queued) {
-      if (!warned_) std::cerr << "warning: " << problem << "; trying again\n";
+      if (!warned_) {
+        folder_.clear_progress();
+        std::cerr << "warning: " << problem << "; trying again\n";
+      }
       warned_ = true;
       return false;
     }
@@ -150,6 +153,7 @@ class ArrayWatch {
         check_queue();
         next_queue_check = Clock::now() + kQueuePollPeriod;
       }
+      folder_.show_progress(std::nullopt);  // queued and running tasks are not told apart
       std::this_thread::sleep_for(kStatusPollPeriod);
     }
   }
@@ -158,6 +162,7 @@ class ArrayWatch {
   // cancelled before they could run (or stop).
   void cancel() {
     std::string problem;
+    folder_.clear_progress();
     std::cerr << "cancelling Slurm job " << submission_.job_id << " (scancel)\n";
     if (!cancel_job(submission_.job_id, &problem)) std::cerr << "warning: " << problem << "\n";
     const auto give_up = Clock::now() + kCancelWait;
@@ -313,7 +318,7 @@ std::optional<std::string> queued_slurm_job(const fs::path& out) {
          ") or wait for it (drapelab sweep --collect " + out.string() + ") before --force";
 }
 
-int collect_slurm_sweep(const std::string& out_text, double lost_after,
+int collect_slurm_sweep(const std::string& out_text, double lost_after, ProgressMode progress,
                         const std::atomic<bool>& interrupt) {
   const fs::path out = out_text;
   std::string problem;
@@ -350,6 +355,7 @@ int collect_slurm_sweep(const std::string& out_text, double lost_after,
   const Submission submission{record.job_id, j["indices"].get<std::vector<std::size_t>>()};
   std::cout << "collecting Slurm job " << record.job_id << " (" << submission.indices.size()
             << " tasks) into " << out.string() << std::endl;
+  folder.start_progress(progress);
   const PollingSection polling;  // Ctrl-C stops waiting; the job goes on
   return wait_and_close(folder, plan, submission, lost_after, interrupt, false);
 }

@@ -1,4 +1,6 @@
 // drapelab run SCENE --out DIR: simulate and write the run folder (docs/outputs.md).
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +12,8 @@
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/scene_loader.hpp"
 #include "interrupt.hpp"
+#include "progress/progress_display.hpp"
+#include "progress/progress_line.hpp"
 #include "scene_warnings.hpp"
 #include "verbs.hpp"
 
@@ -27,7 +31,11 @@ void add_run_options(CLI::App& verb, RunArguments& arguments) {
   verb.add_flag("--force", arguments.force,
                 "Use a folder that holds a different run or other files: replaces only the files "
                 "drapelab wrote there");
-  verb.add_flag("--quiet,-q", arguments.quiet, "Print only problems");
+  verb.add_flag("--quiet,-q", arguments.quiet,
+                "Print only problems (warnings and errors): no notes, no progress, no summary");
+  verb.add_flag("--no-progress", arguments.no_progress,
+                "Print no progress lines (they go to stderr: redrawn in place on a terminal, "
+                "else a line every 5 s)");
   verb.footer(
       "Example:\n  drapelab run scenes/curtain.yaml --out out/curtain --set "
       "cloth.resolution=[65,65]\n"
@@ -36,6 +44,27 @@ void add_run_options(CLI::App& verb, RunArguments& arguments) {
 }
 
 namespace {
+
+// The run's progress on stderr: a line per solver, redrawn in place on a terminal, else written
+// every few seconds (progress_display.hpp).
+class RunProgressLines final : public runner::RunProgress {
+ public:
+  explicit RunProgressLines(ProgressMode mode)
+      : display_(mode, std::cerr, plain_progress_interval(), STDERR_FILENO) {}
+
+  void frame_recorded(const std::vector<runner::SolverProgress>& solvers) override {
+    if (display_.mode() == ProgressMode::none) return;
+    std::size_t name_width = 0;
+    for (const auto& solver : solvers) name_width = std::max(name_width, solver.name.size());
+    std::vector<std::string> lines;
+    for (const auto& solver : solvers) lines.push_back(format_solver_progress(solver, name_width));
+    display_.update(lines);
+  }
+  void frames_ended() override { display_.clear(); }
+
+ private:
+  ProgressDisplay display_;
+};
 
 void print_outcome(const runner::RunResult& result, const std::filesystem::path& out) {
   for (const auto& solver : result.solvers) {
@@ -69,7 +98,8 @@ int run_verb(const RunArguments& arguments, const std::string& command_line,
     std::cerr << "nothing was run\n";
     return kExitBadInput;
   }
-  for (const auto& note : loaded.notes) std::cerr << "note: " << note << "\n";
+  if (!arguments.quiet)
+    for (const auto& note : loaded.notes) std::cerr << "note: " << note << "\n";
   for (const auto& warning : scene_warnings(*loaded.scene, *loaded.model))
     std::cerr << "warning: " << warning << "\n";
   runner::RunOptions options;
@@ -79,11 +109,19 @@ int run_verb(const RunArguments& arguments, const std::string& command_line,
   options.command_line = command_line;
   options.interrupt = &interrupt;
   options.model = loaded.model;
+  options.quiet = arguments.quiet;
+  RunProgressLines progress(
+      progress_mode_for(STDERR_FILENO, !arguments.quiet && !arguments.no_progress));
+  options.progress = &progress;
   if (!arguments.quiet)
     std::cout << "running " << loaded.scene->name << " (" << loaded.scene->frame_count()
               << " frames) into " << arguments.out << "\n";
   const PollingSection polling;  // Ctrl-C stops the run after its current step
   const runner::RunResult result = runner::run_scene(*loaded.scene, options, std::cerr);
+  // In a passive scene a rise of the total energy is a problem of the method: said even with -q.
+  for (const auto& solver : result.solvers)
+    for (const auto& warning : solver.energy_warnings)
+      std::cerr << "warning: solver " << solver.name << ": " << warning << "\n";
   if (!result.folder.empty() && !arguments.quiet) print_outcome(result, result.folder);
   return result.exit_code;
 }

@@ -4,6 +4,8 @@
 // outcome and final metrics into DIR/sweep.csv and DIR/sweep.json. The runs are child processes of
 // this one (--engine local, sweep_local.cpp) or the tasks of one Slurm job array (--engine slurm,
 // sweep_slurm.cpp); this file parses, validates and prepares the folder.
+#include <unistd.h>
+
 #include <iostream>
 #include <set>
 #include <thread>
@@ -42,8 +44,8 @@ std::optional<std::string> check_argument_set(const SweepArguments& a) {
   if (!a.collect.empty()) {
     if (!a.scene.empty() || !a.varies.empty() || !a.out.empty() || !a.overrides.empty() ||
         a.force || a.engine != "local" || submission_options)
-      return "--collect DIR takes no other option but --lost-after: it gathers the sweep "
-             "already submitted into DIR";
+      return "--collect DIR takes no other option but --lost-after and --no-progress: it gathers "
+             "the sweep already submitted into DIR";
     return std::nullopt;
   }
   if (a.scene.empty()) return "a scene file is required (or --collect DIR)";
@@ -101,6 +103,9 @@ void add_sweep_options(CLI::App& verb, SweepArguments& arguments) {
                   "slurm: seconds a task may be gone from the queue without its status file "
                   "before its row is lost (default 30; more for a slow shared filesystem)")
       ->check(CLI::PositiveNumber);
+  verb.add_flag("--no-progress", arguments.no_progress,
+                "Print no progress line (runs done of total, on stderr: redrawn in place on a "
+                "terminal, else a line every 5 s)");
   verb.footer(
       "Runs every combination of the varied values, the last --vary key changing fastest, each as "
       "its own 'drapelab run' into DIR/runs/NNN_key=value_...; every combination is validated "
@@ -119,7 +124,8 @@ int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt) {
   if (const auto problem = check_argument_set(arguments)) return refuse(*problem);
   if (!arguments.collect.empty())
-    return collect_slurm_sweep(arguments.collect, arguments.lost_after, interrupt);
+    return collect_slurm_sweep(arguments.collect, arguments.lost_after,
+                               progress_mode_for(STDERR_FILENO, !arguments.no_progress), interrupt);
 
   // 1. The arguments, before any scene is read.
   std::vector<VariedKey> keys;
@@ -194,6 +200,7 @@ int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
   for (std::size_t index = 0; index < plan.count(); ++index)
     if (const auto& error = validation.combination_errors[index])
       folder.finish(refused_outcome(index, *error));
+  folder.start_progress(progress_mode_for(STDERR_FILENO, !arguments.no_progress));
   SweepStart start{arguments, plan, validation, folder, interrupt};
   return slurm ? run_slurm_sweep(start) : run_local_sweep(start);
 }

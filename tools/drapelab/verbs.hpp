@@ -21,7 +21,8 @@ struct RunArguments {
   std::vector<std::string> overrides;  // --set key.path=value
   std::string meshes;  // --meshes obj|pc2|both (shorthand for --set output.meshes=...)
   bool force = false;
-  bool quiet = false;
+  bool quiet = false;        // problems only: no notes, no progress, no outcome
+  bool no_progress = false;  // no progress lines (a sweep's runs, whose output is a log file)
 };
 void add_run_options(CLI::App& verb, RunArguments& arguments);
 int run_verb(const RunArguments& arguments, const std::string& command_line,

@@ -5,6 +5,7 @@
 #include "drapelab/runner/run_scene.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <optional>
 #include <ostream>
 #include <variant>
@@ -117,6 +118,71 @@ class RunFolderWriter final : public FrameObserver {
   int committed_frame_ = -1;
 };
 
+// Passes every frame on to the run folder's writer, then tells a progress display where each solver
+// is. A solver's wall time there is its stepping, timed by the frame loop, plus its measuring: the
+// time between the loop's calls here, less the stepping done in between.
+class ProgressReporter final : public FrameObserver {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  ProgressReporter(FrameObserver& writer, RunProgress& progress, const scene::Scene& scene,
+                   const std::vector<SolverRun>& runs)
+      : writer_(writer),
+        progress_(progress),
+        scene_(scene),
+        runs_(runs),
+        measuring_seconds_(runs.size(), 0.0) {
+    mark();
+  }
+
+  void measured(const SolverRun& run, const FrameMeasure& measure) override {
+    const double since = std::chrono::duration<double>(Clock::now() - last_call_).count();
+    const double stepped = stepping_seconds() - stepping_at_last_call_;
+    measuring_seconds_[static_cast<std::size_t>(&run - runs_.data())] +=
+        std::max(0.0, since - stepped);
+    writer_.measured(run, measure);
+    mark();
+  }
+
+  void frame_done(int frame, double time, const std::vector<SolverRun>& runs) override {
+    writer_.frame_done(frame, time, runs);
+    std::vector<SolverProgress> solvers;
+    for (std::size_t k = 0; k < runs_.size(); ++k) {
+      const SolverRun& run = runs_[k];
+      SolverProgress solver;
+      solver.name = run.spec->name;
+      solver.frames_done = std::max(run.frames_recorded - 1, 0);
+      solver.frames_total = scene_.frame_count();
+      solver.simulated_seconds = solver.frames_done / scene_.frame_rate;
+      solver.duration_seconds = scene_.duration;
+      solver.wall_seconds = run.wall_seconds + measuring_seconds_[k];
+      if (!run.running()) solver.stopped = solver_status_name(run.status);
+      solvers.push_back(std::move(solver));
+    }
+    progress_.frame_recorded(solvers);
+    mark();
+  }
+
+ private:
+  double stepping_seconds() const {
+    double total = 0.0;
+    for (const auto& run : runs_) total += run.wall_seconds;
+    return total;
+  }
+  void mark() {
+    last_call_ = Clock::now();
+    stepping_at_last_call_ = stepping_seconds();
+  }
+
+  FrameObserver& writer_;
+  RunProgress& progress_;
+  const scene::Scene& scene_;
+  const std::vector<SolverRun>& runs_;
+  std::vector<double> measuring_seconds_;  // s, per solver
+  Clock::time_point last_call_;
+  double stepping_at_last_call_ = 0.0;  // s, every solver's stepping at last_call_
+};
+
 // The path of a file inside the staging folder as it is named once the run is in place.
 std::string as_placed(const fs::path& file, const fs::path& staging, const fs::path& folder) {
   const fs::path relative = file.lexically_relative(staging);
@@ -137,7 +203,8 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
   }
   run_folder::RunTransaction& transaction =
       *std::get<std::unique_ptr<run_folder::RunTransaction>>(opened);
-  for (const auto& note : transaction.notes()) log << "note: " << note << "\n";
+  if (!options.quiet)
+    for (const auto& note : transaction.notes()) log << "note: " << note << "\n";
   const fs::path& out = transaction.staging();
 
   const SceneSetup setup = build_scene_setup(scene, options.model);
@@ -173,12 +240,18 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
     writer = std::make_unique<RunFolderWriter>(out, scene, setup, runs);
     FrameLoopOptions loop;
     loop.interrupt = options.interrupt;
-    end = run_frame_loop(scene, setup, runs, loop, *writer);
+    if (options.progress) {
+      ProgressReporter reporter(*writer, *options.progress, scene, runs);
+      end = run_frame_loop(scene, setup, runs, loop, reporter);
+    } else {
+      end = run_frame_loop(scene, setup, runs, loop, *writer);
+    }
   } catch (const run_folder::WriteError& error) {
     write_error = error;
   } catch (const fs::filesystem_error& error) {  // creating meshes/
     write_error = run_folder::WriteError(error.path1(), error.code());
   }
+  if (options.progress) options.progress->frames_ended();
   if (write_error) {
     // Disk full or refused: free the reserve so the summary fits, and end on the last whole frame.
     transaction.release_reserve();

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "drapelab/cloth_model.hpp"
+#include "drapelab/runner/run_progress.hpp"
 #include "drapelab/scene/scene.hpp"
 #include "drapelab/solver.hpp"
 
@@ -23,6 +24,8 @@ struct RunOptions {
   std::string command_line;                      // recorded in summary.json
   const std::atomic<bool>* interrupt = nullptr;  // set by Ctrl-C: stop after the current step
   std::shared_ptr<const ClothModel> model;  // the loader's cloth (built from the scene when null)
+  RunProgress* progress = nullptr;          // told of every recorded frame, when given
+  bool quiet = false;                       // print problems only: no notes (drapelab run -q)
 };
 
 // Exit codes (docs/outputs.md, "Exit codes").
@@ -60,7 +63,8 @@ struct RunResult {
   std::vector<SolverOutcome> solvers;  // in the scene's order
 };
 
-// Runs the scene into options.out_dir; progress and problems go to `log`.
+// Runs the scene into options.out_dir; notes and problems go to `log`, progress to
+// options.progress.
 RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::ostream& log);
 
 }  // namespace drapelab::runner
