@@ -84,7 +84,11 @@ const std::vector<std::string> kMetricsColumns = {"solver",
                                                   "drape_nodes",
                                                   "self_intersections",
                                                   "triangle_penetration",
-                                                  "constraint_error"};
+                                                  "constraint_error",
+                                                  "elastic_energy",
+                                                  "contact_energy",
+                                                  "constraint_energy",
+                                                  "total_energy"};
 const std::vector<std::string> kCompareColumns = {
     "solver_a", "solver_b", "frame", "time", "rms_distance", "max_distance", "hausdorff_distance"};
 const std::vector<std::string> kContactsColumns = {
@@ -92,8 +96,9 @@ const std::vector<std::string> kContactsColumns = {
     "contact_count", "normal_force", "friction_force", "max_penetration"};
 // Empty while the scene has no colliders and no drape support.
 const std::vector<std::string> kEmptyMetricsColumns = {
-    "min_clearance", "max_penetration",      "contact_count",   "drape_coefficient",
-    "drape_nodes",   "triangle_penetration", "constraint_error"};
+    "min_clearance",     "max_penetration", "contact_count",
+    "drape_coefficient", "drape_nodes",     "triangle_penetration",
+    "constraint_error",  "contact_energy",  "constraint_energy"};
 
 // A parsed CSV file: header and rows, each row a map from column name to cell.
 struct Csv {

@@ -44,7 +44,8 @@ void add_check_options(CLI::App& verb, CheckArguments& arguments) {
       "--set contact.stiffness=1100\n"
       "  drapelab check my_scene.yaml --golden my_scene.golden.json --update --set duration=1\n"
       "Exit codes: 0 every value within tolerance (or the file written), 1 a value differs from "
-      "the golden file, or --update refused a run whose solvers are not all ok, 2 bad input "
+      "the golden file, or our solver's total energy rose in a passive scene (energy audit), or "
+      "--update refused a run whose solvers are not all ok, 2 bad input "
       "(the scene; a golden file that is missing, unreadable, a folder, or compares nothing; a "
       "golden path that cannot be written), 130 interrupted.");
 }
@@ -277,6 +278,20 @@ int compare_with_golden(const CheckArguments& arguments, const std::atomic<bool>
                                       " extra override(s) given here)";
   if (run->result.exit_code != runner::kExitOk)
     std::cout << "note: the run did not end ok:\n" << solver_problems(run->result);
+  // The energy audit: in a passive scene our solver must not gain energy; Bullet's cloths are
+  // reported, not held to it (their methods are not ours to change).
+  bool energy_gained = false;
+  for (const auto& solver : run->result.solvers)
+    for (const auto& warning : solver.energy_warnings) {
+      const bool ours = solver.type == SolverType::spring_damper;
+      energy_gained = energy_gained || ours;
+      std::cout << (ours ? "energy: " : "note: ") << solver.name << ": " << warning << "\n";
+    }
+  if (energy_gained) {
+    std::cout << arguments.scene << extra
+              << ": our solver gained energy in a passive scene (the energy audit above)\n";
+    return runner::kExitUnstable;
+  }
   if (differences.empty()) {
     std::cout << arguments.scene << extra << ": " << golden->value_count() << " values at "
               << ends.size() << " windows match " << arguments.golden << "\n";

@@ -48,7 +48,7 @@ double energy_rise_tolerance(const ClothModel& model, const Eigen::Vector3d& gra
   const Eigen::Vector3d low = model.rest_positions.rowwise().minCoeff();
   const Eigen::Vector3d high = model.rest_positions.rowwise().maxCoeff();
   const double size = (high - low).norm();  // m
-  return std::max(1e-9, 2e-3 * model.total_mass() * gravity.norm() * size);
+  return std::max(1e-9, 1e-2 * model.total_mass() * gravity.norm() * size);
 }
 
 EnergyAudit::EnergyAudit(std::shared_ptr<const ClothModel> model, const scene::Scene& scene,

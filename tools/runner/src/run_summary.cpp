@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "drapelab/scene/number_format.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
 
@@ -105,6 +106,11 @@ SolverOutcome outcome_of(const SolverRun& run) {
   outcome.dt = run.spec->dt;
   outcome.frames_recorded = run.frames_recorded;
   outcome.wall_seconds = run.wall_seconds;
+  if (run.energy)
+    for (const EnergyWarning& w : run.energy->warnings())
+      outcome.energy_warnings.push_back("frame " + std::to_string(w.frame) + " (t = " +
+                                        format_number(w.time) + " s): the total energy rose by " +
+                                        format_number(w.rise) + " J; likely cause: " + w.cause);
   return outcome;
 }
 

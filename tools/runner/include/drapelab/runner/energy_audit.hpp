@@ -35,7 +35,7 @@ struct EnergyWarning {
 // What drives the cloth in `scene` ("" when it is passive): e.g. "collider 'ball' moves, wind".
 std::string scene_drivers(const scene::Scene& scene);
 
-// The tolerance (J) of the passive-scene check: 0.2 % of m g L, the cloth's weight over its rest
+// The tolerance (J) of the passive-scene check: 1 % of m g L, the cloth's weight over its rest
 // size (the diagonal of its rest bounding box), and never below 1e-9 J of rounding.
 double energy_rise_tolerance(const ClothModel& model, const Eigen::Vector3d& gravity);
 

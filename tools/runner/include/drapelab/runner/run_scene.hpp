@@ -44,6 +44,9 @@ struct SolverOutcome {
   double dt = 0.0;            // s
   int frames_recorded = 0;    // rows in metrics.csv, frame 0 included
   double wall_seconds = 0.0;  // s, stepping only
+  // The energy audit's warnings, one line each: "frame 9 (t = 0.15 s): the total energy rose by
+  // 0.14 J; likely cause: ..." (energy_audit.hpp).
+  std::vector<std::string> energy_warnings;
 
   double ms_per_step() const {
     return steps > 0 ? 1e3 * wall_seconds / static_cast<double>(steps) : 0.0;
