@@ -270,6 +270,27 @@ std::string last_row_cell(const ordered_json& final_metrics, const std::string& 
   return format_value(scale * json_number(final_metrics, key));
 }
 
+// The energy audit's warnings (summary.json's energy_warnings), one line each under the table:
+// in a passive scene a rise of the total energy is energy the method made (docs/metrics.md).
+std::string energy_warning_notes(const RunData& run) {
+  std::string html;
+  for (const auto& solver : run.solvers) {
+    const ordered_json& s = solver_summary(run, solver);
+    if (!s.is_object() || !s.contains("energy_warnings") || !s["energy_warnings"].is_array())
+      continue;
+    for (const auto& w : s["energy_warnings"]) {
+      if (!w.is_object()) continue;
+      html += "<p class=\"status-bad\">Energy: " + escape_xml(solver) + " at frame " +
+              format_value(json_number(w, "frame"), 10) +
+              " (t = " + format_value(json_number(w, "time")) + " s): the total energy rose by " +
+              format_value(json_number(w, "rise_J")) +
+              " J in a passive scene; likely cause: " + escape_xml(json_text(w, "cause")) +
+              "</p>\n";
+    }
+  }
+  return html;
+}
+
 std::string summary_section(const RunData& run) {
   std::string html = "<h2 id=\"summary\">Solvers</h2>\n";
   std::vector<std::vector<TableCell>> rows, final_rows;
@@ -322,6 +343,7 @@ std::string summary_section(const RunData& run) {
       "time after which the kinetic energy stays below 1e-6 of the gravity energy released; rest "
       "jitter: RMS velocity over the last second (docs/metrics.md). An em dash: not "
       "measured.</p>\n";
+  html += energy_warning_notes(run);
   html += "<h3>Final metrics</h3>\n";
   html +=
       html_table({"solver", "kinetic energy (J)", "max stretch (%)", "mean stretch (%)",

@@ -4,7 +4,6 @@
 #include <algorithm>
 
 #include "drapelab/continuum.hpp"
-#include "drapelab/runner/scene_setup.hpp"
 #include "drapelab/scene/number_format.hpp"
 
 namespace drapelab::runner {
@@ -62,7 +61,7 @@ EnergyAudit::EnergyAudit(std::shared_ptr<const ClothModel> model, const scene::S
         std::make_unique<ContactEnergyMeter>(*model_, *contacts, scene.contact.triangles);
 }
 
-void EnergyAudit::measure(const SceneSetup& setup, const ContactModel* contacts,
+void EnergyAudit::measure(const ContactModel* contacts, const DistanceConstraints* constraints,
                           const ClothState& state, double t, ClothMetrics& metrics) {
   const double elastic = model_->uses_continuum() ? continuum_energy(*model_->continuum, state.x)
                                                   : metrics.spring_energy;  // J
@@ -75,8 +74,8 @@ void EnergyAudit::measure(const SceneSetup& setup, const ContactModel* contacts,
     metrics.contact_energy = contact_now_.total();
     total += contact_now_.total();
   }
-  if (setup.constraints && setup.constraints->has_soft()) {
-    metrics.constraint_energy = setup.constraints->soft_energy(t, state.x);
+  if (constraints && constraints->has_soft()) {
+    metrics.constraint_energy = constraints->soft_energy(t, state.x);
     total += *metrics.constraint_energy;
   }
   metrics.total_energy = total;

@@ -38,10 +38,12 @@ namespace {
 // triangle penetration when there are colliders (the same queries for every solver).
 // The contact model one solver's metrics use: the scene's, or, with dynamic colliders, one whose
 // dynamic colliders stand where this solver's own bodies are.
-std::shared_ptr<const ContactModel> contacts_for(const SceneSetup& setup, const Solver& solver,
-                                                 double time) {
+// Where this solver's own dynamic bodies are at `time`, the other colliders where the scene puts
+// them; null without dynamic bodies.
+std::shared_ptr<const ColliderPoseTable> own_body_poses(const SceneSetup& setup,
+                                                        const Solver& solver, double time) {
   const std::vector<BodyState> bodies = solver.bodies();
-  if (!setup.contacts || bodies.empty()) return setup.contacts;
+  if (!setup.contacts || bodies.empty()) return nullptr;
   const ContactModel& scene_contacts = *setup.contacts;
   auto poses = std::make_shared<ColliderPoseTable>(scene_contacts.size());
   poses->set_substep(time, time);
@@ -57,9 +59,16 @@ std::shared_ptr<const ContactModel> contacts_for(const SceneSetup& setup, const 
     motion.angular_velocity = body.angular_velocity;
     poses->set(static_cast<std::size_t>(body.collider), motion);
   }
+  return poses;
+}
+
+std::shared_ptr<const ContactModel> contacts_for(
+    const SceneSetup& setup, const std::shared_ptr<const ColliderPoseTable>& own_poses) {
+  if (!setup.contacts || !own_poses) return setup.contacts;
+  const ContactModel& scene_contacts = *setup.contacts;
   return std::make_shared<const ContactModel>(scene_contacts.colliders(),
                                               scene_contacts.parameters(),
-                                              scene_contacts.query().radius(), std::move(poses));
+                                              scene_contacts.query().radius(), own_poses);
 }
 
 // "symplectic_euler, dt = 8.6e-05 s": the solver's step, for the energy audit's causes.
@@ -74,7 +83,8 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, S
                            int frame, double time) {
   const Solver& solver = *run.solver;
   const ClothState& state = solver.state();
-  const std::shared_ptr<const ContactModel> contacts = contacts_for(setup, solver, time);
+  const std::shared_ptr<const ColliderPoseTable> own_poses = own_body_poses(setup, solver, time);
+  const std::shared_ptr<const ContactModel> contacts = contacts_for(setup, own_poses);
   FrameMeasure measure;
   measure.frame = frame;
   measure.time = time;
@@ -93,7 +103,9 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, S
   if (!run.energy)
     run.energy = std::make_unique<EnergyAudit>(
         scene::cloth_for_solver(scene, *run.spec, setup.model), scene, setup.contacts.get());
-  run.energy->measure(setup, contacts.get(), state, time, measure.metrics);
+  const std::shared_ptr<const DistanceConstraints> constraints =
+      own_poses ? constraints_on_own_bodies(setup.constraints, own_poses) : setup.constraints;
+  run.energy->measure(contacts.get(), constraints.get(), state, time, measure.metrics);
   run.energy->check(frame, time, measure.metrics, step_hint(*run.spec));
   return measure;
 }

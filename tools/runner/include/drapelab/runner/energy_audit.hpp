@@ -19,11 +19,10 @@
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/contact_energy.hpp"
 #include "drapelab/contact_model.hpp"
+#include "drapelab/distance_constraints.hpp"
 #include "drapelab/scene/scene.hpp"
 
 namespace drapelab::runner {
-
-struct SceneSetup;
 
 struct EnergyWarning {
   int frame = 0;
@@ -47,9 +46,10 @@ class EnergyAudit {
               const ContactModel* contacts);
 
   // Fills metrics' elastic, contact, constraint and total energies for `state` at time t (s), with
-  // the colliders posed by `contacts` (null: none) and the soft constraints of `setup`.
-  void measure(const SceneSetup& setup, const ContactModel* contacts, const ClothState& state,
-               double t, ClothMetrics& metrics);
+  // the colliders posed by `contacts` and the soft constraints of `constraints` (each null: none;
+  // with dynamic colliders, both where this solver's own bodies are).
+  void measure(const ContactModel* contacts, const DistanceConstraints* constraints,
+               const ClothState& state, double t, ClothMetrics& metrics);
   // After measure: in a passive scene, records a warning when the total rose above the tolerance.
   // `solver_hint` names the solver's step, for the cause ("symplectic_euler, dt = 8.6e-05 s").
   void check(int frame, double time, const ClothMetrics& metrics, const std::string& solver_hint);
