@@ -12,9 +12,11 @@
 //   c' = c / (1 + h c L / m_e),
 // where L, the contact's load, is the most contacts of its kind any of its particles is in, so that
 // L contacts on one particle together damp it by at most the velocity it has. The spring likewise
-// becomes k' = k / (1 + h^2 k L / (2 m_e)). On the contact's point, symplectic Euler then has
-//   h^2 k' L / m_e + 2 h c' L / m_e < 2 + 2 = 4,
-// its stability condition, at any step: the contact cannot add energy whatever dt is. At the steps
+// becomes k' = k / (1 + h^2 k L / m_e). On the contact's point, symplectic Euler then has
+//   h^2 k' L / m_e + 2 h c' L / m_e < 1 + 2 < 4,
+// its stability condition, at any step; and h^2 w^2 = h^2 k' L / m_e < 1 means a point that leaves
+// the contact within one step leaves with less kinetic energy than the spring held (a one-step
+// bounce returns h^2 w^2 of it): the contact cannot add energy whatever dt is. At the steps
 // where the explicit contact was already stable (h^2 k L / m_e << 1 and h c L / m_e << 1) both are
 // unchanged; a resting contact keeps its force k' depth with k' close to k.
 // Implicit Euler and vertex block descent take the same contacts into their solves and use k and c
@@ -38,7 +40,7 @@ inline PenaltyRates step_bounded_penalty(double stiffness, double damping,
                                          double inverse_effective_mass, double load, double h) {
   if (!(h > 0.0) || !(inverse_effective_mass > 0.0)) return {stiffness, damping};
   const double rate = std::max(load, 1.0) * inverse_effective_mass;  // 1/kg
-  return {stiffness / (1.0 + 0.5 * h * h * stiffness * rate), damping / (1.0 + h * damping * rate)};
+  return {stiffness / (1.0 + h * h * stiffness * rate), damping / (1.0 + h * damping * rate)};
 }
 
 // How many contacts of one evaluation each particle is in (the load L above). Counts are kept for
