@@ -81,7 +81,7 @@ void add_study_options(CLI::App& verb, StudyArguments& arguments) {
   verb.add_option("--set", arguments.overrides,
                   "Override a key: key.path=value, validated like the file; may be repeated");
   verb.add_option("--integrators", arguments.integrators,
-                  "Comma-separated integrators (default: all seven)")
+                  "Comma-separated integrators (default: all eight)")
       ->delimiter(',');
   verb.add_option("--dt", arguments.dt, "Base step, s (default: the solver's dt in the scene)")
       ->check(CLI::PositiveNumber);

@@ -64,7 +64,7 @@ struct StudyArguments {
   std::string scene;
   std::string solver;                    // a spring_damper solver; default the first one
   std::vector<std::string> overrides;    // --set key.path=value
-  std::vector<std::string> integrators;  // default: all seven
+  std::vector<std::string> integrators;  // default: all eight
   double dt = 0.0;                       // s, the base step; 0 = the solver's dt in the scene
   std::vector<double> factors{1.0, 2.0, 4.0, 8.0};  // steps tried: dt x factor
   std::string out;        // folder for study.csv and study.md; default out/SCENE-study

@@ -20,8 +20,8 @@ FolderCheck inspect_folder(const fs::path& folder) {
     return check;
   }
   // A run folder: the three files the page cannot do without. compare.csv and contacts.csv are
-  // optional: a scene with one solver writes no compare.csv, one without colliders no contacts.csv
-  // (docs/outputs.md, "The run folder"), and a run stopped before its first frame may lack both.
+  // read when present: every run writes them, with their header alone for a scene with one solver
+  // or without colliders (docs/outputs.md, "The run folder"), but the page does without them.
   std::vector<std::string> missing;
   for (const char* name : {"summary.json", "metrics.csv", "scene.yaml"})
     if (!is_file(name)) missing.emplace_back(name);

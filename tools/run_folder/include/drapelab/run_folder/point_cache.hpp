@@ -1,5 +1,6 @@
 // The run folder's meshes/: per-solver PC2 point caches (Blender's Mesh Cache modifier reads them
-// onto rest.obj; vertex order is particle order) and the names of the per-frame OBJ files. PC2:
+// onto the frame-0 OBJ, docs/outputs.md; vertex order is particle order, the first sample frame 0)
+// and the names of the per-frame OBJ files. PC2:
 // "POINTCACHE2\0", int32 version 1, int32 points, float32 start frame, float32 sample rate
 // (frames), int32 samples, then per sample points x 3 float32, little endian.
 #pragma once
