@@ -1,19 +1,20 @@
 #!/usr/bin/env bash
-# Quickstart 2: install what is missing, check the format, build, and run every test; then build and
-# run the `fast` and `physics` labels again with AddressSanitizer and UndefinedBehaviorSanitizer, and
-# fuzz the scene loader and the OBJ reader for a fixed number of inputs (clang's libFuzzer).
-# Exits non-zero if the format check, any test or a fuzz run fails.
-# Usage: tools/test.sh [--fast | --no-sanitizers]
+# Quickstart 2: install what is missing, check the format, build, and run every test but the `slow`
+# label; then build and run the `fast` and `physics` labels again with AddressSanitizer and
+# UndefinedBehaviorSanitizer, and fuzz the scene loader and the OBJ reader for a fixed number of
+# inputs (clang's libFuzzer). Exits non-zero if the format check, any test or a fuzz run fails.
+# Usage: tools/test.sh [--fast | --all | --no-sanitizers]
 #   --fast           build, then run only the `fast` label (tests/CMakeLists.txt); no sanitizer build
-#   --no-sanitizers  every test, without the sanitizer and fuzz builds
+#   --all            the `slow` label too: the full-size runs whose CI-sized twins the default runs
+#   --no-sanitizers  every test but the `slow` label, without the sanitizer and fuzz builds
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 jobs=$(nproc)
 mode=${1:-}
 case "$mode" in
-  "" | --fast | --no-sanitizers) ;;
-  *) echo "usage: tools/test.sh [--fast | --no-sanitizers]" >&2; exit 2 ;;
+  "" | --fast | --all | --no-sanitizers) ;;
+  *) echo "usage: tools/test.sh [--fast | --all | --no-sanitizers]" >&2; exit 2 ;;
 esac
 
 bash tools/install-deps.sh
@@ -23,14 +24,20 @@ echo "== Format check (.clang-format)"
 git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
 
 echo "== Release build and tests${mode:+ ($mode)}"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DDRAPELAB_WARNINGS_AS_ERRORS=ON >/dev/null
+# DRAPELAB_BUILD_TESTS=ON: tools/demo.sh configures the same tree without the tests.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DDRAPELAB_WARNINGS_AS_ERRORS=ON \
+  -DDRAPELAB_BUILD_TESTS=ON >/dev/null
 cmake --build build -j "$jobs"
 if [[ "$mode" == "--fast" ]]; then
-  ctest --test-dir build -j "$jobs" -L fast --output-on-failure
+  ctest --test-dir build -j "$jobs" -L fast --no-tests=error --output-on-failure
   echo "== fast tests passed"
   exit 0
 fi
-ctest --test-dir build -j "$jobs" --output-on-failure
+# The `slow` label holds the full-size runs (over a minute of CPU each); each has a CI-sized twin
+# in the default run (tests/CMakeLists.txt lists them). --all runs them too.
+not_slow=(-LE slow)
+[[ "$mode" == "--all" ]] && not_slow=()
+ctest --test-dir build -j "$jobs" "${not_slow[@]}" --no-tests=error --output-on-failure
 
 if [[ "$mode" != "--no-sanitizers" ]]; then
   # lsan-suppressions.txt: leaks inside system libraries (Mesa's OSMesa), each explained there.
@@ -58,6 +65,6 @@ if [[ "$mode" != "--no-sanitizers" ]]; then
   skipped+='|TheSameSeedReproducesTheDrapeCoefficient|AVeryStiffClothStaysNearlyFlat'
   skipped+='|V9StickingThresholdIsTheFrictionAngle|EveryIntegratorSettlesToTheSameHangingShape'
   "${sanitizer_env[@]}" ctest --test-dir build-sanitize -j "$jobs" -L 'fast|physics|fuzz' \
-    -E "$skipped" --output-on-failure
+    -LE slow -E "$skipped" --no-tests=error --output-on-failure
 fi
 echo "== all tests passed"
