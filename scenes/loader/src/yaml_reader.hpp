@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "drapelab/scene/edit_distance.hpp"
+
 namespace drapelab::scene {
 
 // Allowed interval of a number, with the words used in messages.
@@ -104,8 +106,6 @@ class MapReader {
   bool valid_ = false;
 };
 
-// Levenshtein distance, for "did you mean" suggestions.
-std::size_t edit_distance(const std::string& a, const std::string& b);
 // The candidate nearest to `word`, or empty when none is close enough to be a plausible typo.
 std::string nearest_word(const std::string& word, const std::vector<std::string>& candidates);
 
