@@ -7,9 +7,9 @@ namespace drapelab::scene {
 namespace {
 
 // Measured cost per particle and step (s) on the two-core reference machine
-// (docs/physics.md, "The integrator chosen when none is named"): the explicit step on springs and on the
-// continuum's elements, implicit Euler with its conjugate gradient, vbd with its default 10 sweeps,
-// and Bullet's two cloths.
+// (docs/physics.md, "The integrator chosen when none is named"): the explicit step on springs and
+// on the continuum's elements, implicit Euler with its conjugate gradient, vbd with its default 10
+// sweeps, and Bullet's two cloths.
 constexpr double kExplicitSpringCost = 0.15e-6;
 constexpr double kExplicitContinuumCost = 0.4e-6;
 constexpr double kImplicitEulerCost = 50e-6;

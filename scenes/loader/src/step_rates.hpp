@@ -23,8 +23,8 @@ namespace drapelab::scene {
 ParticleRates explicit_particle_rates(const Scene& scene, const ClothModel& model);
 
 // Estimated wall time (s) of one solver at a scene on a machine like the one drapelab is measured
-// on (docs/physics.md, "The integrator chosen when none is named"): particle-steps times a cost per particle
-// and step, measured for each method on the shipped scenes.
+// on (docs/physics.md, "The integrator chosen when none is named"): particle-steps times a cost per
+// particle and step, measured for each method on the shipped scenes.
 double estimated_wall_seconds(const ClothModel& model, const SolverSpec& solver, double duration);
 
 }  // namespace drapelab::scene
