@@ -2,6 +2,7 @@
 #include "frame_loop.hpp"
 
 #include <chrono>
+#include <sstream>
 
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/triangle_penetration.hpp"
@@ -76,7 +77,10 @@ std::string step_hint(const scene::SolverSpec& spec) {
   const std::string method = spec.type == SolverType::spring_damper
                                  ? std::string(integrator_name(spec.integrator))
                                  : std::string(solver_type_name(spec.type));
-  return method + ", dt = " + format_number(spec.dt) + " s";
+  std::ostringstream dt;
+  dt.precision(3);
+  dt << spec.dt;
+  return method + ", dt = " + dt.str() + " s";
 }
 
 FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, SolverRun& run,

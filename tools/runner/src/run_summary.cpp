@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
-#include "drapelab/scene/number_format.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
 
@@ -107,10 +107,13 @@ SolverOutcome outcome_of(const SolverRun& run) {
   outcome.frames_recorded = run.frames_recorded;
   outcome.wall_seconds = run.wall_seconds;
   if (run.energy)
-    for (const EnergyWarning& w : run.energy->warnings())
-      outcome.energy_warnings.push_back("frame " + std::to_string(w.frame) + " (t = " +
-                                        format_number(w.time) + " s): the total energy rose by " +
-                                        format_number(w.rise) + " J; likely cause: " + w.cause);
+    for (const EnergyWarning& w : run.energy->warnings()) {
+      std::ostringstream line;  // three figures for people; summary.json keeps every digit
+      line.precision(3);
+      line << "frame " << w.frame << " (t = " << w.time << " s): the total energy rose by "
+           << w.rise << " J; likely cause: " << w.cause;
+      outcome.energy_warnings.push_back(line.str());
+    }
   return outcome;
 }
 
