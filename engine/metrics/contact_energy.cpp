@@ -1,4 +1,4 @@
-// The penalty contact's stored energy (contact_energy.hpp).
+// The stored energy of the contact on triangles (contact_energy.hpp).
 #include "drapelab/contact_energy.hpp"
 
 #include "contact/edge_contact.hpp"
@@ -14,23 +14,9 @@ ContactEnergyMeter::ContactEnergyMeter(const ClothModel& model, const ContactMod
 
 ContactEnergyMeter::~ContactEnergyMeter() = default;
 
-ContactEnergyMeter::Stored ContactEnergyMeter::energy(const ContactModel& contacts, double t,
-                                                      const Eigen::Matrix3Xd& x) {
-  const double k = contacts.parameters().stiffness;    // N/m
-  const double thickness = contacts.query().radius();  // m
-  Stored stored;
-  for (std::size_t c = 0; c < contacts.size(); ++c) {
-    const Eigen::Isometry3d pose = contacts.shape_pose(c, t);
-    // Only a particle inside the collider's box grown by the thickness can be in contact.
-    const Eigen::AlignedBox3d bounds = collider_bounds(contacts.fcl_collider(c), pose, thickness);
-    for (Eigen::Index i = 0; i < x.cols(); ++i) {
-      if (!bounds.contains(Eigen::Vector3d(x.col(i)))) continue;
-      const double clearance = contacts.query().clearance(contacts.fcl_collider(c), pose, x.col(i));
-      if (clearance < 0.0) stored.particles += 0.5 * k * clearance * clearance;
-    }
-  }
-  if (edges_) stored.edges = edges_->stored_energy(contacts, t, x);
-  return stored;
+double ContactEnergyMeter::energy(const ContactModel& contacts, double t,
+                                  const Eigen::Matrix3Xd& x) {
+  return edges_ ? edges_->stored_energy(contacts, t, x) : 0.0;
 }
 
 }  // namespace drapelab

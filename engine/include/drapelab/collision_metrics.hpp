@@ -21,6 +21,7 @@ struct CollisionMetrics {
   double min_clearance = 0.0;    // m, over particles and colliders
   double max_penetration = 0.0;  // m
   int contact_count = 0;         // particles with clearance <= 0.1 h for some collider
+  double contact_energy = 0.0;   // J: 1/2 k_c c^2 over particles at a clearance c < 0
   std::vector<ColliderClearance> per_collider;
 };
 

@@ -255,10 +255,7 @@ class SolverReader {
     SolverSpec explicit_run = spec;
     explicit_run.dt = explicit_dt;
     const double explicit_seconds = estimated_wall_seconds(model, explicit_run, scene_.duration);
-    SolverSpec vbd_run = spec;
-    vbd_run.integrator = Integrator::vbd;
-    vbd_run.dt = kVbdDefaultStep;
-    const double vbd_seconds = estimated_wall_seconds(model, vbd_run, scene_.duration);
+    const double vbd_seconds = vbd_estimate(spec, model);
     if (explicit_seconds <= 60.0 || explicit_seconds <= 4.0 * vbd_seconds) return explicit_dt;
     const double frame_period = scene_.frame_period();
     const double steps = std::max(1.0, std::ceil(frame_period / kVbdDefaultStep));
@@ -277,12 +274,16 @@ class SolverReader {
     spec.estimated_seconds = estimated_wall_seconds(*model_, spec, scene_.duration);
     if (spec.type != SolverType::spring_damper || spec.estimated_seconds <= 600.0) return;
     if (spec.integrator == Integrator::vbd || spec.integrator == Integrator::implicit_euler) return;
+    spec.faster_choice =
+        "integrator: vbd without a dt, about " + describe_seconds(vbd_estimate(spec, *model_));
+  }
+
+  // The estimated wall time (s) of `spec` run by vbd at its default step.
+  double vbd_estimate(const SolverSpec& spec, const ClothModel& model) const {
     SolverSpec vbd_run = spec;
     vbd_run.integrator = Integrator::vbd;
     vbd_run.dt = kVbdDefaultStep;
-    spec.faster_choice =
-        "integrator: vbd without a dt, about " +
-        describe_seconds(estimated_wall_seconds(*model_, vbd_run, scene_.duration));
+    return estimated_wall_seconds(model, vbd_run, scene_.duration);
   }
 
   bool whole_steps_per_frame(MapReader& solver, const std::string& path, SolverSpec& spec) {

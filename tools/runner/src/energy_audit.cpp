@@ -2,6 +2,7 @@
 #include "drapelab/runner/energy_audit.hpp"
 
 #include <algorithm>
+#include <sstream>
 
 #include "drapelab/continuum.hpp"
 #include "drapelab/scene/number_format.hpp"
@@ -43,6 +44,20 @@ std::string scene_drivers(const scene::Scene& scene) {
   return joined;
 }
 
+namespace {
+
+// "symplectic_euler, dt = 8.6e-05 s": the solver's method and step, for the causes.
+std::string step_hint(const scene::SolverSpec& spec) {
+  std::ostringstream hint;
+  hint.precision(3);
+  hint << (spec.type == SolverType::spring_damper ? integrator_name(spec.integrator)
+                                                  : solver_type_name(spec.type))
+       << ", dt = " << spec.dt << " s";
+  return hint.str();
+}
+
+}  // namespace
+
 double energy_rise_tolerance(const ClothModel& model, const Eigen::Vector3d& gravity) {
   const Eigen::Vector3d low = model.rest_positions.rowwise().minCoeff();
   const Eigen::Vector3d high = model.rest_positions.rowwise().maxCoeff();
@@ -61,8 +76,9 @@ EnergyAudit::EnergyAudit(std::shared_ptr<const ClothModel> model, const scene::S
         std::make_unique<ContactEnergyMeter>(*model_, *contacts, scene.contact.triangles);
 }
 
-void EnergyAudit::measure(const ContactModel* contacts, const DistanceConstraints* constraints,
-                          const ClothState& state, double t, ClothMetrics& metrics) {
+void EnergyAudit::measure(const ContactModel* contacts, const CollisionMetrics* collisions,
+                          const DistanceConstraints* constraints, const ClothState& state, double t,
+                          ClothMetrics& metrics) {
   const double elastic = model_->uses_continuum() ? continuum_energy(*model_->continuum, state.x)
                                                   : metrics.spring_energy;  // J
   metrics.elastic_energy = elastic;
@@ -70,9 +86,10 @@ void EnergyAudit::measure(const ContactModel* contacts, const DistanceConstraint
   contact_before_ = contact_now_;
   contact_now_ = {};
   if (contact_meter_ && contacts) {
-    contact_now_ = contact_meter_->energy(*contacts, t, state.x);
-    metrics.contact_energy = contact_now_.total();
-    total += contact_now_.total();
+    contact_now_.particles = collisions ? collisions->contact_energy : 0.0;
+    contact_now_.edges = contact_meter_->energy(*contacts, t, state.x);
+    metrics.contact_energy = contact_now_.particles + contact_now_.edges;
+    total += *metrics.contact_energy;
   }
   if (constraints && constraints->has_soft()) {
     metrics.constraint_energy = constraints->soft_energy(t, state.x);
@@ -82,7 +99,7 @@ void EnergyAudit::measure(const ContactModel* contacts, const DistanceConstraint
 }
 
 void EnergyAudit::check(int frame, double time, const ClothMetrics& metrics,
-                        const std::string& solver_hint) {
+                        const scene::SolverSpec& solver) {
   if (!metrics.total_energy) return;
   const double total = *metrics.total_energy;
   if (!lowest_) {
@@ -98,18 +115,18 @@ void EnergyAudit::check(int frame, double time, const ClothMetrics& metrics,
   // The contacts in play at this frame or the one before, edges first: they are where an explicit
   // push meets the lightest effective masses.
   std::string cause;
-  const auto in_play = [&](double ContactEnergyMeter::Stored::*part) {
+  const auto in_play = [&](double ContactShares::*part) {
     return contact_now_.*part > 0.0 || contact_before_.*part > 0.0;
   };
-  if (in_play(&ContactEnergyMeter::Stored::edges))
+  if (in_play(&ContactShares::edges))
     cause = "contact of the colliders' edges and corners with the cloth's triangles";
-  else if (in_play(&ContactEnergyMeter::Stored::particles))
+  else if (in_play(&ContactShares::particles))
     cause = "collider contact at the particles";
   else if (self_collision_)
     cause = "self-contact, or the step outrunning the springs (no collider contact is in play)";
   else
     cause = "the step: no contact is in play, so the springs or dampers outrun it";
-  cause += " (" + solver_hint + "; try half the dt)";
+  cause += " (" + step_hint(solver) + "; try half the dt)";
   if (warnings_.size() < kMostEnergyWarnings) warnings_.push_back({frame, time, rise, cause});
   lowest_ = total;  // the next warning needs a new rise of its own
 }

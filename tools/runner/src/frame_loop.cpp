@@ -2,7 +2,6 @@
 #include "frame_loop.hpp"
 
 #include <chrono>
-#include <sstream>
 
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/triangle_penetration.hpp"
@@ -72,17 +71,6 @@ std::shared_ptr<const ContactModel> contacts_for(
                                               scene_contacts.query().radius(), own_poses);
 }
 
-// "symplectic_euler, dt = 8.6e-05 s": the solver's step, for the energy audit's causes.
-std::string step_hint(const scene::SolverSpec& spec) {
-  const std::string method = spec.type == SolverType::spring_damper
-                                 ? std::string(integrator_name(spec.integrator))
-                                 : std::string(solver_type_name(spec.type));
-  std::ostringstream dt;
-  dt.precision(3);
-  dt << spec.dt;
-  return method + ", dt = " + dt.str() + " s";
-}
-
 FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, SolverRun& run,
                            int frame, double time) {
   const Solver& solver = *run.solver;
@@ -109,8 +97,9 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, S
         scene::cloth_for_solver(scene, *run.spec, setup.model), scene, setup.contacts.get());
   const std::shared_ptr<const DistanceConstraints> constraints =
       own_poses ? constraints_on_own_bodies(setup.constraints, own_poses) : setup.constraints;
-  run.energy->measure(contacts.get(), constraints.get(), state, time, measure.metrics);
-  run.energy->check(frame, time, measure.metrics, step_hint(*run.spec));
+  run.energy->measure(contacts.get(), measure.collisions ? &*measure.collisions : nullptr,
+                      constraints.get(), state, time, measure.metrics);
+  run.energy->check(frame, time, measure.metrics, *run.spec);
   return measure;
 }
 

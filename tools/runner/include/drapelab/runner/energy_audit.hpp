@@ -17,6 +17,7 @@
 #include "drapelab/cloth_metrics.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
+#include "drapelab/collision_metrics.hpp"
 #include "drapelab/contact_energy.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/distance_constraints.hpp"
@@ -46,13 +47,15 @@ class EnergyAudit {
               const ContactModel* contacts);
 
   // Fills metrics' elastic, contact, constraint and total energies for `state` at time t (s), with
-  // the colliders posed by `contacts` and the soft constraints of `constraints` (each null: none;
-  // with dynamic colliders, both where this solver's own bodies are).
-  void measure(const ContactModel* contacts, const DistanceConstraints* constraints,
-               const ClothState& state, double t, ClothMetrics& metrics);
-  // After measure: in a passive scene, records a warning when the total rose above the tolerance.
-  // `solver_hint` names the solver's step, for the cause ("symplectic_euler, dt = 8.6e-05 s").
-  void check(int frame, double time, const ClothMetrics& metrics, const std::string& solver_hint);
+  // the colliders posed by `contacts`, their particles' clearance queries `collisions` and the soft
+  // constraints of `constraints` (each null: none; with dynamic colliders, all three where this
+  // solver's own bodies are).
+  void measure(const ContactModel* contacts, const CollisionMetrics* collisions,
+               const DistanceConstraints* constraints, const ClothState& state, double t,
+               ClothMetrics& metrics);
+  // After measure: in a passive scene, records a warning when the total rose above the tolerance,
+  // its cause naming `solver`'s method and step.
+  void check(int frame, double time, const ClothMetrics& metrics, const scene::SolverSpec& solver);
 
   bool passive() const { return passive_; }
   double tolerance() const { return tolerance_; }
@@ -69,7 +72,11 @@ class EnergyAudit {
   std::optional<double> lowest_;  // J, the lowest total so far (since the last warning)
   // The contact energies of the last two measures (J), for the cause: a rise shows at the frame
   // after the contact that made it.
-  ContactEnergyMeter::Stored contact_now_, contact_before_;
+  struct ContactShares {
+    double particles = 0.0;  // J, particles inside a collider's thickness
+    double edges = 0.0;      // J, collider edges and corners inside the cloth's triangles
+  };
+  ContactShares contact_now_, contact_before_;
   double worst_rise_ = 0.0;
   std::vector<EnergyWarning> warnings_;
 };
