@@ -70,8 +70,11 @@ int run_local_sweep(SweepStart& start) {
            !start.interrupt.load()) {
       const std::size_t index = queue[next++];
       std::string problem;
-      const auto pid = spawn_child("/proc/self/exe", run_arguments(start, index, "drapelab"),
-                                   folder.log(index), &problem);
+      ChildLaunch launch;
+      launch.program = "/proc/self/exe";
+      launch.arguments = run_arguments(start, index, "drapelab");
+      launch.log = folder.log(index);
+      const auto pid = spawn_child(launch, &problem);
       if (!pid) {
         folder.finish(unstarted_outcome(index, folder.folder(index), problem));
         continue;

@@ -1,7 +1,6 @@
 #include "drapelab/runner/slurm_job.hpp"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,8 +12,6 @@
 
 #include "drapelab/run_folder/csv.hpp"
 #include "drapelab/runner/run_scene.hpp"
-
-extern char** environ;
 
 namespace drapelab::runner {
 
@@ -38,21 +35,17 @@ CommandOutput run_command(const std::vector<std::string>& arguments) {
     output.text = std::string("cannot make a pipe: ") + std::strerror(errno);
     return output;
   }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], STDERR_FILENO);
-  std::vector<char*> argv;
-  for (const auto& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int code = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  ChildLaunch launch;
+  launch.program = arguments.at(0);
+  launch.search_path = true;
+  launch.arguments = arguments;
+  launch.output_descriptor = pipe_ends[1];
+  std::string error;
+  const std::optional<pid_t> pid = spawn_child(launch, &error);
   ::close(pipe_ends[1]);
-  if (code != 0) {
+  if (!pid) {
     ::close(pipe_ends[0]);
-    output.text = arguments[0] + ": " + std::strerror(code);
+    output.text = error;
     return output;
   }
   output.started = true;
@@ -66,7 +59,7 @@ CommandOutput run_command(const std::vector<std::string>& arguments) {
   }
   ::close(pipe_ends[0]);
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  while (::waitpid(*pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (WIFEXITED(status)) output.exit_code = WEXITSTATUS(status);
   while (!output.text.empty() && (output.text.back() == '\n' || output.text.back() == ' '))

@@ -45,18 +45,19 @@ struct SpawnSetup {
 
 }  // namespace
 
-std::optional<pid_t> spawn_child(const std::string& program,
-                                 const std::vector<std::string>& arguments,
-                                 const std::filesystem::path& log, std::string* error) {
+std::optional<pid_t> spawn_child(const ChildLaunch& launch, std::string* error) {
   SpawnSetup setup;
   int code =
       posix_spawn_file_actions_addopen(&setup.actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   if (code == 0)
-    code = posix_spawn_file_actions_addopen(&setup.actions, STDOUT_FILENO, log.c_str(),
-                                            O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    code = launch.output_descriptor >= 0
+               ? posix_spawn_file_actions_adddup2(&setup.actions, launch.output_descriptor,
+                                                  STDOUT_FILENO)
+               : posix_spawn_file_actions_addopen(&setup.actions, STDOUT_FILENO, launch.log.c_str(),
+                                                  O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (code == 0)
     code = posix_spawn_file_actions_adddup2(&setup.actions, STDOUT_FILENO, STDERR_FILENO);
-  // The sweep's own Ctrl-C handler is not the child's: `drapelab run` installs its own, but until
+  // The parent's own Ctrl-C handler is not the child's: `drapelab run` installs its own, but until
   // then the child should act on signals by default, with none blocked.
   sigset_t defaults, none;
   sigemptyset(&defaults);
@@ -73,13 +74,14 @@ std::optional<pid_t> spawn_child(const std::string& program,
     return std::nullopt;
   }
   std::vector<char*> argv;
-  for (const auto& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
+  for (const auto& argument : launch.arguments) argv.push_back(const_cast<char*>(argument.c_str()));
   argv.push_back(nullptr);
   pid_t pid = 0;
+  const auto start = launch.search_path ? posix_spawnp : posix_spawn;
   code =
-      posix_spawn(&pid, program.c_str(), &setup.actions, &setup.attributes, argv.data(), environ);
+      start(&pid, launch.program.c_str(), &setup.actions, &setup.attributes, argv.data(), environ);
   if (code != 0) {
-    *error = "cannot start " + program + ": " + std::strerror(code);
+    *error = "cannot start " + launch.program + ": " + std::strerror(code);
     return std::nullopt;
   }
   return pid;

@@ -1,5 +1,6 @@
-// Child processes of a sweep: each combination is a `drapelab run` of its own, started with
-// posix_spawn (no shell: arguments go through untouched) and reaped with waitpid.
+// Child processes: each combination of a sweep is a `drapelab run` of its own, and each of Slurm's
+// commands a program run to completion; both are started by spawn_child (posix_spawn, no shell:
+// arguments go through untouched) and reaped with waitpid.
 #pragma once
 
 #include <sys/types.h>
@@ -19,13 +20,21 @@ struct ChildExit {
   int signal = 0;  // the signal that ended it when !exited
 };
 
-// Starts `arguments` (arguments[0] is the program's name as it sees it) running `program`, with
-// stdin from /dev/null and stdout and stderr into `log` (created or replaced). SIGINT and SIGTERM
-// are reset to their default action and no signal is blocked in the child. Returns the process id,
-// or nothing with `error` set.
-std::optional<pid_t> spawn_child(const std::string& program,
-                                 const std::vector<std::string>& arguments,
-                                 const std::filesystem::path& log, std::string* error);
+// How to start a child: the one way drapelab starts a program (sweep runs and Slurm's commands
+// alike). stdin reads /dev/null; stdout and stderr go together either into `log` (created or
+// replaced) or, when `output_descriptor` >= 0, onto that descriptor (a pipe's write end).
+struct ChildLaunch {
+  std::string program;  // a path, or a name looked up on PATH with search_path
+  bool search_path = false;
+  std::vector<std::string> arguments;  // arguments[0]: the program's name as it sees it
+  std::filesystem::path log;
+  int output_descriptor = -1;
+};
+
+// Starts `launch` with SIGINT and SIGTERM reset to their default action and no signal blocked
+// (the parent's Ctrl-C handler is not the child's). Returns the process id, or nothing with
+// `error` set.
+std::optional<pid_t> spawn_child(const ChildLaunch& launch, std::string* error);
 
 // Reaps `pid` if it has ended (never blocks).
 std::optional<ChildExit> poll_child(pid_t pid);
