@@ -151,5 +151,25 @@ TEST(LiveSession, AParameterChangeContinuesFromThePresentState) {
             std::string::npos);
 }
 
+// The viewer checks every frame as `drapelab run` does: a stretch past the solver's
+// runaway_stretch stops that solver as unstable, with the spring, the frame and what to try, while
+// the others go on. The sheet hangs from two corners; its springs stretch well past 0.1 % under
+// its weight within a few frames.
+TEST(LiveSession, ARunawayStretchStopsTheSolverAsDrapelabRunDoes) {
+  std::string text = kScene;
+  const std::string ours = "  - {name: ours, type: spring_damper}";
+  text.replace(text.find(ours), ours.size(),
+               "  - {name: ours, type: spring_damper, runaway_stretch: 0.001}");
+  const auto file = write_text("drapelab_drag_sheet_runaway.yaml", text);
+  viewer::LiveSession live = session_of(file);
+  for (int f = 0; f < 30; ++f) live.advance_frame();
+  const viewer::LiveSolver& stopped = live.solvers().front();
+  EXPECT_EQ(stopped.status, SolverStatus::unstable);
+  EXPECT_NE(stopped.message.find("runaway_stretch"), std::string::npos) << stopped.message;
+  EXPECT_NE(stopped.message.find("Try:"), std::string::npos) << stopped.message;
+  for (std::size_t k = 1; k < live.solvers().size(); ++k)
+    EXPECT_EQ(live.solvers()[k].status, SolverStatus::ok) << live.solvers()[k].message;
+}
+
 }  // namespace
 }  // namespace drapelab

@@ -6,51 +6,53 @@
 #include <limits>
 #include <stdexcept>
 
-#include "drapelab/collision_metrics.hpp"
-#include "drapelab/runner/solver_factory.hpp"
 #include "drapelab/scene/scene_writer.hpp"
 
 namespace drapelab::viewer {
 
-LiveSession::LiveSession(scene::Scene scene, std::shared_ptr<const ClothModel> loaded_model)
-    : scene_(std::move(scene)),
-      setup_(runner::build_scene_setup(scene_, std::move(loaded_model))),
-      live_(std::make_shared<DragTrack>()) {
-  build_solvers();
-}
+namespace {
 
-std::unique_ptr<Solver> LiveSession::make_live_solver(const scene::SolverSpec& spec,
-                                                      const ClothState& start) const {
-  // The live drag: a soft constraint of length 0 to the live track, in every solver.
+// The live drag: a soft constraint of length 0 to the live track, in every solver.
+std::vector<DistanceConstraint> live_drag_constraint(const std::shared_ptr<DragTrack>& track) {
   DistanceConstraint live;
   live.b.kind = ConstraintEnd::Kind::drag;
-  live.b.drag = live_;
+  live.b.drag = track;
   live.mode = ConstraintMode::soft;
-  return runner::make_solver(scene_, spec, setup_.model, start, setup_.contacts, {live});
+  return {live};
 }
 
-void LiveSession::build_solvers() {
-  solvers_.clear();
-  for (const scene::SolverSpec& spec : scene_.solvers) {
-    LiveSolver entry;
-    entry.spec = &spec;
-    entry.solver = make_live_solver(spec, setup_.initial);
-    measure(entry);
-    solvers_.push_back(std::move(entry));
+constexpr std::size_t kHistory = 600;  // frames shown in the stretch plot
+
+}  // namespace
+
+LiveSession::LiveSession(scene::Scene scene, std::shared_ptr<const ClothModel> loaded_model)
+    : scene_(std::move(scene)),
+      live_(std::make_shared<DragTrack>()),
+      simulation_(std::make_unique<runner::Simulation>(scene_, std::move(loaded_model),
+                                                       live_drag_constraint(live_))) {
+  refresh_views({});
+}
+
+void LiveSession::refresh_views(std::vector<std::vector<float>> histories) {
+  solvers_.assign(simulation_->solver_count(), LiveSolver{});
+  for (std::size_t k = 0; k < solvers_.size(); ++k) {
+    LiveSolver& live = solvers_[k];
+    live.solver = &simulation_->solver(k);
+    live.spec = &simulation_->scene().solvers[k];
+    const bool kept = k < histories.size();
+    if (kept) live.max_stretch_history = std::move(histories[k]);
+    show_frame(k, !kept);  // a kept plot shows this frame already
   }
-  time_ = 0.0;
-  frame_ = 0;
 }
 
-void LiveSession::measure(LiveSolver& live) const {
-  const ClothState& state = live.solver->state();
-  live.metrics = runner::frame_metrics(setup_, scene_, state);
-  if (setup_.contacts)
-    live.max_penetration =
-        compute_collision_metrics(*setup_.model, state, *setup_.contacts, state.time)
-            .max_penetration;
+void LiveSession::show_frame(std::size_t solver, bool plot) {
+  LiveSolver& live = solvers_[solver];
+  live.status = simulation_->status(solver);
+  live.message = simulation_->message(solver);
+  live.metrics = simulation_->records(solver).back().metrics;
+  live.max_penetration = live.metrics.max_penetration;
+  if (!plot) return;
   live.max_stretch_history.push_back(static_cast<float>(100.0 * live.metrics.max_stretch));
-  constexpr std::size_t kHistory = 600;  // frames shown in the plot
   if (live.max_stretch_history.size() > kHistory)
     live.max_stretch_history.erase(live.max_stretch_history.begin());
 }
@@ -70,7 +72,6 @@ void LiveSession::start_frame() {
     pending_press_.reset();
   }
   if (live_->held) keyframe_now();
-  steps_done_.assign(solvers_.size(), 0);
   for (LiveSolver& live : solvers_) live.wall_seconds_per_step = 0.0;
   frame_open_ = true;
 }
@@ -85,15 +86,16 @@ bool LiveSession::advance_for(double budget) {
     done = true;
     for (std::size_t k = 0; k < solvers_.size(); ++k) {
       LiveSolver& live = solvers_[k];
-      const int total = live.spec->steps_per_frame;
-      if (live.solver->status() != SolverStatus::ok || steps_done_[k] >= total) continue;
+      if (live.status != SolverStatus::ok || simulation_->frame(k) > frame_) continue;
       const auto chunk_start = Clock::now();
-      const int chunk = std::min(kChunk, total - steps_done_[k]);
-      for (int s = 0; s < chunk; ++s) live.solver->step(live.spec->dt);
-      steps_done_[k] += chunk;
+      const bool frame_done = simulation_->advance_steps(k, kChunk);
       live.wall_seconds_per_step +=
-          std::chrono::duration<double>(Clock::now() - chunk_start).count() / total;
-      done = done && steps_done_[k] >= total;
+          std::chrono::duration<double>(Clock::now() - chunk_start).count() /
+          live.spec->steps_per_frame;
+      if (frame_done && simulation_->frame(k) > frame_) show_frame(k, true);
+      live.status = simulation_->status(k);  // a stop within the frame shows at once
+      live.message = simulation_->message(k);
+      done = done && frame_done;
     }
     if (!done && std::chrono::duration<double>(Clock::now() - start).count() >= budget)
       return false;
@@ -103,8 +105,6 @@ bool LiveSession::advance_for(double budget) {
 }
 
 void LiveSession::finish_frame() {
-  for (LiveSolver& live : solvers_)
-    if (live.solver->status() == SolverStatus::ok) measure(live);
   frame_open_ = false;
   ++frame_;
   time_ = frame_ * scene_.frame_period();
@@ -115,7 +115,10 @@ void LiveSession::reset() {
   live_->keyframes.clear();
   finished_.clear();
   frame_open_ = false;
-  build_solvers();
+  simulation_->restart();
+  refresh_views({});
+  time_ = 0.0;
+  frame_ = 0;
 }
 
 LiveSession::Parameters LiveSession::parameters() const {
@@ -143,15 +146,10 @@ void LiveSession::set_parameters(const Parameters& changed) {
     c.static_friction = std::max(c.static_friction, changed.friction);
   }
   if (scene_.air.enabled) scene_.air.wind = changed.wind;
-  std::vector<ClothState> states;
-  for (const LiveSolver& live : solvers_) states.push_back(live.solver->state());
-  setup_ = runner::build_scene_setup(scene_);
-  for (std::size_t k = 0; k < solvers_.size(); ++k) {
-    LiveSolver& live = solvers_[k];
-    std::vector<float> history = std::move(live.max_stretch_history);
-    live.solver = make_live_solver(*live.spec, states[k]);
-    live.max_stretch_history = std::move(history);
-  }
+  std::vector<std::vector<float>> histories;
+  for (LiveSolver& live : solvers_) histories.push_back(std::move(live.max_stretch_history));
+  simulation_->rebuild(scene_);
+  refresh_views(std::move(histories));
 }
 
 void LiveSession::keyframe_now() {
@@ -162,10 +160,9 @@ void LiveSession::keyframe_now() {
 }
 
 void LiveSession::press(int particle, const Eigen::Vector3d& target, double stiffness) {
-  if (particle < 0 || particle >= setup_.model->particle_count())
+  if (particle < 0 || particle >= model().particle_count())
     throw std::invalid_argument("drag of particle " + std::to_string(particle) +
-                                ": the cloth has " +
-                                std::to_string(setup_.model->particle_count()));
+                                ": the cloth has " + std::to_string(model().particle_count()));
   if (dragging()) release();
   pending_press_ = Press{particle, stiffness};
   live_target_ = target;

@@ -1,5 +1,6 @@
-// A scene running live for the viewer: every solver of the scene built as `drapelab run` builds it,
-// stepped frame by frame on demand, with one live drag that pulls the same particle of every solver
+// A scene running live for the viewer: a runner::Simulation of the scene (every solver built,
+// stepped, measured and checked as `drapelab run` does it), stepped frame by frame on demand, with
+// one live drag that pulls the same particle of every solver
 // toward the same target (the mouse), and the record of the drags made, which saves as the scene's
 // `interactions:` so that `drapelab run` replays them. Knows nothing of windows or GL.
 #pragma once
@@ -13,7 +14,7 @@
 
 #include "drapelab/cloth_metrics.hpp"
 #include "drapelab/drag_track.hpp"
-#include "drapelab/runner/scene_setup.hpp"
+#include "drapelab/runner/simulation.hpp"
 #include "drapelab/scene/scene.hpp"
 #include "drapelab/solver.hpp"
 
@@ -21,8 +22,12 @@ namespace drapelab::viewer {
 
 // One solver of the session and what the viewer shows of it.
 struct LiveSolver {
-  std::unique_ptr<Solver> solver;
+  const Solver* solver = nullptr;  // the simulation's; replaced by a rebuild or a reset
   const scene::SolverSpec* spec = nullptr;
+  // The run's status and message: the solver's own, or unstable when a frame's stretch passed the
+  // scene's runaway_stretch.
+  SolverStatus status = SolverStatus::ok;
+  std::string message;
   ClothMetrics metrics;                    // at the last frame
   std::optional<double> max_penetration;   // m, against the scene's colliders (none: empty)
   double wall_seconds_per_step = 0.0;      // s, over the last frame
@@ -35,7 +40,7 @@ class LiveSession {
   LiveSession(scene::Scene scene, std::shared_ptr<const ClothModel> loaded_model);
 
   const scene::Scene& scene() const { return scene_; }
-  const ClothModel& model() const { return *setup_.model; }
+  const ClothModel& model() const { return simulation_->model(); }
   std::vector<LiveSolver>& solvers() { return solvers_; }
   const std::vector<LiveSolver>& solvers() const { return solvers_; }
   double time() const { return time_; }  // s, the simulated time of the last frame
@@ -87,19 +92,19 @@ class LiveSession {
   void save(const std::filesystem::path& path) const;
 
  private:
-  void build_solvers();
-  // `spec`'s solver from `start`, with the live drag among its constraints.
-  std::unique_ptr<Solver> make_live_solver(const scene::SolverSpec& spec,
-                                           const ClothState& start) const;
-  void measure(LiveSolver& live) const;
+  // The solvers' views, after the simulation was built, rebuilt or restarted (`histories`: the
+  // plots to keep, one per solver, or empty to start them afresh).
+  void refresh_views(std::vector<std::vector<float>> histories);
+  // The view of the frame the simulation measured last, added to the stretch plot when `plot`.
+  void show_frame(std::size_t solver, bool plot);
   void keyframe_now();  // the live target, for the end of the frame about to be stepped
-  void start_frame();   // the pending press, the live keyframe, the step counts
-  void finish_frame();  // measures, counts the frame
+  void start_frame();   // the pending press, the live keyframe, the step timers
+  void finish_frame();  // counts the frame
 
   scene::Scene scene_;
-  runner::SceneSetup setup_;
-  std::vector<LiveSolver> solvers_;
   std::shared_ptr<DragTrack> live_;  // shared by every solver's constraints
+  std::unique_ptr<runner::Simulation> simulation_;
+  std::vector<LiveSolver> solvers_;
   Eigen::Vector3d live_target_ = Eigen::Vector3d::Zero();
   struct Press {
     int particle;
@@ -107,7 +112,6 @@ class LiveSession {
   };
   std::optional<Press> pending_press_;     // waits for the next frame's start
   bool frame_open_ = false;                // a frame is partly stepped
-  std::vector<int> steps_done_;            // per solver, in the open frame
   std::vector<scene::DragSpec> finished_;  // released drags
   double time_ = 0.0;
   int frame_ = 0;

@@ -302,9 +302,9 @@ void Window::draw_controls() {
   for (const LiveSolver& live : session_.solvers()) {
     const Solver& solver = *live.solver;
     ImGui::Separator();
-    ImGui::Text("%s: %s", solver.name().c_str(), solver_status_name(solver.status()));
-    if (solver.status() != SolverStatus::ok) {
-      ImGui::TextWrapped("%s", solver.message().c_str());
+    ImGui::Text("%s: %s", solver.name().c_str(), solver_status_name(live.status));
+    if (live.status != SolverStatus::ok) {
+      ImGui::TextWrapped("%s", live.message.c_str());
       continue;
     }
     const ClothMetrics& m = live.metrics;

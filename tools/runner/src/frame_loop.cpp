@@ -17,19 +17,26 @@ bool interrupted(const std::atomic<bool>* interrupt) {
 
 }  // namespace
 
-void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* interrupt) {
+int advance_steps(SolverRun& run, int frame, int steps, const std::atomic<bool>* interrupt) {
   const auto start = Clock::now();
-  for (int s = 0; s < run.spec->steps_per_frame; ++s) {
+  int taken = 0;
+  while (taken < steps) {
     run.solver->step(run.spec->dt);
     ++run.steps;
+    ++taken;
     if (run.solver->status() != SolverStatus::ok || interrupted(interrupt)) break;
   }
   run.wall_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-  if (run.solver->status() == SolverStatus::ok) return;
+  if (run.solver->status() == SolverStatus::ok) return taken;
   run.status = run.solver->status();
   run.message = run.solver->message();
   run.stopped_by = StopCause::solver;
   run.stopped_at_frame = frame;
+  return taken;
+}
+
+void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* interrupt) {
+  advance_steps(run, frame, run.spec->steps_per_frame, interrupt);
 }
 
 namespace {

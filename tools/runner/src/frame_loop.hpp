@@ -51,6 +51,9 @@ struct FrameLoopEnd {
 };
 
 // The loop's pieces, for callers that step solvers one at a time (simulation.hpp).
+// Takes up to `steps` steps of `run` within frame `frame`; stops early when it leaves `ok` (then
+// recording why) or on `interrupt`. Returns the steps taken.
+int advance_steps(SolverRun& run, int frame, int steps, const std::atomic<bool>* interrupt);
 // Steps one solver through frame `frame` (its steps_per_frame steps); stops early when it leaves
 // `ok` or on `interrupt`.
 void advance_one_frame(SolverRun& run, int frame, const std::atomic<bool>* interrupt);
