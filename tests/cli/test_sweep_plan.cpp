@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/sweep_plan.hpp"
-#include "drapelab/runner/sweep_validation.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "drapelab/sweep/plan.hpp"
+#include "drapelab/sweep/validation.hpp"
 #include "fixtures/sweep_scene.hpp"
 
 namespace {
@@ -17,43 +17,43 @@ using drapelab::fixtures::kSweepSheet;
 TEST(SweepPlan, SplitsValuesOnCommasOutsideBracketsAndQuotes) {
   std::string error;
   using List = std::vector<std::string>;
-  EXPECT_EQ(drapelab::runner::split_values("1, 10,100", &error).value_or(List{}),
+  EXPECT_EQ(drapelab::sweep::split_values("1, 10,100", &error).value_or(List{}),
             (List{"1", "10", "100"}));
-  EXPECT_EQ(drapelab::runner::split_values("[5,5],[7,7]", &error).value_or(List{}),
+  EXPECT_EQ(drapelab::sweep::split_values("[5,5],[7,7]", &error).value_or(List{}),
             (List{"[5,5]", "[7,7]"}));
-  EXPECT_EQ(drapelab::runner::split_values("{ks: 1, kd: 0},[1,[2,3]]", &error).value_or(List{}),
+  EXPECT_EQ(drapelab::sweep::split_values("{ks: 1, kd: 0},[1,[2,3]]", &error).value_or(List{}),
             (List{"{ks: 1, kd: 0}", "[1,[2,3]]"}));
-  EXPECT_EQ(drapelab::runner::split_values("'a,b',\"c,d\"", &error).value_or(List{}),
+  EXPECT_EQ(drapelab::sweep::split_values("'a,b',\"c,d\"", &error).value_or(List{}),
             (List{"'a,b'", "\"c,d\""}));
   for (const std::string bad : {"[5,5", "5]", "1,,2", "1,", "", "'open"}) {
-    EXPECT_FALSE(drapelab::runner::split_values(bad, &error)) << bad;
+    EXPECT_FALSE(drapelab::sweep::split_values(bad, &error)) << bad;
     EXPECT_FALSE(error.empty());
   }
-  const auto varied = drapelab::runner::parse_vary("cloth.resolution=[5,5],[7,7]", &error);
+  const auto varied = drapelab::sweep::parse_vary("cloth.resolution=[5,5],[7,7]", &error);
   ASSERT_TRUE(varied) << error;
   EXPECT_EQ(varied->key, "cloth.resolution");
   EXPECT_EQ(varied->values, (List{"[5,5]", "[7,7]"}));
   for (const std::string bad : {"no_equals", "=1,2", "a..b=1", ".a=1"})
-    EXPECT_FALSE(drapelab::runner::parse_vary(bad, &error)) << bad;
+    EXPECT_FALSE(drapelab::sweep::parse_vary(bad, &error)) << bad;
 }
 
 TEST(SweepPlan, CountsLikeAnOdometerAndNamesFolders) {
-  const drapelab::runner::SweepPlan plan({{"a", {"1", "2"}}, {"b.c", {"x", "[5, 5]", "z"}}});
+  const drapelab::sweep::SweepPlan plan({{"a", {"1", "2"}}, {"b.c", {"x", "[5, 5]", "z"}}});
   ASSERT_EQ(plan.count(), 6u);
   const std::vector<std::vector<std::string>> expected{{"1", "x"}, {"1", "[5, 5]"}, {"1", "z"},
                                                        {"2", "x"}, {"2", "[5, 5]"}, {"2", "z"}};
   for (std::size_t k = 0; k < 6; ++k) EXPECT_EQ(plan.values(k), expected[k]) << k;
   EXPECT_EQ(plan.overrides(4), (std::vector<std::string>{"a=2", "b.c=[5, 5]"}));
   EXPECT_EQ(plan.folder_name(1), "001_a=1_b.c=5_5");
-  EXPECT_EQ(drapelab::runner::sanitise_for_file_name("{ks: 1, kd: 0.5}"), "ks_1_kd_0.5");
-  EXPECT_EQ(drapelab::runner::sanitise_for_file_name("../x/y"),
+  EXPECT_EQ(drapelab::sweep::sanitise_for_file_name("{ks: 1, kd: 0.5}"), "ks_1_kd_0.5");
+  EXPECT_EQ(drapelab::sweep::sanitise_for_file_name("../x/y"),
             ".._x_y");  // no '/' ever reaches a path
-  EXPECT_EQ(drapelab::runner::sanitise_for_file_name("[]"), "_");
+  EXPECT_EQ(drapelab::sweep::sanitise_for_file_name("[]"), "_");
   // Eleven hundred combinations: four digits, in order.
-  const drapelab::runner::SweepPlan big({{"k", std::vector<std::string>(1100, "v")}});
+  const drapelab::sweep::SweepPlan big({{"k", std::vector<std::string>(1100, "v")}});
   EXPECT_EQ(big.folder_name(7).substr(0, 5), "0007_");
-  EXPECT_LE(drapelab::runner::SweepPlan({{std::string(300, 'k'), {"v"}}}).folder_name(0).size(),
-            drapelab::runner::kMaxFolderName);
+  EXPECT_LE(drapelab::sweep::SweepPlan({{std::string(300, 'k'), {"v"}}}).folder_name(0).size(),
+            drapelab::sweep::kMaxFolderName);
 }
 
 TEST(SweepValidation, TellsAMisspeltKeyFromABadValue) {
@@ -73,7 +73,7 @@ TEST(SweepValidation, TellsAMisspeltKeyFromABadValue) {
     ASSERT_FALSE(loaded.ok()) << c.key;
     bool found = false;
     for (const auto& error : loaded.errors)
-      found = found || drapelab::runner::is_key_path_error(error, c.key, c.value);
+      found = found || drapelab::sweep::is_key_path_error(error, c.key, c.value);
     EXPECT_EQ(found, c.key_error) << c.key << "=" << c.value << ": " << loaded.errors.front();
   }
 }

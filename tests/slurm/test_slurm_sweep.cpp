@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "drapelab/run_folder/csv.hpp"
-#include "drapelab/runner/sweep_files.hpp"
+#include "drapelab/sweep/files.hpp"
 #include "fixtures/cli.hpp"
 #include "fixtures/sweep_scene.hpp"
 
@@ -48,7 +48,7 @@ std::string two_solver_sheet() {
 
 // Every cell of sweep.csv but the cost columns (they differ from machine to machine).
 std::vector<std::vector<std::string>> without_costs(const CsvTable& table) {
-  const auto& timing = drapelab::runner::sweep_timing_columns();
+  const auto& timing = drapelab::sweep::sweep_timing_columns();
   std::vector<std::vector<std::string>> kept;
   for (const auto& row : table.rows) {
     std::vector<std::string> cells;

@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
       "study", "Cost and accuracy of every integrator at several steps, against an RK4 reference");
   drapelab::cli::add_study_options(*study, study_arguments);
 
-  drapelab::cli::SweepArguments sweep_arguments;
+  drapelab::sweep::SweepArguments sweep_arguments;
   CLI::App* sweep = app.add_subcommand(
       "sweep",
       "Run a scene for every combination of varied keys, in parallel child processes (sweep.csv)");

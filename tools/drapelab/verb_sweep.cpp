@@ -1,9 +1,10 @@
 // drapelab sweep SCENE --vary key=v1,v2 [--vary ...] --out DIR: runs the scene once per
-// combination of the varied values (their Cartesian product, in odometer order: sweep_plan.hpp),
-// each as a `drapelab run` of its own into DIR/runs/NNN_key=value_..., and gathers every solver's
-// outcome and final metrics into DIR/sweep.csv and DIR/sweep.json. The runs are child processes of
-// this one (--engine local, sweep_local.cpp) or the tasks of one Slurm job array (--engine slurm,
-// sweep_slurm.cpp); this file parses, validates and prepares the folder.
+// combination of the varied values (their Cartesian product, in odometer order:
+// drapelab/sweep/plan.hpp), each as a `drapelab run` of its own into DIR/runs/NNN_key=value_...,
+// and gathers every solver's outcome and final metrics into DIR/sweep.csv and DIR/sweep.json. The
+// runs are child processes of this one (--engine local, tools/sweep/src/local_engine.cpp) or the
+// tasks of one Slurm job array (--engine slurm, tools/sweep/src/slurm_engine.cpp); this file
+// parses, validates and prepares the folder.
 #include <unistd.h>
 
 #include <iostream>
@@ -11,17 +12,18 @@
 #include <thread>
 
 #include "drapelab/runner/run_scene.hpp"
-#include "drapelab/runner/slurm_job.hpp"
-#include "drapelab/runner/sweep_children.hpp"
-#include "drapelab/runner/sweep_plan.hpp"
-#include "drapelab/runner/sweep_validation.hpp"
+#include "drapelab/sweep/children.hpp"
+#include "drapelab/sweep/engines.hpp"
+#include "drapelab/sweep/plan.hpp"
+#include "drapelab/sweep/slurm_job.hpp"
+#include "drapelab/sweep/validation.hpp"
 #include "interrupt.hpp"
-#include "sweep_engines.hpp"
 #include "verbs.hpp"
 
 namespace drapelab::cli {
 
-using namespace drapelab::runner;  // the run pipeline: this file parses and prints
+using namespace drapelab::runner;  // the run pipeline and the sweep: this file parses and prints
+using namespace drapelab::sweep;
 
 namespace fs = std::filesystem;
 
@@ -123,9 +125,11 @@ void add_sweep_options(CLI::App& verb, SweepArguments& arguments) {
 int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt) {
   if (const auto problem = check_argument_set(arguments)) return refuse(*problem);
-  if (!arguments.collect.empty())
+  if (!arguments.collect.empty()) {
+    const PollingSection polling;  // Ctrl-C stops waiting; the job goes on
     return collect_slurm_sweep(arguments.collect, arguments.lost_after,
                                progress_mode_for(STDERR_FILENO, !arguments.no_progress), interrupt);
+  }
 
   // 1. The arguments, before any scene is read.
   std::vector<VariedKey> keys;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sweep_arguments.hpp"
+#include "drapelab/sweep/arguments.hpp"
 
 namespace drapelab::cli {
 
@@ -74,8 +74,8 @@ void add_study_options(CLI::App& verb, StudyArguments& arguments);
 int study_verb(const StudyArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt);
 
-void add_sweep_options(CLI::App& verb, SweepArguments& arguments);
-int sweep_verb(const SweepArguments& arguments, const std::string& command_line,
+void add_sweep_options(CLI::App& verb, sweep::SweepArguments& arguments);
+int sweep_verb(const sweep::SweepArguments& arguments, const std::string& command_line,
                const std::atomic<bool>& interrupt);
 
 // drapelab render: PNG images of every recorded frame of a run (a panel per solver), and a video.

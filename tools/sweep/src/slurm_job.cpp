@@ -1,4 +1,4 @@
-#include "drapelab/runner/slurm_job.hpp"
+#include "drapelab/sweep/slurm_job.hpp"
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -13,7 +13,7 @@
 #include "drapelab/run_folder/csv.hpp"
 #include "drapelab/runner/run_scene.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 namespace fs = std::filesystem;
 
@@ -231,7 +231,7 @@ std::optional<TaskEnd> read_task_end(const fs::path& status_file) {
   const int exit_code = static_cast<int>(*code);
   // bash reports a command killed by signal N as 128 + N. drapelab run's own exit codes are 0, 1,
   // 2 and 130 (interrupted), so any other code above 128 is a signal.
-  if (exit_code > 128 && exit_code != kExitInterrupted) {
+  if (exit_code > 128 && exit_code != runner::kExitInterrupted) {
     end.exit.exited = false;
     end.exit.signal = exit_code - 128;
   } else {
@@ -243,4 +243,4 @@ std::optional<TaskEnd> read_task_end(const fs::path& status_file) {
   return end;
 }
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

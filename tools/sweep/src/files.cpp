@@ -1,10 +1,10 @@
-#include "drapelab/runner/sweep_files.hpp"
+#include "drapelab/sweep/files.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "drapelab/run_folder/csv.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 using nlohmann::ordered_json;
 
@@ -99,4 +99,4 @@ std::string sweep_json(const SweepRecord& record, const SweepPlan& plan,
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

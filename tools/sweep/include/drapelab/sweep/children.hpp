@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 // How a child ended.
 struct ChildExit {
@@ -56,4 +56,4 @@ std::string own_executable_path();
 // How long the sweep sleeps between checks on its children and on Ctrl-C.
 inline constexpr std::chrono::milliseconds kChildPollPeriod{20};
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

@@ -14,11 +14,10 @@
 
 #include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/run_scene.hpp"
-#include "drapelab/runner/slurm_job.hpp"
-#include "interrupt.hpp"
-#include "sweep_engines.hpp"
+#include "drapelab/sweep/engines.hpp"
+#include "drapelab/sweep/slurm_job.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::sweep {
 
 using namespace drapelab::runner;
 namespace fs = std::filesystem;
@@ -318,7 +317,7 @@ std::optional<std::string> queued_slurm_job(const fs::path& out) {
          ") or wait for it (drapelab sweep --collect " + out.string() + ") before --force";
 }
 
-int collect_slurm_sweep(const std::string& out_text, double lost_after, ProgressMode progress,
+int collect_slurm_sweep(const std::string& out_text, double lost_after, cli::ProgressMode progress,
                         const std::atomic<bool>& interrupt) {
   const fs::path out = out_text;
   std::string problem;
@@ -356,8 +355,7 @@ int collect_slurm_sweep(const std::string& out_text, double lost_after, Progress
   std::cout << "collecting Slurm job " << record.job_id << " (" << submission.indices.size()
             << " tasks) into " << out.string() << std::endl;
   folder.start_progress(progress);
-  const PollingSection polling;  // Ctrl-C stops waiting; the job goes on
   return wait_and_close(folder, plan, submission, lost_after, interrupt, false);
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::sweep

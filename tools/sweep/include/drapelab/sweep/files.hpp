@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/sweep_outcome.hpp"
-#include "drapelab/runner/sweep_plan.hpp"
+#include "drapelab/sweep/outcome.hpp"
+#include "drapelab/sweep/plan.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 // sweep.csv: a header, then the rows of every finished combination in combination order, each
 // combination's solvers in summary.json's order. Columns: combination, one per varied key (named
 // by its key path), solver, type, status, exit_code, message, the final metrics and the solver's
-// measures (sweep_outcome.hpp), run_folder.
+// measures (outcome.hpp), run_folder.
 std::string sweep_csv(const SweepPlan& plan,
                       const std::map<std::size_t, CombinationOutcome>& finished);
 
@@ -42,4 +42,4 @@ struct SweepRecord {
 std::string sweep_json(const SweepRecord& record, const SweepPlan& plan,
                        const std::map<std::size_t, CombinationOutcome>& finished);
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

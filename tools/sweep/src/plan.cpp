@@ -1,10 +1,10 @@
-#include "drapelab/runner/sweep_plan.hpp"
+#include "drapelab/sweep/plan.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <limits>
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 namespace {
 
@@ -151,4 +151,4 @@ std::string sanitise_for_file_name(const std::string& text) {
   return name.empty() ? "_" : name;
 }
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

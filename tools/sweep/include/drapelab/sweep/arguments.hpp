@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace drapelab::cli {
+namespace drapelab::sweep {
 
 // drapelab sweep: a `drapelab run` per combination of the varied keys' values, as a child process
 // (--engine local) or a Slurm array task (--engine slurm).
@@ -27,4 +27,4 @@ struct SweepArguments {
   bool no_progress = false;  // no progress line (runs done of total) on stderr
 };
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::sweep

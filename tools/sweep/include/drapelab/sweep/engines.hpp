@@ -7,18 +7,18 @@
 #include <optional>
 #include <string>
 
-#include "drapelab/runner/sweep_plan.hpp"
-#include "drapelab/runner/sweep_validation.hpp"
-#include "sweep_arguments.hpp"
-#include "sweep_folder.hpp"
+#include "drapelab/sweep/arguments.hpp"
+#include "drapelab/sweep/folder.hpp"
+#include "drapelab/sweep/plan.hpp"
+#include "drapelab/sweep/validation.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::sweep {
 
 // What both engines start from.
 struct SweepStart {
   const SweepArguments& arguments;
-  const runner::SweepPlan& plan;
-  const runner::SweepValidation& validation;
+  const SweepPlan& plan;
+  const SweepValidation& validation;
   SweepFolder& folder;  // refused combinations are already rows
   const std::atomic<bool>& interrupt;
 };
@@ -43,9 +43,10 @@ int run_slurm_sweep(SweepStart& start);
 // squeue cannot be asked.
 std::optional<std::string> queued_slurm_job(const std::filesystem::path& out);
 
-// drapelab sweep --collect DIR: waits for a submitted Slurm sweep and writes its tables.
+// drapelab sweep --collect DIR: waits for a submitted Slurm sweep and writes its tables; an
+// `interrupt` (the caller's Ctrl-C) stops the wait, and the job goes on.
 // `lost_after`: as --lost-after (s; 0: the default).
-int collect_slurm_sweep(const std::string& out, double lost_after, ProgressMode progress,
+int collect_slurm_sweep(const std::string& out, double lost_after, cli::ProgressMode progress,
                         const std::atomic<bool>& interrupt);
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::sweep

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/sweep_children.hpp"
+#include "drapelab/sweep/children.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 // What a program run to completion printed (stdout and stderr together) and how it ended.
 struct CommandOutput {
@@ -81,4 +81,4 @@ struct TaskEnd {
 // Reads a task's status file; nothing while it is missing or incomplete.
 std::optional<TaskEnd> read_task_end(const std::filesystem::path& status_file);
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

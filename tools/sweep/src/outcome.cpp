@@ -1,4 +1,4 @@
-#include "drapelab/runner/sweep_outcome.hpp"
+#include "drapelab/sweep/outcome.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -8,7 +8,7 @@
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
@@ -203,4 +203,4 @@ CombinationOutcome finished_outcome(std::size_t index, const ChildExit& exit,
   return outcome;
 }
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 // One --vary option: a scene key path (as --set takes it) and the values it takes, in the order
 // given. Each value is YAML text, exactly as it would follow "key=" in --set.
@@ -61,4 +61,4 @@ inline constexpr std::size_t kMaxFolderName = 160;
 // ends is dropped: "[5, 5]" -> "5_5", "{ks: 1}" -> "ks_1". An empty result becomes "_".
 std::string sanitise_for_file_name(const std::string& text);
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

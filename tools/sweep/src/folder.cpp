@@ -1,4 +1,4 @@
-#include "sweep_folder.hpp"
+#include "drapelab/sweep/folder.hpp"
 
 #include <unistd.h>
 
@@ -12,9 +12,10 @@
 #include "drapelab/runner/run_scene.hpp"
 #include "progress/progress_line.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::sweep {
 
 using namespace drapelab::runner;
+using namespace drapelab::cli;  // the progress line
 namespace fs = std::filesystem;
 
 namespace {
@@ -137,7 +138,7 @@ void SweepFolder::set_state(const std::string& state) {
   write();
 }
 
-void SweepFolder::start_progress(ProgressMode mode) {
+void SweepFolder::start_progress(cli::ProgressMode mode) {
   progress_ =
       std::make_unique<ProgressDisplay>(mode, std::cerr, plain_progress_interval(), STDERR_FILENO);
   progress_start_ = ProgressDisplay::Clock::now();
@@ -145,7 +146,7 @@ void SweepFolder::start_progress(ProgressMode mode) {
 }
 
 void SweepFolder::show_progress(std::optional<std::size_t> running) {
-  if (!progress_ || progress_->mode() == ProgressMode::none) return;
+  if (!progress_ || progress_->mode() == cli::ProgressMode::none) return;
   SweepProgress sweep;
   sweep.done = finished_.size();
   sweep.total = plan_.count();
@@ -183,4 +184,4 @@ int print_tally(const SweepFolder& folder, const SweepPlan& plan) {
   return tally.size() == 1 && tally.count("ok") ? kExitOk : kExitUnstable;
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::sweep

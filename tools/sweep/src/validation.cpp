@@ -1,10 +1,10 @@
-#include "drapelab/runner/sweep_validation.hpp"
+#include "drapelab/sweep/validation.hpp"
 
 #include <set>
 
 #include "drapelab/scene/scene_loader.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 namespace {
 
@@ -77,4 +77,4 @@ SweepValidation validate_sweep(const std::string& scene_file,
   return validation;
 }
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

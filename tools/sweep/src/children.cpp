@@ -1,4 +1,4 @@
-#include "drapelab/runner/sweep_children.hpp"
+#include "drapelab/sweep/children.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -12,7 +12,7 @@
 
 extern char** environ;
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 namespace {
 
@@ -140,4 +140,4 @@ std::string own_executable_path() {
   return ec ? std::string("drapelab") : path.string();
 }
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

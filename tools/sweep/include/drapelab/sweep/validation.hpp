@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/sweep_plan.hpp"
+#include "drapelab/sweep/plan.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 // Whether a scene loader error says that the key path of the override "key=value" does not exist
 // in the scene: the key, or one of its parents, is not a known key; a list index is out of range;
@@ -33,4 +33,4 @@ struct SweepValidation {
 SweepValidation validate_sweep(const std::string& scene_file,
                                const std::vector<std::string>& overrides, const SweepPlan& plan);
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

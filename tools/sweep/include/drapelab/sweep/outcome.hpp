@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/sweep_children.hpp"
+#include "drapelab/sweep/children.hpp"
 
-namespace drapelab::runner {
+namespace drapelab::sweep {
 
 // The final measures of a solver copied into sweep.csv, in column order: the first eight from
 // summary.json's "final" metrics (docs/metrics.md), the rest from the solver's own entry.
@@ -66,4 +66,4 @@ CombinationOutcome finished_outcome(std::size_t index, const ChildExit& exit,
 // non-empty line, else "".
 std::string first_error_line(const std::filesystem::path& log);
 
-}  // namespace drapelab::runner
+}  // namespace drapelab::sweep

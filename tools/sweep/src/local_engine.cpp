@@ -7,10 +7,10 @@
 #include <thread>
 
 #include "drapelab/runner/run_scene.hpp"
-#include "drapelab/runner/sweep_children.hpp"
-#include "sweep_engines.hpp"
+#include "drapelab/sweep/children.hpp"
+#include "drapelab/sweep/engines.hpp"
 
-namespace drapelab::cli {
+namespace drapelab::sweep {
 
 using namespace drapelab::runner;
 
@@ -121,4 +121,4 @@ int run_local_sweep(SweepStart& start) {
   return print_tally(folder, start.plan);
 }
 
-}  // namespace drapelab::cli
+}  // namespace drapelab::sweep
