@@ -11,16 +11,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "contact/broad_phase_loops.hpp"
 #include "contact/contact_pass.hpp"
-#include "contact/penalty_contact.hpp"
+#include "core/penalty_contact.hpp"
+#include "core/thread_blocks.hpp"
 #include "drapelab/contact_model.hpp"
-#include "integrators/particle_loops.hpp"
 
 namespace drapelab {
 namespace {
 
-// Particles per block: the spring kernel's (particle_loops.hpp kPhaseBlock), so the phase can run
-// inside that kernel's parallel region on the particles each thread has just gathered.
+// Particles per block: the spring kernel's (core/thread_blocks.hpp kPhaseBlock), so the phase can
+// run inside that kernel's parallel region on the particles each thread has just gathered.
 constexpr int kContactBlock = static_cast<int>(kernels::kPhaseBlock);
 
 // The broad phase of one posed collider: a plane compares the particle's height above it; other

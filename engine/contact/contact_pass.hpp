@@ -7,12 +7,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "contact/broad_phase_loops.hpp"
+#include "core/thread_blocks.hpp"
 #include "drapelab/contact_model.hpp"
-#include "integrators/particle_loops.hpp"
 
 namespace drapelab {
 
-// One collider posed for a force evaluation, with its broad phase (particle_loops.hpp).
+// One collider posed for a force evaluation, with its broad phase (broad_phase_loops.hpp).
 struct PosedCollider {
   Eigen::Isometry3d shape_pose = Eigen::Isometry3d::Identity();  // FCL shape frame -> world
   ColliderKinematics hosted;  // the host's pose and velocities (with a pose table only)
@@ -77,7 +78,7 @@ struct ContactBlockFollowUp {
 
 // One evaluation of the contact phase (ContactModel::add_contact_forces), in three parts so that a
 // caller may run the blocks inside a parallel region of its own (the spring kernel's, whose threads
-// own the same runs of blocks, particle_loops.hpp kPhaseBlock): the constructor poses every
+// own the same runs of blocks, core/thread_blocks.hpp kPhaseBlock): the constructor poses every
 // collider and readies the workspace (serial); run_block does one block of particles, on any
 // thread, each block once, touching only that block's particles and record; finish sums the blocks'
 // results in block order (serial). The result is the same whichever thread ran which block.

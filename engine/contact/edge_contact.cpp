@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "cloth/mesh_edges.hpp"
-#include "self_collision/pair_penalty.hpp"
-#include "self_collision/proximity.hpp"
+#include "core/pair_penalty.hpp"
+#include "core/proximity.hpp"
 
 namespace drapelab {
 namespace {

@@ -22,7 +22,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "contact/explicit_contact_bound.hpp"
+#include "core/explicit_contact_bound.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/contact_model.hpp"

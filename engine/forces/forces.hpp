@@ -1,5 +1,5 @@
 // The plain (edge-list) spring phase, adding into a force buffer (N, 3 x N). Gravity and air drag
-// are one pass of particle_loops.hpp; the grid fast path is spring_families.hpp.
+// are one pass of body_force_loops.hpp; the grid fast path is spring_families.hpp.
 #pragma once
 
 #include <Eigen/Core>

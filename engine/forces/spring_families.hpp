@@ -30,8 +30,8 @@ class SpringFamilies {
   // force += every spring's damped force, +f on the first particle and -f on the second (N).
   void add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
   // force = gravity and air drag (per coordinate: weight m g in N, mass in kg, air in 1/s; as
-  // particle_loops.hpp set_body_forces, bit for bit) + every spring's force, in one threaded pass.
-  // `state_split`: split_state has been given every particle of this x and v since they last
+  // body_force_loops.hpp set_body_forces, bit for bit) + every spring's force, in one threaded
+  // pass. `state_split`: split_state has been given every particle of this x and v since they last
   // changed. `after`: work on each thread's particles once their forces are final, in the same
   // parallel region (spring_family_loops.hpp ForcesFinalHook).
   void set_body_and_spring_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,

@@ -8,7 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "integrators/particle_loops.hpp"
+#include "core/thread_blocks.hpp"
+#include "forces/body_force_loops.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -21,7 +22,7 @@ namespace {
 // a few microseconds; a slot about a nanosecond).
 constexpr std::int64_t kParallelSlots = 16384;
 // Particles per block of the gather, so a block's accumulators and force rows stay in cache; the
-// contact phase's blocks too (particle_loops.hpp).
+// contact phase's blocks too (core/thread_blocks.hpp).
 constexpr std::int64_t kGatherBlock = kPhaseBlock;
 
 }  // namespace
@@ -162,12 +163,12 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
 #pragma omp barrier
     }
     // 2. Each thread walks its own run of blocks in order: a block's slot forces of every family,
-    // then its body forces (by a function of particle_loops.cpp, built without fused multiply-adds,
-    // so f has the bits of set_body_forces) and the gather of its particles, while those slots are
-    // still in cache. Particle i reads slots i and i - offset, computed by this block or an earlier
-    // one; only the first max_offset particles of a thread's run read slots of the thread before,
-    // so their gather waits for the barrier (their body forces, set here by the same thread, wait
-    // with them).
+    // then its body forces (by a function of body_force_loops.cpp, built without fused
+    // multiply-adds, so f has the bits of set_body_forces) and the gather of its particles, while
+    // those slots are still in cache. Particle i reads slots i and i - offset, computed by this
+    // block or an earlier one; only the first max_offset particles of a thread's run read slots of
+    // the thread before, so their gather waits for the barrier (their body forces, set here by the
+    // same thread, wait with them).
     const ThreadRun run = thread_run(blocks, kGatherBlock, n, max_offset);
     for (std::int64_t block = run.first_block; block < run.end_block; ++block) {
       const std::int64_t begin = block * kGatherBlock, end = std::min(n, begin + kGatherBlock);

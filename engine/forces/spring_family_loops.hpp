@@ -48,8 +48,8 @@ struct FamilyScratch {
   }
 };
 
-// Gravity and air drag to start f from instead of its contents (particle_loops.hpp set_body_forces:
-// per coordinate, weight in N, mass in kg, air in 1/s).
+// Gravity and air drag to start f from instead of its contents (body_force_loops.hpp
+// set_body_forces: per coordinate, weight in N, mass in kg, air in 1/s).
 struct BodyForceInputs {
   const double* weight = nullptr;
   const double* mass = nullptr;
@@ -58,9 +58,9 @@ struct BodyForceInputs {
 
 // Work run inside the loops' parallel region once a thread's particles have their final forces: on
 // every thread of the region, once, with that thread's run of blocks of kPhaseBlock particles
-// [first_block, end_block) (particle_loops.hpp thread_run's split; all of them on one thread when
-// the region does not split). It may read and write only those particles' data, x, v, f and the
-// split state (the other threads may still be gathering theirs, reading the slot rows, which it
+// [first_block, end_block) (core/thread_blocks.hpp thread_run's split; all of them on one thread
+// when the region does not split). It may read and write only those particles' data, x, v, f and
+// the split state (the other threads may still be gathering theirs, reading the slot rows, which it
 // must not write), and must not wait for the other threads. It saves the contact phase a parallel
 // region of its own.
 struct ForcesFinalHook {

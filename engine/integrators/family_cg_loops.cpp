@@ -1,5 +1,5 @@
 // Backward Euler's matrix-free solve for spring families (family_cg_loops.hpp). Every loop runs
-// over fixed blocks of particles (each thread one contiguous run, particle_loops.hpp's
+// over fixed blocks of particles (each thread one contiguous run, core/thread_blocks.hpp's
 // for_each_block); a product is two passes, the slot terms B_s (p_a - p_b) of every family and then
 // each particle's gather of its slots, so no two threads ever write one value.
 #include "integrators/family_cg_loops.hpp"

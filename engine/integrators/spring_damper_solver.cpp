@@ -11,6 +11,7 @@
 #include "contact/contact_pass.hpp"
 #include "contact/edge_contact.hpp"
 #include "drapelab/stability.hpp"
+#include "forces/body_force_loops.hpp"
 #include "forces/continuum_arrays.hpp"
 #include "forces/forces.hpp"
 #include "forces/spring_families.hpp"

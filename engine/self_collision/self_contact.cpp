@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "cloth/mesh_edges.hpp"
-#include "self_collision/pair_penalty.hpp"
-#include "self_collision/proximity.hpp"
+#include "core/pair_penalty.hpp"
+#include "core/proximity.hpp"
 
 namespace drapelab {
 namespace {

@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "contact/explicit_contact_bound.hpp"
+#include "core/explicit_contact_bound.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/self_collision.hpp"
 #include "drapelab/weighted_contact.hpp"

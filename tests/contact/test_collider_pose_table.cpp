@@ -6,7 +6,7 @@
 #include <memory>
 #include <numbers>
 
-#include "contact/penalty_contact.hpp"
+#include "core/penalty_contact.hpp"
 #include "drapelab/collider_pose_table.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <random>
 
-#include "contact/penalty_contact.hpp"
+#include "core/penalty_contact.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/contact_fcl.hpp"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "contact/explicit_contact_bound.hpp"
+#include "core/explicit_contact_bound.hpp"
 
 namespace drapelab {
 namespace {

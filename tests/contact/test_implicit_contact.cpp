@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "contact/penalty_contact.hpp"
+#include "core/penalty_contact.hpp"
 #include "drapelab/collision_metrics.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/grid_cloth.hpp"

@@ -11,11 +11,13 @@
 #include <tuple>
 #include <vector>
 
-#include "contact/penalty_contact.hpp"
+#include "contact/broad_phase_loops.hpp"
+#include "core/penalty_contact.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "fixtures/colliders.hpp"
 #include "fixtures/sheets.hpp"
+#include "forces/body_force_loops.hpp"
 #include "forces/spring_family_loops.hpp"
 #include "integrators/particle_loops.hpp"
 

@@ -6,10 +6,12 @@
 #include <random>
 #include <string>
 
+#include "contact/broad_phase_loops.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "drapelab/stability.hpp"
 #include "fixtures/sheets.hpp"
+#include "forces/body_force_loops.hpp"
 #include "forces/forces.hpp"
 #include "forces/spring_family_loops.hpp"
 #include "forces/spring_force.hpp"

@@ -8,14 +8,14 @@
 #include <cmath>
 #include <random>
 
+#include "core/pair_penalty.hpp"
+#include "core/proximity.hpp"
 #include "drapelab/grid_cloth.hpp"
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/family_implicit.hpp"
 #include "layered_cloth.hpp"
-#include "self_collision/pair_penalty.hpp"
-#include "self_collision/proximity.hpp"
 #include "self_collision/self_contact.hpp"
 
 namespace drapelab {

@@ -1,5 +1,5 @@
 // The colliders of a scene as seen by our solver: their FCL geometry, poses over time, and the
-// penalty contact phase of a step (contact/penalty_contact.hpp), with a bounding-box broad phase so
+// penalty contact phase of a step (core/penalty_contact.hpp), with a bounding-box broad phase so
 // that particles far from every collider cost a few comparisons (contact/contact_pass.hpp).
 #pragma once
 
@@ -86,8 +86,8 @@ class ContactModel {
   // given, it is cleared and receives every pushing contact (in a fixed order: by block of
   // particles, then collider, then particle; with the end-of-step normal, by block, then particle,
   // then collider). Particles are processed in fixed blocks spread over the threads
-  // (particle_loops.hpp); `workspace` keeps the blocks' results between calls (a temporary one when
-  // null), and with it the call allocates nothing once grown. `follow_up`, when given, runs on
+  // (core/thread_blocks.hpp); `workspace` keeps the blocks' results between calls (a temporary one
+  // when null), and with it the call allocates nothing once grown. `follow_up`, when given, runs on
   // every block once its forces are final (every block, including those without contacts; x and v
   // may be the arrays it updates); the call then returns the lowest particle it flagged, else -1.
   std::int64_t add_contact_forces(

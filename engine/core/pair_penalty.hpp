@@ -17,7 +17,7 @@
 #include <Eigen/Core>
 #include <array>
 
-#include "contact/penalty_contact.hpp"
+#include "core/penalty_contact.hpp"
 
 namespace drapelab {
 

@@ -1,6 +1,6 @@
 // The end-of-step normal forces of a particle touching several colliders at once
 // (penalty_contact.hpp).
-#include "contact/penalty_contact.hpp"
+#include "core/penalty_contact.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
