@@ -7,20 +7,20 @@
 // / implicit_euler.hpp. Each scheme's update, its order, its force evaluations per step and its
 // stability on x'' = -w^2 x:
 //
-//   explicit_euler   x1 = x0 + h v0, v1 = v0 + h a0                    order 1, 1 eval, never
-//   stable undamped symplectic_euler v1 = v0 + h a0, x1 = x0 + h v1                    order 1, 1
-//   eval, w h < 2 midpoint (RK2)   half step to (xm, vm), then x1 = x0 + h vm,
-//                    v1 = v0 + h a(xm, vm)                              order 2, 2 evals, never
-//                    stable undamped
-//   rk4              classic Runge-Kutta                               order 4, 4 evals, w h < 2
-//   sqrt(2) verlet           x1 = 2 x0 - x_prev + h^2 a0 (position Verlet)     order 2, 1 eval, w h
-//   < 2 leapfrog         kick h/2, drift h, kick h/2 (velocity Verlet)     order 2, 1 eval, w h < 2
-//   implicit_euler   (M - h D - h^2 K) dv = h (f0 + h K v0)            order 1, 1 eval + CG,
-//   unconditionally
-//   vbd              the same backward Euler step, x1 minimising its variational form by a fixed
-//                    number of per-particle Newton sweeps (vertex_block_descent.hpp)
-//                                                                      order 1, sweeps,
-//                                                                      unconditionally
+// clang-format off
+//   scheme            update                                         order  evals  stable (undamped)
+//   explicit_euler    x1 = x0 + h v0, v1 = v0 + h a0                 1      1      never
+//   symplectic_euler  v1 = v0 + h a0, x1 = x0 + h v1                 1      1      w h < 2
+//   midpoint (RK2)    half step to (xm, vm), then x1 = x0 + h vm,    2      2      never
+//                     v1 = v0 + h a(xm, vm)
+//   rk4               classic Runge-Kutta                            4      4      w h < 2 sqrt(2)
+//   verlet            x1 = 2 x0 - x_prev + h^2 a0 (position Verlet)  2      1      w h < 2
+//   leapfrog          kick h/2, drift h, kick h/2 (velocity Verlet)  2      1      w h < 2
+//   implicit_euler    (M - h D - h^2 K) dv = h (f0 + h K v0)         1      1+CG   always
+//   vbd               the same backward Euler step, x1 minimising    1      sweeps always
+//                     its variational form by a fixed number of
+//                     per-particle Newton sweeps (vertex_block_descent.hpp)
+// clang-format on
 #pragma once
 
 #include <optional>
