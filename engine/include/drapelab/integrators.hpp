@@ -8,7 +8,7 @@
 // stability on x'' = -w^2 x:
 //
 // clang-format off
-//   scheme            update                                         order  evals  stable (undamped)
+//   scheme            update                                         order  evals  stable undamped
 //   explicit_euler    x1 = x0 + h v0, v1 = v0 + h a0                 1      1      never
 //   symplectic_euler  v1 = v0 + h a0, x1 = x0 + h v1                 1      1      w h < 2
 //   midpoint (RK2)    half step to (xm, vm), then x1 = x0 + h vm,    2      2      never
