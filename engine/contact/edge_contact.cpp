@@ -69,7 +69,7 @@ ColliderFeatures cylinder_features(const Eigen::Vector3d& axis, double radius, d
   return features;
 }
 
-Eigen::AlignedBox3d box_of(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+Eigen::AlignedBox3d segment_box(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   Eigen::AlignedBox3d box(a);
   box.extend(b);
   return box;
@@ -171,7 +171,7 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
     // inside of the cloth edge (at an end, the particle contact has it).
     for (const auto& edge : edges_) {
       const int a = edge[0], b = edge[1];  // named, not bound: lambdas capture them below
-      if (!box_of(x.col(a), x.col(b)).intersects(reach)) continue;
+      if (!segment_box(x.col(a), x.col(b)).intersects(reach)) continue;
       Found best;
       double best_distance2 = h2;
       local.candidate_edges(
@@ -198,7 +198,7 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
     for (Eigen::Index tri = 0; tri < model_.triangles.cols(); ++tri) {
       const int i = model_.triangles(0, tri), j = model_.triangles(1, tri),
                 k = model_.triangles(2, tri);
-      Eigen::AlignedBox3d span = box_of(x.col(i), x.col(j));
+      Eigen::AlignedBox3d span = segment_box(x.col(i), x.col(j));
       span.extend(x.col(k));
       if (!span.intersects(reach)) continue;
       Found best;

@@ -23,9 +23,9 @@
 namespace drapelab {
 namespace {
 
-const Eigen::Vector3d kGravity(0.0, -9.81, 0.0);  // m/s^2
-constexpr double kBallMass = 0.2;                 // kg
-constexpr double kBallRadius = 0.05;              // m
+const Eigen::Vector3d kGravityVector(0.0, -9.81, 0.0);  // m/s^2
+constexpr double kBallMass = 0.2;                       // kg
+constexpr double kBallRadius = 0.05;                    // m
 
 Collider ball_at(const Eigen::Vector3d& center) {
   Collider ball;
@@ -71,10 +71,10 @@ std::unique_ptr<Solver> hosted_ours(std::shared_ptr<const ClothModel> model,
   poses->set(0, still);
   SpringDamperSettings settings;
   settings.integrator = integrator;
-  settings.gravity = kGravity;
+  settings.gravity = kGravityVector;
   settings.constraints = constraints_on_own_bodies(std::move(constraints), poses);
   auto guest = std::make_unique<SpringDamperSolver>("ours", std::move(model), initial, settings);
-  return bullet::host_in_bullet_world(std::move(guest), poses, {ball}, kGravity, 1e-3);
+  return bullet::host_in_bullet_world(std::move(guest), poses, {ball}, kGravityVector, 1e-3);
 }
 
 std::unique_ptr<Solver> classic_cloth(std::shared_ptr<const ClothModel> model,
@@ -82,7 +82,7 @@ std::unique_ptr<Solver> classic_cloth(std::shared_ptr<const ClothModel> model,
                                       std::shared_ptr<const DistanceConstraints> constraints) {
   bullet::BulletSoftBodyOptions options;
   options.dt = 1e-4;
-  options.gravity = kGravity;
+  options.gravity = kGravityVector;
   options.constraints = std::move(constraints);
   return bullet::make_bullet_softbody_solver("classic", std::move(model), initial, {ball}, options);
 }
@@ -92,7 +92,7 @@ std::unique_ptr<Solver> deformable_cloth(std::shared_ptr<const ClothModel> model
                                          std::shared_ptr<const DistanceConstraints> constraints) {
   bullet::BulletDeformableOptions options;
   options.dt = 1e-4;
-  options.gravity = kGravity;
+  options.gravity = kGravityVector;
   options.constraints = std::move(constraints);
   return bullet::make_bullet_deformable_solver("deformable", std::move(model), initial, {ball},
                                                options);
@@ -105,7 +105,7 @@ std::string scientific(double value) {
   return text.str();
 }
 
-BodyState ball_of(const Solver& solver) {
+BodyState hanging_ball(const Solver& solver) {
   const std::vector<BodyState> bodies = solver.bodies();
   EXPECT_EQ(bodies.size(), 1u);
   return bodies.empty() ? BodyState{} : bodies.front();
@@ -141,10 +141,10 @@ Swing hang(Solver& solver, double h) {
     solver.step(h);
     EXPECT_EQ(solver.status(), SolverStatus::ok) << solver.message();
     if (solver.status() != SolverStatus::ok) return swing;
-    if (swing.first_turn_time == 0.0 && ball_of(solver).velocity.y() > 0.0)
+    if (swing.first_turn_time == 0.0 && hanging_ball(solver).velocity.y() > 0.0)
       swing.first_turn_time = solver.state().time;
   }
-  swing.rest_height = ball_of(solver).pose.translation().y();
+  swing.rest_height = hanging_ball(solver).pose.translation().y();
   return swing;
 }
 
@@ -213,10 +213,10 @@ TEST(BodyStrings, SheetAndBallTiedByStringsKeepTheirMomentum) {
     for (int k = 0; k < 5000; ++k) {  // 0.5 s
       ours->step(h);
       ASSERT_EQ(ours->status(), SolverStatus::ok) << ours->message();
-      Eigen::Vector3d p = kBallMass * ball_of(*ours).velocity;
+      Eigen::Vector3d p = kBallMass * hanging_ball(*ours).velocity;
       for (int i = 0; i < model->particle_count(); ++i)
         p += model->mass[i] * ours->state().v.col(i);
-      worst = std::max(worst, (p - mass * kGravity * ours->state().time).norm());
+      worst = std::max(worst, (p - mass * kGravityVector * ours->state().time).norm());
     }
     const double impulse = mass * 9.81 * 0.5;  // N*s
     const bool exact = integrator == Integrator::symplectic_euler ||

@@ -71,9 +71,9 @@ RestingForce resting_force(Solver& solver, double h) {
   return out;
 }
 
-std::unique_ptr<Solver> deformable(const FloorScene& scene,
-                                   const std::shared_ptr<const ClothModel>& model,
-                                   double air_damping) {
+std::unique_ptr<Solver> deformable_on_floor(const FloorScene& scene,
+                                            const std::shared_ptr<const ClothModel>& model,
+                                            double air_damping) {
   bullet::BulletDeformableOptions options;
   options.dt = 1e-3;
   options.margin = options.voxel_size = scene.cloth.thickness;
@@ -91,13 +91,13 @@ TEST(BulletContactForces, DeformableImpulsesCarryTheWeightOfAClothRestingOnAFloo
   const FloorScene scene = floor_scene(0.0);
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(scene.cloth));
   const double weight = model->mass.sum() * 9.81;  // N
-  const RestingForce still = resting_force(*deformable(scene, model, 0.0), 1e-3);
+  const RestingForce still = resting_force(*deformable_on_floor(scene, model, 0.0), 1e-3);
   EXPECT_NEAR(still.normal, weight, 1e-5 * weight);
   EXPECT_NEAR(still.lowest, weight, 1e-5 * weight);  // not only on average: every step
   EXPECT_NEAR(still.highest, weight, 1e-5 * weight);
   EXPECT_LT(still.friction, 1e-6);  // N: nothing pulls it sideways
   const double air_damping = 1.0;   // 1/s
-  const RestingForce dragged = resting_force(*deformable(scene, model, air_damping), 1e-3);
+  const RestingForce dragged = resting_force(*deformable_on_floor(scene, model, air_damping), 1e-3);
   EXPECT_NEAR(dragged.normal, weight * std::exp(-air_damping * 1e-3), 1e-5 * weight);
 }
 
@@ -108,7 +108,7 @@ TEST(BulletContactForces, DeformableImpulsesSplitIntoNormalForceAndFrictionOnAnI
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(scene.cloth));
   const double weight = model->mass.sum() * 9.81;  // N
   const double theta = kTilt * std::numbers::pi / 180.0;
-  const RestingForce f = resting_force(*deformable(scene, model, 0.0), 1e-3);
+  const RestingForce f = resting_force(*deformable_on_floor(scene, model, 0.0), 1e-3);
   EXPECT_NEAR(f.normal, weight * std::cos(theta), 1e-5 * weight);
   EXPECT_NEAR(f.friction, weight * std::sin(theta), 1e-5 * weight);
   EXPECT_NEAR(f.highest - f.lowest, 0.0, 1e-5 * weight);

@@ -36,7 +36,7 @@ std::string sheet_scene(double duration, int resolution = 9) {
          "}]\n";
 }
 
-std::size_t count_lines(const fs::path& path) {
+std::size_t count_file_lines(const fs::path& path) {
   std::error_code error;
   if (path.empty() || !fs::exists(path, error)) return 0;
   const std::string text = read_text(path);
@@ -44,7 +44,7 @@ std::size_t count_lines(const fs::path& path) {
 }
 
 // Data rows of a CSV file that must end on a whole row, each with the header's number of cells.
-std::size_t whole_rows(const fs::path& path) {
+std::size_t count_whole_rows(const fs::path& path) {
   const std::string text = read_text(path);
   EXPECT_FALSE(text.empty()) << path;
   if (text.empty()) return 0;
@@ -123,7 +123,7 @@ TEST_F(RunFolderSafety, CtrlCOnARerunKeepsTheFinishedRun) {
   const fs::path short_run = scene("short.yaml", sheet_scene(0.5));
   ASSERT_EQ(run_drapelab({"run", short_run.string(), "--out", out.string()}).exit_code, 0);
   const std::string finished_metrics = read_text(out / "metrics.csv");
-  ASSERT_EQ(whole_rows(out / "metrics.csv"), 31u);
+  ASSERT_EQ(count_whole_rows(out / "metrics.csv"), 31u);
 
   // A long run into the same folder; while it runs, the finished run stays whole.
   const fs::path long_run = scene("long.yaml", sheet_scene(600.0));
@@ -132,7 +132,7 @@ TEST_F(RunFolderSafety, CtrlCOnARerunKeepsTheFinishedRun) {
       interrupt_drapelab_when({"run", long_run.string(), "--out", out.string(), "--force"}, [&] {
         intact_while_running =
             intact_while_running && read_text(out / "metrics.csv") == finished_metrics;
-        return count_lines(staged_file(out, "metrics.csv")) >= 6;
+        return count_file_lines(staged_file(out, "metrics.csv")) >= 6;
       });
   EXPECT_EQ(exit_code, 130);
   EXPECT_TRUE(intact_while_running);
@@ -143,7 +143,7 @@ TEST_F(RunFolderSafety, CtrlCOnARerunKeepsTheFinishedRun) {
   const fs::path kept = out / "interrupted_run";
   const auto summary = nlohmann::json::parse(read_text(kept / "summary.json"));
   EXPECT_EQ(summary["run"]["state"], "interrupted");
-  const std::size_t frames = whole_rows(kept / "metrics.csv");
+  const std::size_t frames = count_whole_rows(kept / "metrics.csv");
   EXPECT_GE(frames, 5u);
   EXPECT_EQ(summary["run"]["frames_done"].get<std::size_t>() + 1, frames);
 
@@ -161,7 +161,7 @@ TEST_F(RunFolderSafety, ASecondWriterIsRefusedWithTheHoldersPid) {
   bool started = false;
   const int exit_code =
       interrupt_drapelab_when({"run", long_run.string(), "--out", out.string()}, [&] {
-        if (count_lines(staged_file(out, "metrics.csv")) < 3) return false;
+        if (count_file_lines(staged_file(out, "metrics.csv")) < 3) return false;
         if (!started) {
           second = run_drapelab({"run", long_run.string(), "--out", out.string(), "--force"});
           started = true;
@@ -176,7 +176,8 @@ TEST_F(RunFolderSafety, ASecondWriterIsRefusedWithTheHoldersPid) {
   // The first run's files are its own: one summary, its frames, no mix.
   const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(summary["run"]["state"], "interrupted");
-  EXPECT_EQ(summary["run"]["frames_done"].get<std::size_t>() + 1, whole_rows(out / "metrics.csv"));
+  EXPECT_EQ(summary["run"]["frames_done"].get<std::size_t>() + 1,
+            count_whole_rows(out / "metrics.csv"));
 }
 
 TEST_F(RunFolderSafety, AReportTellsARunStillGoingFromAKilledOne) {
@@ -187,7 +188,7 @@ TEST_F(RunFolderSafety, AReportTellsARunStillGoingFromAKilledOne) {
   const int exit_code = interrupt_drapelab_when(
       {"run", long_run.string(), "--out", out.string()},
       [&] {
-        if (count_lines(staged_file(out, "metrics.csv")) < 3) return false;
+        if (count_file_lines(staged_file(out, "metrics.csv")) < 3) return false;
         staging = staged_file(out, "metrics.csv").parent_path();
         live = run_drapelab({"report", staging.string(), "--out", (dir() / "live.html").string()});
         return true;
@@ -225,7 +226,7 @@ TEST_F(RunFolderSafety, AWriteErrorStopsOnTheLastWholeFrame) {
   const std::size_t frames = summary["run"]["frames_done"].get<std::size_t>() + 1;
   EXPECT_GT(frames, 10u);
   EXPECT_LT(frames, 121u);
-  EXPECT_EQ(whole_rows(out / "metrics.csv"), frames);
+  EXPECT_EQ(count_whole_rows(out / "metrics.csv"), frames);
   EXPECT_EQ(summary["solvers"]["ours"]["frames_recorded"].get<std::size_t>(), frames);
   // The point cache holds exactly those frames: its header count and its size agree.
   const std::string pc2 = read_text(out / "meshes" / "ours.pc2");
@@ -265,8 +266,8 @@ TEST_F(RunFolderSafety, SigtermStopsARunLikeCtrlC) {
   const fs::path long_run = scene("long.yaml", sheet_scene(600.0));
   const int exit_code = interrupt_drapelab_when(
       {"run", long_run.string(), "--out", out.string()},
-      [&] { return count_lines(staged_file(out, "metrics.csv")) >= 3; }, std::chrono::seconds(60),
-      SIGTERM);
+      [&] { return count_file_lines(staged_file(out, "metrics.csv")) >= 3; },
+      std::chrono::seconds(60), SIGTERM);
   EXPECT_EQ(exit_code, 130);
   EXPECT_EQ(nlohmann::json::parse(read_text(out / "summary.json"))["run"]["state"], "interrupted");
 }

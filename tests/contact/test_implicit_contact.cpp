@@ -24,7 +24,7 @@
 namespace drapelab {
 namespace {
 
-constexpr double kGravity = 9.81;  // m/s^2
+constexpr double kStandardGravity = 9.81;  // m/s^2
 
 TEST(LinearlyImplicitNormalForce, SatisfiesTheEndOfStepEquation) {
   const double k = 1000.0, c = 0.2, m = 1.5e-5, h = 1e-4;  // N/m, N*s/m, kg, s
@@ -42,10 +42,10 @@ TEST(LinearlyImplicitNormalForce, SatisfiesTheEndOfStepEquation) {
 }
 
 TEST(LinearlyImplicitNormalForce, AtRestItIsThePenaltyForceAndAsTheStepShrinksTooTheExplicitOne) {
-  const double k = 1000.0, c = 0.2, m = 1.5e-5;  // N/m, N*s/m, kg
-  const double depth = m * kGravity / k;         // m: the sag under the particle's weight
-  EXPECT_NEAR(linearly_implicit_normal_force(depth, 0.0, -m * kGravity, m, 1e-3, k, c), k * depth,
-              1e-15);
+  const double k = 1000.0, c = 0.2, m = 1.5e-5;   // N/m, N*s/m, kg
+  const double depth = m * kStandardGravity / k;  // m: the sag under the particle's weight
+  EXPECT_NEAR(linearly_implicit_normal_force(depth, 0.0, -m * kStandardGravity, m, 1e-3, k, c),
+              k * depth, 1e-15);
   const double explicit_force = penalty_normal_force(1e-3, -0.5, k, c);  // N
   const double tiny_step = linearly_implicit_normal_force(1e-3, -0.5, 0.0, m, 1e-12, k, c);
   EXPECT_NEAR(tiny_step, explicit_force, 1e-6 * explicit_force);
@@ -81,7 +81,7 @@ TEST(LinearlyImplicitNormalForces, SeveralContactsAreSolvedTogether) {
   const NormalContact floor{Eigen::Vector3d::UnitY(), 1e-3, Eigen::Vector3d::Zero()};
   const NormalContact wall{Eigen::Vector3d::UnitX(), 5e-4, Eigen::Vector3d::Zero()};
   const NormalContact slope{Eigen::Vector3d(-0.6, 0.8, 0.0), 2e-4, Eigen::Vector3d(0.0, 0.1, 0.0)};
-  const Eigen::Vector3d gravity(0.0, -m * kGravity, 0.0);  // N
+  const Eigen::Vector3d gravity(0.0, -m * kStandardGravity, 0.0);  // N
   struct Case {
     std::vector<NormalContact> contacts;
     Eigen::Vector3d velocity;  // m/s
@@ -181,8 +181,8 @@ double wedge_speed_after(double seconds, bool together) {
   const double h = 10.0 * m / c;                            // s
   const Eigen::Vector3d left(std::sin(0.5236), std::cos(0.5236), 0.0),
       right(-left.x(), left.y(), 0.0);
-  const Eigen::Vector3d gravity(0.0, -m * kGravity, 0.0);  // N
-  Eigen::Vector3d x(0.0, 0.02, 0.0), v(0.3, 0.0, 0.0);     // m, m/s
+  const Eigen::Vector3d gravity(0.0, -m * kStandardGravity, 0.0);  // N
+  Eigen::Vector3d x(0.0, 0.02, 0.0), v(0.3, 0.0, 0.0);             // m, m/s
   const int steps = static_cast<int>(std::lround(seconds / h));
   for (int s = 0; s < steps; ++s) {
     std::vector<NormalContact> touching;
@@ -220,7 +220,7 @@ double bounce(double h, bool implicit, double settle, double* final_height) {
   double y = 0.01, v = 0.0, worst_after_settle = 0.0;
   const int steps = static_cast<int>(std::lround(1.0 / h));
   for (int s = 0; s < steps; ++s) {
-    const double gravity = -m * kGravity;  // N
+    const double gravity = -m * kStandardGravity;  // N
     double fn = 0.0;
     if (y < 0.0)
       fn = implicit ? linearly_implicit_normal_force(-y, v, gravity, m, h, k, c)
@@ -229,7 +229,7 @@ double bounce(double h, bool implicit, double settle, double* final_height) {
     y += h * v;
     if (!std::isfinite(y) || std::abs(y) > 1.0) return std::numeric_limits<double>::infinity();
     if (s * h > settle)
-      worst_after_settle = std::max(worst_after_settle, std::abs(y + m * kGravity / k));
+      worst_after_settle = std::max(worst_after_settle, std::abs(y + m * kStandardGravity / k));
   }
   *final_height = y;
   return worst_after_settle;
@@ -246,7 +246,7 @@ TEST(ImplicitContactParticle, SettlesAtTheSagAtStepsWhereTheExplicitForceDiverge
         << "explicit penalty at " << factor << " x its limit";
     const double deviation = bounce(h, true, 0.5, &height);
     ASSERT_TRUE(std::isfinite(deviation)) << factor;
-    const double sag = m * kGravity / k;              // m
+    const double sag = m * kStandardGravity / k;      // m
     EXPECT_NEAR(height, -sag, 1e-3 * sag) << factor;  // rests at the penalty sag
     EXPECT_LT(deviation, 1e-3 * sag) << factor;       // and stays there
   }
@@ -326,9 +326,9 @@ TEST(ImplicitContactStep, ClothRestsOnAHeavilyDampedFloorAtTheSpringsStep) {
   const double particle_mass = 0.05 / (21 * 21);  // kg
   const FloorRun ours = rest_on_floor(Integrator::symplectic_euler, 1.0);
   ASSERT_EQ(ours.status, SolverStatus::ok);
-  const double weight = 0.05 * kGravity;  // N
+  const double weight = 0.05 * kStandardGravity;  // N
   EXPECT_NEAR(ours.normal_force, weight, 0.01 * weight);
-  const double sag = particle_mass * kGravity / 1000.0;  // m
+  const double sag = particle_mass * kStandardGravity / 1000.0;  // m
   EXPECT_NEAR(ours.max_penetration, sag, 0.05 * sag);
 
   EXPECT_NEAR(ours.lowest_normal_force, weight,

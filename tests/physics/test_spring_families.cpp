@@ -21,7 +21,7 @@ namespace drapelab {
 namespace {
 
 // The solver-step suite's sheet (0.2 kg, held at two corners), lying in the xz plane.
-GridClothSpec grid(int nx, int ny) {
+GridClothSpec grid_spec(int nx, int ny) {
   GridClothSpec spec = fixtures::hanging_sheet(nx, ny, 0.2, fixtures::kTenfoldSprings);
   spec.plane = GridPlane::xz;
   return spec;
@@ -38,7 +38,7 @@ ClothState shaken(const ClothModel& model, const GridClothSpec& spec) {
 TEST(SpringFamilies, ForcesEqualThePlainLoopToRoundingOnEveryGrid) {
   for (auto [nx, ny] : {std::pair{2, 2}, {1, 7}, {7, 1}, {3, 9}, {33, 17}, {65, 65}}) {
     SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny));
-    const GridClothSpec spec = grid(nx, ny);
+    const GridClothSpec spec = grid_spec(nx, ny);
     const ClothModel model = build_grid_cloth(spec);
     const ClothState state = shaken(model, spec);
     auto families = SpringFamilies::build(model);
@@ -59,7 +59,7 @@ TEST(SpringFamilies, ForcesEqualThePlainLoopToRoundingOnEveryGrid) {
 TEST(SpringFamilies, BodyForcesInTheFirstPassEqualTheSeparatePassBitForBit) {
   for (int n : {9, 97}) {  // one thread's region, and one large enough to split among threads
     SCOPED_TRACE(n);
-    const GridClothSpec spec = grid(n, n);
+    const GridClothSpec spec = grid_spec(n, n);
     const ClothModel model = build_grid_cloth(spec);
     const ClothState state = shaken(model, spec);
     auto families = SpringFamilies::build(model);
@@ -86,7 +86,7 @@ TEST(SpringFamilies, BodyForcesInTheFirstPassEqualTheSeparatePassBitForBit) {
 TEST(SpringFamilies, FamiliesWithVaryingSpringsReadPerSpringValuesAndStillEqualThePlainLoop) {
   // A grid's families are uniform (one rest length, ks and kd each); varying one spring of every
   // kind sends those families through the per-slot arrays instead.
-  const GridClothSpec spec = grid(33, 17);
+  const GridClothSpec spec = grid_spec(33, 17);
   ClothModel model = build_grid_cloth(spec);
   for (std::size_t e = 0; e < model.springs.size(); e += 97) {
     model.springs.ks[e] *= 1.5;
@@ -109,7 +109,7 @@ TEST(SpringFamilies, FamiliesWithVaryingSpringsReadPerSpringValuesAndStillEqualT
 
 TEST(SpringFamilies, PerturbedRestLengthsReadOnlyTheRestArrayAndStillEqualThePlainLoop) {
   // A sheet built from perturbed positions: every rest length differs, ks and kd do not.
-  const GridClothSpec spec = grid(33, 17);
+  const GridClothSpec spec = grid_spec(33, 17);
   ClothModel model = build_grid_cloth(spec);
   for (std::size_t e = 0; e < model.springs.size(); ++e)
     model.springs.rest_length[e] *= 1.0 + 0.01 * std::sin(0.37 * static_cast<double>(e));
@@ -153,7 +153,7 @@ ClothState run(const std::shared_ptr<const ClothModel>& model, const GridClothSp
 TEST(SpringFamilies, RunsMatchThePlainPathAndAreBitwiseIdenticalForOneAndTwoThreads) {
   // Large enough that the loops really split among threads (families of >= 8192 springs).
   const GridClothSpec spec =
-      grid(97, 97);  // 97 x 96 = 9312 springs along x: above the threading threshold
+      grid_spec(97, 97);  // 97 x 96 = 9312 springs along x: above the threading threshold
   const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
   const ClothState plain = run(model, spec, false, 1);
   const ClothState one = run(model, spec, true, 1);
@@ -168,7 +168,7 @@ TEST(SpringFamilies, ShortThreadRunsAndMoreThreadsThanBlocksGiveTheSameBits) {
   // threads: runs shorter than the largest offset, whose gathers all wait for the barrier, and
   // threads with no block at all. Perturbed rest lengths send every family through the rest-array
   // layout.
-  const GridClothSpec spec = grid(400, 12);
+  const GridClothSpec spec = grid_spec(400, 12);
   ClothModel perturbed = build_grid_cloth(spec);
   for (std::size_t e = 0; e < perturbed.springs.size(); ++e)
     perturbed.springs.rest_length[e] *= 1.0 + 0.01 * std::sin(0.37 * static_cast<double>(e));

@@ -15,7 +15,7 @@ namespace drapelab {
 namespace {
 
 // A flat n x n sheet of 1 kg, `size` m square, centred at the origin.
-GridClothSpec flat(int n, double size) {
+GridClothSpec flat_sheet(int n, double size) {
   return fixtures::flat_sheet(n, size, Eigen::Vector3d::Zero(), 1.0);
 }
 
@@ -39,7 +39,7 @@ TEST(SurfaceDistance, PointTriangleDistanceMatchesDenseSampling) {
 }
 
 TEST(SurfaceDistance, HausdorffOfShiftedFoldedAndEqualSurfaces) {
-  GridClothSpec spec = flat(11, 1.0);
+  GridClothSpec spec = flat_sheet(11, 1.0);
   const ClothModel model = build_grid_cloth(spec);
   const Eigen::Matrix3Xd& x = model.rest_positions;
   EXPECT_EQ(hausdorff_distance(x, x, model.triangles), 0.0);
@@ -60,7 +60,7 @@ TEST(SurfaceDistance, HausdorffOfShiftedFoldedAndEqualSurfaces) {
 }
 
 TEST(SurfaceDistance, AChainUsesItsVertexSets) {
-  GridClothSpec spec = flat(1, 1.0);
+  GridClothSpec spec = flat_sheet(1, 1.0);
   spec.ny = 4;
   const ClothModel model = build_grid_cloth(spec);
   Eigen::Matrix3Xd moved = model.rest_positions;
@@ -87,7 +87,7 @@ void expect_bounded_work(const Eigen::Matrix3Xd& xa, const Eigen::Matrix3Xd& xb,
 
 TEST(SurfaceDistance, EveryQueryEndsAfterABoundedAmountOfWork) {
   // 17 x 17 particles over 10 micrometres: cells of 0.6 micrometre.
-  const ClothModel model = build_grid_cloth(flat(17, 1e-5));
+  const ClothModel model = build_grid_cloth(flat_sheet(17, 1e-5));
   const Eigen::Matrix3Xd& x = model.rest_positions;
   Eigen::Matrix3Xd exploded = x * 1e15;  // 1e10 m across
   exploded.row(1).array() += 1e10;

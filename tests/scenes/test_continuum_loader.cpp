@@ -25,12 +25,13 @@ namespace {
 namespace fs = std::filesystem;
 using namespace fixtures;  // fixtures/scene_text.hpp, fixtures/scene_cases.hpp
 
-constexpr const char* kName = "continuum.yaml";
+constexpr const char* kContinuumFile = "continuum.yaml";
 
-scene::LoadResult load(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return scene::load_scene_text(text, kName, overrides);
+scene::LoadResult load_continuum(const std::string& text,
+                                 const std::vector<std::string>& overrides = {}) {
+  return scene::load_scene_text(text, kContinuumFile, overrides);
 }
-std::string at(int line) { return at_line(kName, line); }
+std::string continuum_at(int line) { return at_line(kContinuumFile, line); }
 
 // A 5 x 4 sheet of the continuum model with every key of cloth.continuum. Its particle spacing is
 // the smaller cell side, 0.4 / 4 = 0.1 m. Line numbers matter for the error tests.
@@ -81,7 +82,7 @@ void ExpectDerivedSprings(const GridClothSpec& cloth, double spacing,
 // Keys, defaults, derived springs
 
 TEST(ContinuumLoader, KeysAreReadAndTheModelGetsItsElements) {
-  const auto result = load(kSheet);
+  const auto result = load_continuum(kSheet);
   ASSERT_LOADS(result);
   const GridClothSpec& cloth = result.scene->cloth.grid;
   ASSERT_TRUE(cloth.continuum);
@@ -104,7 +105,7 @@ TEST(ContinuumLoader, KeysAreReadAndTheModelGetsItsElements) {
 TEST(ContinuumLoader, SpringsIsTheDefaultModel) {
   const std::string springs = with_line(without_lines(kSheet, 8, 12), 7, "  model: springs");
   for (const std::string& text : {springs, without_lines(kSheet, 7, 12)}) {
-    const auto result = load(text);
+    const auto result = load_continuum(text);
     ASSERT_LOADS(result);
     EXPECT_FALSE(result.scene->cloth.grid.continuum);
     EXPECT_FALSE(result.model->continuum);
@@ -114,7 +115,7 @@ TEST(ContinuumLoader, SpringsIsTheDefaultModel) {
 
 TEST(ContinuumLoader, OmittedKeysTakeTheDefaults) {
   const ContinuumParams defaults;
-  const auto bare = load(without_lines(kSheet, 8, 12));  // model: continuum alone
+  const auto bare = load_continuum(without_lines(kSheet, 8, 12));  // model: continuum alone
   ASSERT_LOADS(bare);
   ASSERT_TRUE(bare.scene->cloth.grid.continuum);
   const ContinuumParams& c = *bare.scene->cloth.grid.continuum;
@@ -125,7 +126,8 @@ TEST(ContinuumLoader, OmittedKeysTakeTheDefaults) {
   ExpectDerivedSprings(bare.scene->cloth.grid, kSheetSpacing);
 
   // One key given: the others keep their defaults.
-  const auto one = load(without_lines(without_lines(kSheet, 11, 12), 9, 9));  // poisson only
+  const auto one =
+      load_continuum(without_lines(without_lines(kSheet, 11, 12), 9, 9));  // poisson only
   ASSERT_LOADS(one);
   const ContinuumParams& p = *one.scene->cloth.grid.continuum;
   EXPECT_EQ(p.poisson, 0.25);
@@ -135,13 +137,14 @@ TEST(ContinuumLoader, OmittedKeysTakeTheDefaults) {
 }
 
 TEST(ContinuumLoader, RangeBoundsLoad) {
-  const auto zero = load(kSheet, {"cloth.continuum.poisson=0", "cloth.continuum.bending_rigidity=0",
-                                  "cloth.continuum.damping=0"});
+  const auto zero =
+      load_continuum(kSheet, {"cloth.continuum.poisson=0", "cloth.continuum.bending_rigidity=0",
+                              "cloth.continuum.damping=0"});
   ASSERT_LOADS(zero);
   EXPECT_EQ(zero.scene->cloth.grid.continuum->poisson, 0.0);
   EXPECT_EQ(zero.scene->cloth.grid.bend.ks, 0.0);
   EXPECT_EQ(zero.scene->cloth.grid.stretch.kd, 0.0);
-  EXPECT_LOADS(load(kSheet, {"cloth.continuum.poisson=0.499"}));
+  EXPECT_LOADS(load_continuum(kSheet, {"cloth.continuum.poisson=0.499"}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -150,7 +153,7 @@ TEST(ContinuumLoader, RangeBoundsLoad) {
 TEST(ContinuumLoader, MaterialGivesTheContinuumParameters) {
   // material: cotton and no cloth.continuum: tensile 1000 N/m, nu 0.3, B 1e-5 N m, beta 5e-5 s.
   const std::string cotton = with_line(without_lines(kSheet, 8, 12), 6, "  material: cotton");
-  const auto result = load(cotton);
+  const auto result = load_continuum(cotton);
   ASSERT_LOADS(result);
   const GridClothSpec& cloth = result.scene->cloth.grid;
   ASSERT_TRUE(cloth.continuum);
@@ -173,7 +176,8 @@ TEST(ContinuumLoader, EveryPresetHasAWovenOrLeatherPoissonRatio) {
   const std::vector<std::pair<std::string, double>> expected = {
       {"silk", 0.35}, {"cotton", 0.3}, {"denim", 0.2}, {"leather", 0.4}};
   for (const auto& [name, poisson] : expected) {
-    const auto result = load(with_line(without_lines(kSheet, 8, 12), 6, "  material: " + name));
+    const auto result =
+        load_continuum(with_line(without_lines(kSheet, 8, 12), 6, "  material: " + name));
     ASSERT_LOADS(result);
     EXPECT_EQ(result.scene->cloth.grid.continuum->poisson, poisson) << name;
     EXPECT_GE(poisson, 0.2) << name;
@@ -185,7 +189,7 @@ TEST(ContinuumLoader, ExplicitKeysWinOverTheMaterialKeyByKey) {
   // cloth.continuum gives poisson and damping; the preset (denim) gives the other two.
   const std::string text =
       with_line(without_lines(without_lines(kSheet, 11, 11), 9, 9), 6, "  material: denim");
-  const auto result = load(text);
+  const auto result = load_continuum(text);
   ASSERT_LOADS(result);
   const ContinuumParams& c = *result.scene->cloth.grid.continuum;
   EXPECT_EQ(c.stretch_modulus, 2000.0);
@@ -195,7 +199,7 @@ TEST(ContinuumLoader, ExplicitKeysWinOverTheMaterialKeyByKey) {
   ExpectDerivedSprings(result.scene->cloth.grid, kSheetSpacing, 170.0);  // denim's G
   EXPECT_EQ(*result.scene->cloth.grid.areal_density, 0.4);
   // mass replaces the preset's density, as with springs.
-  const auto massive = load(insert_after(text, 6, "  mass: 0.3"));
+  const auto massive = load_continuum(insert_after(text, 6, "  mass: 0.3"));
   ASSERT_LOADS(massive);
   EXPECT_FALSE(massive.scene->cloth.grid.areal_density);
 }
@@ -203,7 +207,7 @@ TEST(ContinuumLoader, ExplicitKeysWinOverTheMaterialKeyByKey) {
 TEST(ContinuumLoader, MaterialWithTheSpringModelIsUnchanged) {
   const std::string text =
       with_line(without_lines(kSheet, 7, 12), 6, "  material: cotton");  // no model: springs
-  const auto result = load(text);
+  const auto result = load_continuum(text);
   ASSERT_LOADS(result);
   const GridClothSpec& cloth = result.scene->cloth.grid;
   EXPECT_FALSE(cloth.continuum);
@@ -216,7 +220,7 @@ TEST(ContinuumLoader, MaterialWithTheSpringModelIsUnchanged) {
 // ---------------------------------------------------------------------------------------------
 // Every shape
 
-const std::string kDisc =
+const std::string kContinuumDisc =
     "name: disc\n"
     "duration: 0.1\n"
     "cloth:\n"
@@ -237,7 +241,7 @@ TEST(ContinuumLoader, EachOfOurSolversMayRunEitherModel) {
       "  - {name: ours, type: spring_damper, dt: 0.0010416666666666667}\n"
       "  - {name: ours_springs, type: spring_damper, model: springs, dt: 0.0010416666666666667}\n"
       "  - {name: classic, type: bullet_softbody}");
-  const auto on_continuum = load(both);
+  const auto on_continuum = load_continuum(both);
   ASSERT_LOADS(on_continuum);
   const auto& solvers = on_continuum.scene->solvers;
   EXPECT_TRUE(solvers[0].continuum);
@@ -253,7 +257,7 @@ TEST(ContinuumLoader, EachOfOurSolversMayRunEitherModel) {
                 "  - {name: ours, type: spring_damper, dt: 0.0010416666666666667}\n"
                 "  - {name: ours_continuum, type: spring_damper, model: continuum, dt: "
                 "0.0010416666666666667}");
-  const auto on_springs = load(springs_cloth);
+  const auto on_springs = load_continuum(springs_cloth);
   ASSERT_LOADS(on_springs);
   EXPECT_FALSE(on_springs.model->uses_continuum());
   const auto& mixed = on_springs.scene->solvers;
@@ -265,14 +269,14 @@ TEST(ContinuumLoader, EachOfOurSolversMayRunEitherModel) {
   EXPECT_EQ(elements->continuum->params.stretch_modulus, 500.0);
   EXPECT_EQ(elements->continuum->params.poisson, 0.25);
   // The resolved scene keeps both and loads back the same.
-  const auto again = load(scene::resolved_scene_yaml(*on_springs.scene));
+  const auto again = load_continuum(scene::resolved_scene_yaml(*on_springs.scene));
   ASSERT_LOADS(again);
   EXPECT_TRUE(again.scene->solvers[1].continuum);
   EXPECT_EQ(again.scene->cloth.continuum.bending_rigidity, 2.0e-5);
 }
 
 TEST(ContinuumLoader, AnUnusedContinuumBlockOnASpringsClothIsNoted) {
-  const auto result = load(with_line(kSheet, 7, "  model: springs"));
+  const auto result = load_continuum(with_line(kSheet, 7, "  model: springs"));
   ASSERT_LOADS(result);
   EXPECT_FALSE(result.model->uses_continuum());
   bool noted = false;
@@ -282,7 +286,7 @@ TEST(ContinuumLoader, AnUnusedContinuumBlockOnASpringsClothIsNoted) {
 }
 
 TEST(ContinuumLoader, DiscCarriesTheElementsAndSpringsAtItsRingSpacing) {
-  const auto result = load(kDisc);
+  const auto result = load_continuum(kContinuumDisc);
   ASSERT_LOADS(result);
   const GridClothSpec& cloth = result.scene->cloth.grid;
   ASSERT_TRUE(cloth.continuum);
@@ -440,45 +444,47 @@ class ContinuumErrors : public ::testing::TestWithParam<BadScene> {};
 
 TEST_P(ContinuumErrors, NamesTheLineTheKeyAndTheExpectedValue) {
   const BadScene& row = GetParam();
-  EXPECT_TRUE(HasKeyedError(load(row.edit.apply(kSheet)), at(row.line), row.key, row.wording));
+  EXPECT_TRUE(HasKeyedError(load_continuum(row.edit.apply(kSheet)), continuum_at(row.line), row.key,
+                            row.wording));
 }
 
 INSTANTIATE_TEST_SUITE_P(ContinuumLoader, ContinuumErrors,
                          ::testing::ValuesIn(bad_continuum_scenes()), RowName());
 
 TEST(ContinuumLoader, ErrorsInOverridesNameTheOverride) {
-  EXPECT_TRUE(HasKeyedError(load(kSheet, {"cloth.continuum.poisson=0.7"}),
-                            at_override(kName, "cloth.continuum.poisson=0.7"),
+  EXPECT_TRUE(HasKeyedError(load_continuum(kSheet, {"cloth.continuum.poisson=0.7"}),
+                            at_override(kContinuumFile, "cloth.continuum.poisson=0.7"),
                             "cloth.continuum.poisson", {"must be < 0.5, got 0.7"}));
   // Switching a spring cloth to the continuum model with --set names the springs.
   const std::string springs = with_line(without_lines(kSheet, 7, 12), 6,
                                         "  mass: 0.1\n  springs: {stretch: {ks: 500, kd: 0.1}}");
-  ASSERT_LOADS(load(springs));
-  const auto switched = load(springs, {"cloth.model=continuum"});
-  EXPECT_TRUE(
-      HasKeyedError(switched, at(7), "cloth.springs", {"cannot be given with model: continuum"}));
-  EXPECT_LOADS(load(without_lines(springs, 7, 7), {"cloth.model=continuum"}))
+  ASSERT_LOADS(load_continuum(springs));
+  const auto switched = load_continuum(springs, {"cloth.model=continuum"});
+  EXPECT_TRUE(HasKeyedError(switched, continuum_at(7), "cloth.springs",
+                            {"cannot be given with model: continuum"}));
+  EXPECT_LOADS(load_continuum(without_lines(springs, 7, 7), {"cloth.model=continuum"}))
       << "without the springs the override loads";
 }
 
 TEST(ContinuumLoader, AdaptiveSubstepsAreFineWithTheSpringModelAndBulletWithTheContinuum) {
-  EXPECT_LOADS(load(SceneEdit{kAdaptive, remove_lines(7, 12)}.apply(kSheet)));
+  EXPECT_LOADS(load_continuum(SceneEdit{kAdaptive, remove_lines(7, 12)}.apply(kSheet)));
   // The Bullet cloths take the derived springs.
-  EXPECT_LOADS(load(with_line(kSheet, 15,
-                              "  - {name: ours, type: spring_damper, dt: 0.0010416666666666667}\n"
-                              "  - {type: bullet_softbody}\n"
-                              "  - {type: bullet_deformable}")));
+  EXPECT_LOADS(
+      load_continuum(with_line(kSheet, 15,
+                               "  - {name: ours, type: spring_damper, dt: 0.0010416666666666667}\n"
+                               "  - {type: bullet_softbody}\n"
+                               "  - {type: bullet_deformable}")));
   // An integrator other than symplectic Euler with adaptive substeps names the integrator.
   EXPECT_TRUE(HasKeyedError(
-      load(with_line(kSheet, 15,
-                     "  - {type: spring_damper, integrator: verlet, adaptive_substeps: true}")),
-      at(15), "solvers.0.adaptive_substeps", {"needs integrator symplectic_euler"}));
+      load_continuum(with_line(
+          kSheet, 15, "  - {type: spring_damper, integrator: verlet, adaptive_substeps: true}")),
+      continuum_at(15), "solvers.0.adaptive_substeps", {"needs integrator symplectic_euler"}));
 }
 
 TEST(ContinuumLoader, EveryIntegratorLoadsWithTheContinuum) {
   for (const char* integrator : {"symplectic_euler", "explicit_euler", "midpoint", "rk4", "verlet",
                                  "leapfrog", "implicit_euler", "vbd"})
-    EXPECT_LOADS(load(with_line(
+    EXPECT_LOADS(load_continuum(with_line(
         kSheet, 15, std::string("  - {type: spring_damper, integrator: ") + integrator + "}")))
         << integrator;
 }

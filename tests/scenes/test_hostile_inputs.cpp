@@ -39,7 +39,7 @@ class TempFolder {
 };
 
 // A unit square in the xz plane, two triangles (m).
-const std::string kSquareObj =
+const std::string kSquareMesh =
     "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 0 0.5\nv -0.5 0 0.5\nf 1 2 3\nf 1 3 4\n";
 
 // A mesh cloth of the square, its scale and centre given (lines 3 to 7).
@@ -91,7 +91,7 @@ TEST(HostileInputs, ADiscFarAwayIsALocatedErrorNotAnAbort) {
 
 TEST(HostileInputs, AMeshScaledToNothingOrFarAwayIsALocatedError) {
   const TempFolder folder("mesh_scale");
-  folder.write("square.obj", kSquareObj);
+  folder.write("square.obj", kSquareMesh);
   // Out of the scale's range.
   const auto tiny = load_scene_file(folder.write("a.yaml", mesh_scene("1e-150", "[0, 1, 0]")));
   EXPECT_TRUE(
@@ -286,7 +286,7 @@ TEST(HostileInputs, ASceneOrMeshOverSixtyFourMegabytesIsNotRead) {
             std::string::npos)
       << result.errors[0];
 
-  const fs::path obj = folder.write("square.obj", kSquareObj);
+  const fs::path obj = folder.write("square.obj", kSquareMesh);
   fs::resize_file(obj, (64u << 20) + 1);
   const auto mesh = load_scene_file(folder.write("mesh.yaml", mesh_scene("1", "[0, 1, 0]")));
   EXPECT_TRUE(HasError(

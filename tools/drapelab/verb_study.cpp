@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kStretchLimit =
+constexpr double kStabilityStretchLimit =
     1.0;  // the stability verb's criterion: a spring at twice its rest length
 constexpr int kReferenceRefinement = 16;  // the reference's step is the base dt / 16
 
@@ -158,7 +158,7 @@ int study_verb(const StudyArguments& arguments, const std::string& command_line,
 
   const runner::SceneSetup setup = runner::build_scene_setup(*scene, model);
   runner::SimulationOptions options;
-  options.stretch_limit = kStretchLimit;
+  options.stretch_limit = kStabilityStretchLimit;
   options.interrupt = &interrupt;
 
   // The reference: rk4 at a sixteenth of the base step, its positions kept at every recorded frame.

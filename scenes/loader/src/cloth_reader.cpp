@@ -15,13 +15,13 @@
 namespace drapelab::scene {
 namespace {
 
-const std::vector<std::string> kCommonKeys = {"shape", "center",        "rotation",  "material",
-                                              "mass",  "areal_density", "thickness", "perturbation",
-                                              "model", "springs",       "continuum", "air_damping",
-                                              "pins",  "self_collision"};
+const std::vector<std::string> kClothCommonKeys = {
+    "shape",         "center",      "rotation",     "material",      "mass",
+    "areal_density", "thickness",   "perturbation", "model",         "springs",
+    "continuum",     "air_damping", "pins",         "self_collision"};
 
 std::vector<std::string> keys_for(const std::string& shape) {
-  std::vector<std::string> keys = kCommonKeys;
+  std::vector<std::string> keys = kClothCommonKeys;
   if (shape == "grid") keys.insert(keys.end(), {"size", "resolution", "plane"});
   if (shape == "disc") keys.insert(keys.end(), {"radius", "rings"});
   if (shape == "mesh") keys.insert(keys.end(), {"path", "scale"});

@@ -14,7 +14,7 @@ namespace {
 const std::vector<std::string> kTypes = {"sphere", "cylinder", "capsule", "box", "plane"};
 
 // Keys every collider may have, and those of each shape.
-const std::vector<std::string> kCommonKeys = {
+const std::vector<std::string> kColliderCommonKeys = {
     "name", "type", "rotation", "friction", "static_friction", "motion", "parent", "dynamic"};
 const std::map<std::string, std::vector<std::string>> kShapeKeys = {
     {"sphere", {"center", "radius"}},
@@ -157,7 +157,7 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
             "is required: one of sphere | cylinder | capsule | box | plane", node);
     return std::nullopt;
   }
-  std::vector<std::string> allowed = kCommonKeys;
+  std::vector<std::string> allowed = kColliderCommonKeys;
   const auto& shape_keys = kShapeKeys.at(type);
   allowed.insert(allowed.end(), shape_keys.begin(), shape_keys.end());
   MapReader map(r, node, path, allowed);

@@ -19,8 +19,8 @@ namespace {
 // and sweep count at which the drape scenes keep their stretch and penetration).
 constexpr double kVbdDefaultStep = 1.0 / 120.0;  // s
 
-const std::vector<std::string> kCommonKeys = {"name",     "type",      "dt",
-                                              "round_dt", "max_speed", "runaway_stretch"};
+const std::vector<std::string> kSolverCommonKeys = {"name",     "type",      "dt",
+                                                    "round_dt", "max_speed", "runaway_stretch"};
 const std::vector<std::string> kSpringDamperKeys = {"integrator", "host",  "implicit",
                                                     "vbd",        "model", "adaptive_substeps"};
 const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size",
@@ -44,7 +44,7 @@ class SolverReader {
       if (!chosen) return std::nullopt;
       type = *parse_solver_type(*chosen);
     }
-    std::vector<std::string> allowed = kCommonKeys;
+    std::vector<std::string> allowed = kSolverCommonKeys;
     const auto& own = type == SolverType::spring_damper     ? kSpringDamperKeys
                       : type == SolverType::bullet_softbody ? kBulletSoftBodyKeys
                                                             : kBulletDeformableKeys;

@@ -8,7 +8,7 @@
 namespace drapelab::run_folder {
 namespace {
 
-constexpr std::int64_t kSampleCountOffset = 12 + 4 + 4 + 4 + 4;  // signature .. sample rate
+constexpr std::int64_t kSampleCountAt = 12 + 4 + 4 + 4 + 4;  // signature .. sample rate
 
 // The bytes of a value as PC2 stores it (x86-64 and aarch64 are little endian, as PC2 is).
 template <typename T>
@@ -41,7 +41,7 @@ void Pc2Writer::append(const Eigen::Matrix3Xd& x) {
   ++samples_;
   std::string count;
   put<std::int32_t>(count, samples_);
-  file_.overwrite(kSampleCountOffset, count);
+  file_.overwrite(kSampleCountAt, count);
 }
 
 void Pc2Writer::commit() {
@@ -55,7 +55,7 @@ bool Pc2Writer::rollback() noexcept {
   try {
     std::string count;
     put<std::int32_t>(count, samples_);
-    file_.overwrite(kSampleCountOffset, count);
+    file_.overwrite(kSampleCountAt, count);
   } catch (...) {
     return false;
   }
