@@ -23,10 +23,17 @@ echo "== Format check (.clang-format)"
 # Every tracked C++ file as clang-format writes it; `clang-format -i FILE` fixes one that is not.
 git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
 
+# Unity builds take about half the CPU time of a whole build (CMakeLists.txt,
+# DRAPELAB_UNITY_BUILD): on in a new tree; a tree that chose already keeps its choice (a developer's
+# -DDRAPELAB_UNITY_BUILD=OFF, for quicker rebuilds after an edit).
+unity_option() {
+  grep -qs '^DRAPELAB_UNITY_BUILD:' "$1/CMakeCache.txt" || echo -DDRAPELAB_UNITY_BUILD=ON
+}
+
 echo "== Release build and tests${mode:+ ($mode)}"
 # DRAPELAB_BUILD_TESTS=ON: tools/demo.sh configures the same tree without the tests.
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DDRAPELAB_WARNINGS_AS_ERRORS=ON \
-  -DDRAPELAB_BUILD_TESTS=ON >/dev/null
+  -DDRAPELAB_BUILD_TESTS=ON $(unity_option build) >/dev/null
 cmake --build build -j "$jobs"
 if [[ "$mode" == "--fast" ]]; then
   ctest --test-dir build -j "$jobs" -L fast --no-tests=error --output-on-failure
@@ -51,7 +58,7 @@ if [[ "$mode" != "--no-sanitizers" ]]; then
   # sanitizers' stack traces need, at a fraction of full debug info's build time.
   # -Wno-pass-failed: clang reports every `omp simd` loop it leaves scalar at -O2.
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_COMPILER=clang++ -DDRAPELAB_SANITIZE=ON -DDRAPELAB_FUZZ=ON \
+    -DCMAKE_CXX_COMPILER=clang++ -DDRAPELAB_SANITIZE=ON -DDRAPELAB_FUZZ=ON $(unity_option build-sanitize) \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG -Wno-pass-failed" >/dev/null
   cmake --build build-sanitize -j "$jobs" --target tests_fast_physics fuzzers
   # A few long runs go in the Release build only, each one whose code paths other cases of the
