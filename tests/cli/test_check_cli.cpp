@@ -81,6 +81,35 @@ TEST_F(CheckCli, AChangedValueFailsWithARowColumnFrameReport) {
   EXPECT_EQ(run_drapelab({"check", scene_, "--golden", golden_}).exit_code, 0);
 }
 
+// --first-difference: the run stops at the end of the first window that differs and the windows up
+// to it are compared; with no difference the run goes on to its end and the check passes.
+TEST_F(CheckCli, FirstDifferenceStopsAtTheEndOfTheFirstWindowThatDiffers) {
+  ASSERT_EQ(run_drapelab({"check", scene_, "--golden", golden_, "--update"}).exit_code, 0);
+  const auto unchanged = run_drapelab({"check", scene_, "--golden", golden_, "--first-difference"});
+  EXPECT_EQ(unchanged.exit_code, 0) << unchanged.output;
+  EXPECT_NE(unchanged.output.find("match"), std::string::npos) << unchanged.output;
+
+  auto golden = nlohmann::json::parse(read_text(golden_));
+  const double recorded = golden["windows"]["3"]["ours"]["centroid_y"].get<double>();
+  const double tolerance = golden["scale"]["ours"]["centroid_y"].get<double>() *
+                           golden["relative"]["ours"]["centroid_y"].get<double>();
+  golden["windows"]["3"]["ours"]["centroid_y"] = recorded + 2 * tolerance;
+  write_text(golden_, golden.dump(2));
+  const std::string out = (dir() / "run").string();
+  const auto checked =
+      run_drapelab({"check", scene_, "--golden", golden_, "--first-difference", "--out", out});
+  EXPECT_EQ(checked.exit_code, 1) << checked.output;
+  EXPECT_NE(checked.output.find("stopped the run at frame 3"), std::string::npos) << checked.output;
+  EXPECT_NE(checked.output.find("frame 3 ours centroid_y"), std::string::npos) << checked.output;
+  EXPECT_NE(checked.output.find("values differ"), std::string::npos) << checked.output;
+  // Frames 0 to 3 were run, of the scene's 10: the header and four rows.
+  EXPECT_EQ(split_lines(read_text(std::filesystem::path(out) / "metrics.csv")).size(), 5u);
+  // Without the flag the same check runs every frame and fails on the same value.
+  const auto whole = run_drapelab({"check", scene_, "--golden", golden_});
+  EXPECT_EQ(whole.exit_code, 1) << whole.output;
+  EXPECT_NE(whole.output.find("frame 3 ours centroid_y"), std::string::npos) << whole.output;
+}
+
 TEST_F(CheckCli, AChangedSceneIsCaught) {
   ASSERT_EQ(run_drapelab({"check", scene_, "--golden", golden_, "--update"}).exit_code, 0);
   std::string stiffer = kScene;

@@ -5,14 +5,19 @@
 // what changed.
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <new>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "drapelab/run_folder/files.hpp"
+#include "drapelab/run_folder/run_transaction.hpp"
 #include "drapelab/runner/golden.hpp"
 #include "drapelab/runner/run_scene.hpp"
 #include "drapelab/scene/number_format.hpp"
@@ -37,6 +42,10 @@ void add_check_options(CLI::App& verb, CheckArguments& arguments) {
                   "notices the change");
   verb.add_option("--out,-o", arguments.out,
                   "Keep the run's folder here (default: a temporary folder, removed)");
+  verb.add_flag("--first-difference", arguments.first_difference,
+                "Stop the run at the end of the first window with a value that differs, and "
+                "compare the windows up to it (a quicker answer to whether a change is noticed)")
+      ->excludes("--update");
   verb.footer(
       "Examples:\n"
       "  drapelab check scenes/sphere_drape.yaml --golden tests/golden/sphere_drape.json\n"
@@ -84,10 +93,57 @@ struct CheckRun {
   runner::RunResult result;
 };
 
+// The golden file's windows that end at or before `frame`.
+runner::Golden windows_up_to(const runner::Golden& golden, int frame) {
+  runner::Golden first = golden;
+  first.windows.erase(first.windows.upper_bound(frame), first.windows.end());
+  return first;
+}
+
+// --first-difference: at the end of each of the golden file's windows, compares the windows so far
+// from the files the run has written, and stops the run at the first one with a difference. The
+// run stops through the flag it polls, which also takes Ctrl-C (at the end of the frame).
+class FirstDifference final : public runner::RunProgress {
+ public:
+  FirstDifference(const runner::Golden& golden, fs::path staging,
+                  const std::atomic<bool>& interrupt)
+      : golden_(golden), staging_(std::move(staging)), interrupt_(interrupt) {}
+
+  void frame_recorded(const std::vector<runner::SolverProgress>& solvers) override {
+    if (interrupt_.load(std::memory_order_relaxed)) stop_ = true;
+    int frame = 0;
+    for (const auto& solver : solvers) frame = std::max(frame, solver.frames_done);
+    if (!golden_.windows.contains(frame) || stop_) return;
+    const runner::Golden so_far = windows_up_to(golden_, frame);
+    std::vector<int> ends;
+    for (const auto& [end, rows] : so_far.windows) ends.push_back(end);
+    if (runner::compare_golden(so_far,
+                               runner::window_means(runner::read_run_values(staging_), ends))
+            .empty())
+      return;
+    stopped_at_ = frame;
+    stop_ = true;
+  }
+  void frames_ended() override {}
+
+  const std::atomic<bool>& stop() const { return stop_; }
+  // The end of the window that stopped the run; nullopt when the run went on to its end.
+  std::optional<int> stopped_at() const { return stopped_at_; }
+
+ private:
+  const runner::Golden& golden_;
+  fs::path staging_;  // where the running run writes (run_transaction.hpp)
+  const std::atomic<bool>& interrupt_;
+  std::atomic<bool> stop_ = false;
+  std::optional<int> stopped_at_;
+};
+
 // Runs the scene with `overrides`; nothing when the scene is bad input (the errors are printed).
+// With `first_difference`, the run polls its stop flag instead of `interrupt`.
 std::optional<CheckRun> run_for_check(const CheckArguments& arguments,
                                       const std::vector<std::string>& overrides,
-                                      const fs::path& folder, const std::atomic<bool>& interrupt) {
+                                      const fs::path& folder, const std::atomic<bool>& interrupt,
+                                      FirstDifference* first_difference = nullptr) {
   const auto loaded = scene::load_scene_file(arguments.scene, overrides);
   if (!loaded.ok()) {
     for (const auto& error : loaded.errors) std::cerr << "error: " << error << "\n";
@@ -100,7 +156,8 @@ std::optional<CheckRun> run_for_check(const CheckArguments& arguments,
   options.force = true;
   options.scene_text = run_folder::read_file(arguments.scene);
   options.command_line = "drapelab check " + arguments.scene;
-  options.interrupt = &interrupt;
+  options.interrupt = first_difference ? &first_difference->stop() : &interrupt;
+  options.progress = first_difference;
   options.model = loaded.model;
   const PollingSection polling;  // Ctrl-C stops the run after its current step
   run.result = runner::run_scene(*loaded.scene, options, std::cerr);
@@ -260,23 +317,36 @@ int compare_with_golden(const CheckArguments& arguments, const std::atomic<bool>
   std::vector<std::string> overrides = golden->overrides;
   overrides.insert(overrides.end(), arguments.overrides.begin(), arguments.overrides.end());
   RunFolder folder(arguments.out, "run");
-  const auto run = run_for_check(arguments, overrides, folder.path(), interrupt);
+  std::optional<FirstDifference> first_difference;
+  if (arguments.first_difference)
+    first_difference.emplace(
+        *golden, folder.path() / (run_folder::kStagingPrefix + std::to_string(::getpid())),
+        interrupt);
+  const auto run = run_for_check(arguments, overrides, folder.path(), interrupt,
+                                 first_difference ? &*first_difference : nullptr);
   if (!run) return kExitBadInput;
-  if (run->result.exit_code == runner::kExitInterrupted) return runner::kExitInterrupted;
+  const std::optional<int> stopped_at =
+      first_difference ? first_difference->stopped_at() : std::nullopt;
+  if (run->result.exit_code == runner::kExitInterrupted && !stopped_at)
+    return runner::kExitInterrupted;
   if (run->scene.name != golden->scene) {
     std::cerr << "error: " << arguments.golden << " records scene '" << golden->scene << "', but "
               << arguments.scene << " is scene '" << run->scene.name << "'\n";
     return kExitBadInput;
   }
+  const runner::Golden compared = stopped_at ? windows_up_to(*golden, *stopped_at) : *golden;
   std::vector<int> ends;
-  for (const auto& [frame, rows] : golden->windows) ends.push_back(frame);
+  for (const auto& [frame, rows] : compared.windows) ends.push_back(frame);
   const auto differences = runner::compare_golden(
-      *golden, runner::window_means(runner::read_run_values(run->result.folder), ends));
+      compared, runner::window_means(runner::read_run_values(run->result.folder), ends));
   const std::string extra = arguments.overrides.empty()
                                 ? ""
                                 : " (with " + std::to_string(arguments.overrides.size()) +
                                       " extra override(s) given here)";
-  if (run->result.exit_code != runner::kExitOk)
+  if (stopped_at)
+    std::cout << "note: --first-difference stopped the run at frame " << *stopped_at
+              << ", the end of the first window that differs\n";
+  else if (run->result.exit_code != runner::kExitOk)
     std::cout << "note: the run did not end ok:\n" << solver_problems(run->result);
   // The energy audit: in a passive scene our solver must not gain energy; Bullet's cloths are
   // reported, not held to it (their methods are not ours to change).
@@ -298,7 +368,7 @@ int compare_with_golden(const CheckArguments& arguments, const std::atomic<bool>
     return runner::kExitOk;
   }
   std::cout << arguments.scene << extra << ": " << differences.size() << " of "
-            << golden->value_count() << " values differ from " << arguments.golden << ":\n";
+            << compared.value_count() << " values differ from " << arguments.golden << ":\n";
   for (const auto& difference : differences)
     std::cout << "  " << runner::describe_difference(difference) << "\n";
   std::cout << "If the change is intended, record it with tools/update-golden.sh (or --update) and "

@@ -42,6 +42,7 @@ struct CheckArguments {
   std::vector<std::string> overrides;  // with --update only
   std::string out;
   bool update = false;
+  bool first_difference = false;  // stop the run at the end of the first window that differs
 };
 void add_check_options(CLI::App& verb, CheckArguments& arguments);
 int check_verb(const CheckArguments& arguments, const std::atomic<bool>& interrupt);
