@@ -65,7 +65,9 @@ std::string mesh_scene(const std::string& scale, const std::string& center) {
 TEST(HostileInputs, AFiftyThousandCharacterNameIsRefusedWithoutOverflowingTheStack) {
   const std::string set = "name=" + std::string(50000, 'a');
   const auto result = load(kBase, {set});
-  EXPECT_TRUE(HasError(result, at_set(set), {"name", "at most 64 characters", "50000"}));
+  // The override is shown cut, with its length.
+  EXPECT_TRUE(HasError(result, at_set("name=" + std::string(165, 'a') + "... (50011 characters)"),
+                       {"name", "at most 64 characters", "50000"}));
 }
 
 TEST(HostileInputs, SolverAndColliderNamesAreBoundedToo) {
@@ -158,7 +160,7 @@ TEST(HostileInputs, AMicroscopicClothOrCrushingGravityIsRefused) {
 TEST(HostileInputs, APinIndexPastAnIntDoesNotWrapToParticleZero) {
   const std::string pins = "cloth.pins=[{index: 4294967296}]";
   EXPECT_TRUE(HasError(load(kBase, {pins}), at_set(pins),
-                       {"cloth.pins.0.index", "<= 3999999", "4294967296"}));
+                       {"cloth.pins.0.index", "<= 999999", "4294967296"}));
   const std::string coordinate = "cloth.pins=[[4294967296, 0]]";
   EXPECT_TRUE(HasError(load(kBase, {coordinate}), at_set(coordinate), {"cloth.pins.0.0"}));
   EXPECT_TRUE(HasError(load(kBase, {"cloth.resolution=[4294967298, 1]"}),
@@ -257,13 +259,13 @@ TEST(HostileInputs, ADiscRingAHairInsideTheRimIsRefusedByItsParticleCount) {
       "name: disc\nduration: 0.1\ncloth:\n  shape: disc\n  radius: 0.1\n  rings: 10\n"
       "  mass: 0.1\nmetrics: {drape_support: 0.0999999}\nsolvers: [{type: spring_damper}]\n";
   const auto result = load(text);
-  EXPECT_TRUE(HasError(result, at(6), {"cloth.rings", "6283469 particles", "at most 4000000"}));
+  EXPECT_TRUE(HasError(result, at(6), {"cloth.rings", "6283469 particles", "at most 1000000"}));
 }
 
 TEST(HostileInputs, AGridOverTheParticleLimitIsRefusedWithTheLimit) {
-  EXPECT_TRUE(HasError(load(kBase, {"cloth.resolution=[2001,2000]"}),
-                       at_set("cloth.resolution=[2001,2000]"),
-                       {"cloth.resolution", "4002000 particles", "at most 4000000"}));
+  EXPECT_TRUE(HasError(load(kBase, {"cloth.resolution=[1001,1000]"}),
+                       at_set("cloth.resolution=[1001,1000]"),
+                       {"cloth.resolution", "1001000 particles", "at most 1000000"}));
 }
 
 // ---------------------------------------------------------------------------------------------

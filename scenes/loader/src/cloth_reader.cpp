@@ -10,6 +10,7 @@
 #include "drapelab/obj_reader.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "materials.hpp"
+#include "text_checks.hpp"
 #include "value_ranges.hpp"
 
 namespace drapelab::scene {
@@ -156,6 +157,10 @@ void ClothReader::read_mesh(MapReader& cloth) {
   }
   const auto path = cloth.text("path", std::nullopt);
   if (!path) return;
+  if (const auto problem = path_problem(*path)) {
+    r_.error(cloth.get("path"), "cloth.path", *problem);
+    return;
+  }
   spec.mesh_file =
       std::filesystem::path(*path).is_absolute() ? std::filesystem::path(*path) : folder_ / *path;
   const ObjReadResult read = read_obj_file(spec.mesh_file);
@@ -398,6 +403,22 @@ void ClothReader::check_disc_size() {
   geometry_ok_ = false;
 }
 
+double ClothReader::particle_count() const {
+  const ClothSpec& spec = scene_.cloth;
+  if (spec.shape == "disc") return disc_cloth_size(spec.disc).particles;
+  if (spec.shape == "mesh") return static_cast<double>(spec.mesh->vertices.cols());
+  return grid_cloth_size(spec.grid.nx, spec.grid.ny).particles;
+}
+
+void ClothReader::size_error(const std::string& message) {
+  const std::string& shape = scene_.cloth.shape;
+  if (shape == "disc")
+    r_.error(rings_node_, "cloth.rings", message, cloth_node_);
+  else
+    r_.error(cloth_node_[shape == "mesh" ? "path" : "resolution"],
+             shape == "mesh" ? "cloth.path" : "cloth.resolution", message);
+}
+
 // Each attach names a collider of the scene.
 void ClothReader::check_pin_attach() {
   ClothSpec& spec = scene_.cloth;
@@ -405,16 +426,17 @@ void ClothReader::check_pin_attach() {
     const std::string& name = spec.pin_attach[k];
     if (name.empty()) continue;
     bool found = false;
-    std::string known;
+    std::vector<std::string> known;
     for (const Collider& c : scene_.colliders) {
       found = found || c.name == name;
-      known += (known.empty() ? "" : ", ") + c.name;
+      known.push_back(c.name);
     }
     if (found) continue;
-    r_.error(pin_nodes_[k]["attach"], pin_paths_[k] + ".attach",
-             "must name a collider of the scene" +
-                 (known.empty() ? std::string(" (it has none)") : " (" + known + ")") + ", got '" +
-                 name + "'");
+    r_.error(
+        pin_nodes_[k]["attach"], pin_paths_[k] + ".attach",
+        "must name a collider of the scene" +
+            (known.empty() ? std::string(" (it has none)") : " (" + listed_names(known) + ")") +
+            ", got " + quoted_value(name));
   }
 }
 

@@ -19,6 +19,10 @@ class ClothReader {
   void finish();
   // The geometry was read without error, so the cloth can be built.
   bool geometry_ok() const { return geometry_ok_; }
+  // With the geometry read: the cloth's particle count from its numbers (before it is built), and
+  // an error at the key that sets it (cloth.resolution, cloth.rings or cloth.path).
+  double particle_count() const;
+  void size_error(const std::string& message);
 
  private:
   void read_shape(MapReader& cloth);

@@ -255,10 +255,11 @@ void resolve_parents(SceneReader& r, std::vector<Collider>& colliders,
       continue;
     }
     if (!index.contains(c.parent)) {
-      std::string known;
-      for (const auto& [name, at] : index) known += (known.empty() ? "" : ", ") + name;
+      std::vector<std::string> known;
+      for (const auto& [name, at] : index) known.push_back(name);
       r.error(parent_nodes[k], path,
-              "must name another collider of the scene (" + known + "), got '" + c.parent + "'");
+              "must name another collider of the scene (" + listed_names(known) + "), got " +
+                  quoted_value(c.parent));
       continue;
     }
     std::vector<ColliderFrame> chain;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "drapelab/scene/number_format.hpp"
+#include "text_checks.hpp"
 #include "value_ranges.hpp"
 
 namespace drapelab::scene {
@@ -171,8 +172,8 @@ class ConstraintReader {
       const std::string near = nearest_word(*name, names);
       r_.error(m.get("collider"), m.path_of("collider"),
                "must name a collider of the scene" +
-                   (names.empty() ? std::string(" (it has none)") : "") + ", got '" + *name + "'" +
-                   (near.empty() ? "" : "; did you mean " + near + "?"));
+                   (names.empty() ? std::string(" (it has none)") : "") + ", got " +
+                   quoted_value(*name) + (near.empty() ? "" : "; did you mean " + near + "?"));
       return std::nullopt;
     }
     // A projection would have to move the body too (its mass and inertia in the correction).

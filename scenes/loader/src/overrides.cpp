@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "text_checks.hpp"
+#include "tree_limits.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -164,10 +165,10 @@ std::string apply_one(YAML::Node& root, const std::vector<std::string>& parts,
       const auto index = list_index(part);
       if (!index || *index >= node.size())
         return (walked.empty() ? std::string("the scene") : walked) + " is a list of " +
-               std::to_string(node.size()) + " items; '" + part + "' is not an index in 0.." +
-               std::to_string(node.size() == 0 ? 0 : node.size() - 1);
+               std::to_string(node.size()) + " items; " + quoted_value(part) +
+               " is not an index in 0.." + std::to_string(node.size() == 0 ? 0 : node.size() - 1);
     } else if (!node.IsMap()) {
-      return walked + " is a single value, so it has no key '" + part + "'";
+      return walked + " is a single value, so it has no key " + quoted_value(part);
     }
     if (last) {
       put(root, parts, p, value);
@@ -208,12 +209,13 @@ bool apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides
     const std::string origin = "--set " + text;
     const std::size_t equals = text.find('=');
     auto fail = [&](const std::string& message) {
-      reader.error(YAML::Node(), "", origin + ": " + message);
+      reader.error(YAML::Node(), "", shown_value(origin, kMaxShownOverrideBytes) + ": " + message);
       ok = false;
     };
     if (const auto problem = text_problem(text)) {
       reader.error(YAML::Node(), "",
-                   "--set " + shown(text) + ": is not UTF-8 text: " + problem->what + " (byte " +
+                   shown_value("--set " + shown(text), kMaxShownOverrideBytes) +
+                       ": is not UTF-8 text: " + problem->what + " (byte " +
                        std::to_string(problem->offset + 1) + ")");
       ok = false;
       continue;
@@ -227,7 +229,12 @@ bool apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides
     bool empty_part = false;
     for (const auto& part : parts) empty_part = empty_part || part.empty();
     if (empty_part) {
-      fail("the key path '" + path + "' has an empty part");
+      fail("the key path " + quoted_value(path) + " has an empty part");
+      continue;
+    }
+    // The value's lists are counted before yaml-cpp builds them (tree_limits.hpp).
+    if (const auto problem = tree_size_problem(text.substr(equals + 1), path)) {
+      fail(problem->path + " " + problem->message);
       continue;
     }
     YAML::Node value;

@@ -18,8 +18,10 @@
 #include "interaction_reader.hpp"
 #include "overrides.hpp"
 #include "run_limits.hpp"
+#include "run_memory.hpp"
 #include "solver_reader.hpp"
 #include "text_checks.hpp"
+#include "tree_limits.hpp"
 #include "value_ranges.hpp"
 #include "yaml_reader.hpp"
 
@@ -138,7 +140,7 @@ class SceneBuilder {
         const std::string near = nearest_word(*name, names);
         r_.error(
             support, "metrics.drape_support",
-            "must name a collider or give a radius in m, got '" + *name + "'" +
+            "must name a collider or give a radius in m, got " + quoted_value(*name) +
                 (near.empty() ? std::string(names.empty() ? " (the scene has no colliders)" : "")
                               : "; did you mean " + near + "?"));
         return;
@@ -204,7 +206,8 @@ class SceneBuilder {
   void read_solvers(MapReader& top) {
     // Colliders and contact are read by now: the automatic steps depend on them.
     // The cloth is built here, once: the automatic steps measure it, and the run uses it (model).
-    if (cloth_reader_.geometry_ok() && r_.error_count() == 0) {
+    const YAML::Node solvers = top.has("solvers") ? top.get("solvers") : default_solvers();
+    if (cloth_reader_.geometry_ok() && r_.error_count() == 0 && run_fits_memory(solvers)) {
       try {
         model = std::make_shared<const ClothModel>(build_scene_cloth(scene_));
       } catch (const std::exception& e) {  // the builders' preconditions, and bad_alloc
@@ -217,15 +220,27 @@ class SceneBuilder {
       scene_.constraints = read_constraints(r_, top.get("constraints"), scene_, model.get());
     if (top.has("interactions"))
       scene_.interactions = read_interactions(r_, top.get("interactions"), scene_, model.get());
-    if (top.has("solvers")) {
-      scene_.solvers = scene::read_solvers(r_, top.get("solvers"), scene_, model.get(), notes);
-    } else {
-      // The contract's default: our solver and Bullet's classic cloth, side by side.
-      const YAML::Node defaults = YAML::Load("[{type: spring_damper}, {type: bullet_softbody}]");
-      scene_.solvers = scene::read_solvers(r_, defaults, scene_, model.get(), notes);
-    }
+    scene_.solvers = scene::read_solvers(r_, solvers, scene_, model.get(), notes);
     check_continuum_is_used();
     check_dynamic_hosts(top);
+  }
+
+  // The contract's default solvers: our solver and Bullet's classic cloth, side by side.
+  static YAML::Node default_solvers() {
+    return YAML::Load("[{type: spring_damper}, {type: bullet_softbody}]");
+  }
+
+  // The run's memory from the cloth's particle count and the solvers, before anything is built
+  // (run_memory.hpp); an error at the key that sizes the cloth when the process cannot hold it.
+  bool run_fits_memory(const YAML::Node& solvers) {
+    const auto bound = usable_memory();
+    if (!bound) return true;  // no /proc: nothing to hold the estimate against
+    const double particles = cloth_reader_.particle_count();
+    const auto problem = run_memory_problem(
+        particles, run_memory_parts(particles, solvers, scene_.cloth.self_collision.enabled),
+        *bound);
+    if (problem) cloth_reader_.size_error(*problem);
+    return !problem;
   }
 
   // A dynamic collider is a rigid body of a Bullet world: our solver has one only when hosted. And
@@ -306,6 +321,15 @@ int second_document_line(const std::string& text) {
   return 0;
 }
 
+// The errors past kMaxListedErrors, counted in one line after those listed.
+void add_unlisted_count(const SceneReader& reader, const std::string& display_name,
+                        std::vector<std::string>& errors) {
+  if (reader.unlisted_errors() == 0) return;
+  errors.push_back(display_name + ": " + std::to_string(reader.unlisted_errors()) +
+                   " more errors are not listed (only the first " +
+                   std::to_string(kMaxListedErrors) + " are); correct these and check again");
+}
+
 // Where a text problem is: "scene.yaml:3" for the file, the override itself for a --set.
 std::string text_error(const std::string& where, const TextProblem& problem) {
   return where + ": is not UTF-8 text: " + problem.what + " (byte " +
@@ -330,6 +354,13 @@ LoadResult load_from_text(const std::string& text, const std::string& display_na
                             "this line and what follows, or merge it into the first)");
     return result;
   }
+  // Sizes first: yaml-cpp's tree of a hostile file would take gigabytes (tree_limits.hpp).
+  if (const auto problem = tree_size_problem(text, "")) {
+    result.errors.push_back(display_name + ":" + std::to_string(problem->line + 1) + ": " +
+                            (problem->path.empty() ? "the scene" : problem->path) + " " +
+                            problem->message);
+    return result;
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -345,9 +376,13 @@ LoadResult load_from_text(const std::string& text, const std::string& display_na
         ":1: the scene is empty; it needs at least name, duration, cloth and solvers");
     return result;
   }
-  if (!apply_overrides(root, overrides, reader)) return result;
+  if (!apply_overrides(root, overrides, reader)) {
+    add_unlisted_count(reader, display_name, result.errors);
+    return result;
+  }
   SceneBuilder builder(reader, source.parent_path());
   Scene scene = builder.build(root);
+  add_unlisted_count(reader, display_name, result.errors);
   if (!result.errors.empty()) return result;
   scene.source = source;
   result.notes = builder.notes;

@@ -1,6 +1,7 @@
-// Names and UTF-8 (text_checks.hpp).
+// Names, UTF-8, paths and shown values (text_checks.hpp).
 #include "text_checks.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "value_ranges.hpp"
@@ -87,6 +88,62 @@ std::optional<TextProblem> text_problem(std::string_view text) {
     k = start + length;
   }
   return std::nullopt;
+}
+
+std::optional<std::string> path_problem(std::string_view path) {
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    const auto byte = static_cast<unsigned char>(path[k]);
+    if (byte == 0)
+      return "holds a NUL byte (\\0) at character " + std::to_string(k + 1) +
+             ", which would end the file name there; give the path without it";
+    if (byte < 0x20 || byte == 0x7F)
+      return "holds the control character " + hex_byte(byte) + " at character " +
+             std::to_string(k + 1) + "; a file path must be printable text";
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+constexpr std::size_t kCutMarkBytes = 24;  // about the length of "... (100000 characters)"
+constexpr std::size_t kListedNames = 8;    // names listed before "and N more"
+
+// Characters of UTF-8 text (bytes that do not continue a character).
+std::size_t character_count(std::string_view text) {
+  std::size_t count = 0;
+  for (const char c : text) count += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  return count;
+}
+
+// The first `bytes` bytes of `text`, shortened to end on a character boundary.
+std::string_view utf8_prefix(std::string_view text, std::size_t bytes) {
+  std::size_t end = std::min(bytes, text.size());
+  while (end > 0 && end < text.size() && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80)
+    --end;
+  return text.substr(0, end);
+}
+
+}  // namespace
+
+std::string shown_value(std::string_view text, std::size_t max_bytes) {
+  if (text.size() <= max_bytes) return std::string(text);
+  return std::string(utf8_prefix(text, max_bytes - kCutMarkBytes)) + "... (" +
+         std::to_string(character_count(text)) + " characters)";
+}
+
+std::string quoted_value(std::string_view text) {
+  if (text.size() <= kMaxShownValueBytes) return "'" + std::string(text) + "'";
+  return "'" + std::string(utf8_prefix(text, kMaxShownValueBytes - kCutMarkBytes)) + "...' (" +
+         std::to_string(character_count(text)) + " characters)";
+}
+
+std::string listed_names(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t k = 0; k < names.size() && k < kListedNames; ++k)
+    text += (k ? ", " : "") + shown_value(names[k]);
+  if (names.size() > kListedNames)
+    text += " and " + std::to_string(names.size() - kListedNames) + " more";
+  return text;
 }
 
 }  // namespace drapelab::scene

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "drapelab/scene/number_format.hpp"
+#include "text_checks.hpp"
 
 namespace drapelab::scene {
 
@@ -48,7 +49,7 @@ std::string describe_scalar(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "nothing";
   if (node.IsSequence()) return "a list";
   if (node.IsMap()) return "a map";
-  return "'" + node.Scalar() + "'";
+  return quoted_value(node.Scalar());
 }
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -123,7 +124,7 @@ std::string SceneReader::where(const YAML::Node& node, const std::string& path,
       origin_length = overridden.size();
     }
   }
-  if (!origin.empty()) return file_name_ + ": " + origin;
+  if (!origin.empty()) return file_name_ + ": " + shown_value(origin, kMaxShownOverrideBytes);
   int line = -1;
   const auto key_line = key_lines_.find(path);
   if (node.IsDefined() && !node.IsNull() && !node.Mark().is_null())
@@ -145,9 +146,41 @@ std::string SceneReader::where(const YAML::Node& node, const std::string& path,
   return line >= 0 ? file_name_ + ":" + std::to_string(line + 1) : file_name_;
 }
 
+namespace {
+
+// A line longer than kMaxErrorBytes, cut to its first kMaxErrorBytes bytes and its length.
+std::string shown_line(const std::string& line) {
+  std::size_t end = kMaxErrorBytes;
+  while (end > 0 && (static_cast<unsigned char>(line[end]) & 0xC0) == 0x80) --end;
+  return line.substr(0, end) + "... (cut: " + std::to_string(line.size()) + " bytes)";
+}
+
+// A key path as messages show it: each key cut like a value (an unknown key may be any length).
+std::string shown_path(const std::string& path) {
+  std::string shown;
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    const std::size_t dot = std::min(path.find('.', start), path.size());
+    shown += (start ? "." : "") + shown_value(std::string_view(path).substr(start, dot - start));
+    start = dot + 1;
+  }
+  return shown;
+}
+
+}  // namespace
+
 void SceneReader::error(const YAML::Node& node, const std::string& path, const std::string& message,
                         const YAML::Node& parent) {
-  errors_->push_back(where(node, path, parent) + ": " + (path.empty() ? "" : path + " ") + message);
+  if (errors_->size() >= kMaxListedErrors) {
+    ++unlisted_errors_;
+    return;
+  }
+  std::string line =
+      where(node, path, parent) + ": " + (path.empty() ? "" : shown_path(path) + " ") + message;
+  // The last guard of a bounded output: values are cut where they are named, and a line that is
+  // still long (a path walked through many long keys) is cut as a whole.
+  if (line.size() > kMaxErrorBytes) line = shown_line(line);
+  errors_->push_back(std::move(line));
 }
 
 std::optional<double> SceneReader::number(const YAML::Node& node, const std::string& path,
@@ -161,15 +194,18 @@ std::optional<double> SceneReader::number(const YAML::Node& node, const std::str
   const char* begin = text.data() + (!text.empty() && text[0] == '+' ? 1 : 0);
   const auto [end, code] = std::from_chars(begin, text.data() + text.size(), value);
   if (code != std::errc() || end != text.data() + text.size()) {
-    error(node, path, "must be a number (" + range.describe() + "), got '" + text + "'");
+    const bool too_far = code == std::errc::result_out_of_range;  // 1e400, 1e-400
+    error(node, path,
+          "must be a number (" + range.describe() + "), got " + quoted_value(text) +
+              (too_far ? ", beyond what a double holds" : ""));
     return std::nullopt;
   }
   if (!std::isfinite(value)) {
-    error(node, path, "must be finite, got '" + text + "'");
+    error(node, path, "must be finite, got " + quoted_value(text));
     return std::nullopt;
   }
   if (!range.contains(value)) {
-    error(node, path, range.violated(value) + ", got " + text + range.whole_range());
+    error(node, path, range.violated(value) + ", got " + shown_value(text) + range.whole_range());
     return std::nullopt;
   }
   return value;
@@ -186,12 +222,13 @@ std::optional<long long> SceneReader::integer(const YAML::Node& node, const std:
   long long value = 0;
   const auto [end, code] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (code != std::errc() || end != text.data() + text.size()) {
-    error(node, path, "must be " + expected + ", got '" + text + "'");
+    error(node, path, "must be " + expected + ", got " + quoted_value(text));
     return std::nullopt;
   }
   if (!range.contains(static_cast<double>(value))) {
     error(node, path,
-          range.violated(static_cast<double>(value)) + ", got " + text + range.whole_range());
+          range.violated(static_cast<double>(value)) + ", got " + shown_value(text) +
+              range.whole_range());
     return std::nullopt;
   }
   return value;
@@ -226,7 +263,7 @@ std::optional<std::string> SceneReader::choice(const YAML::Node& node, const std
   if (std::find(choices.begin(), choices.end(), value) != choices.end()) return value;
   const std::string nearest = nearest_word(value, choices);
   error(node, path,
-        "must be one of " + options + ", got '" + value + "'" +
+        "must be one of " + options + ", got " + quoted_value(value) +
             (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)"));
   return std::nullopt;
 }

@@ -14,6 +14,11 @@
 
 namespace drapelab::scene {
 
+// The most errors a load lists; the rest are counted in one line after them.
+inline constexpr std::size_t kMaxListedErrors = 20;
+// The longest error line, in bytes (values in it are cut shorter still: text_checks.hpp).
+inline constexpr std::size_t kMaxErrorBytes = 1000;
+
 // Allowed interval of a number, with the words used in messages.
 struct Range {
   std::optional<double> min;
@@ -45,9 +50,13 @@ class SceneReader {
   // "scene.yaml:14" or "scene.yaml: --set a.b=3" for an overridden key.
   std::string where(const YAML::Node& node, const std::string& path,
                     const YAML::Node& parent) const;
+  // Records an error; past kMaxListedErrors it is only counted (unlisted_errors), so that a scene
+  // with 100,000 unknown keys gives 20 lines and a count, not megabytes of text.
   void error(const YAML::Node& node, const std::string& path, const std::string& message,
              const YAML::Node& parent = YAML::Node());
-  std::size_t error_count() const { return errors_->size(); }
+  // Every error reported, the listed and the unlisted.
+  std::size_t error_count() const { return errors_->size() + unlisted_errors_; }
+  std::size_t unlisted_errors() const { return unlisted_errors_; }
   const std::string& file_name() const { return file_name_; }
 
   // Scalars. `node` must be defined; these report and return nullopt when it is not the right
@@ -71,6 +80,7 @@ class SceneReader {
   std::vector<std::string>* errors_;
   std::map<std::string, std::string> override_origins_;  // key path -> "--set ..."
   std::map<std::string, int> key_lines_;                 // key path -> 0-based line of its key
+  std::size_t unlisted_errors_ = 0;                      // errors past kMaxListedErrors
 };
 
 // A YAML map read key by key. On construction it reports duplicate keys and keys outside `allowed`
