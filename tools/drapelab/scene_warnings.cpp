@@ -1,8 +1,6 @@
 // Warnings about a valid scene (scene_warnings.hpp).
 #include "scene_warnings.hpp"
 
-#include <algorithm>
-#include <limits>
 #include <sstream>
 
 #include "drapelab/scene/number_format.hpp"
@@ -38,11 +36,9 @@ void add_stability_warnings(const scene::Scene& scene, const ClothModel& model,
   }
 }
 
-// Self-collision that cannot work as asked: a solver without it, or a thickness that makes a flat
-// sheet's neighbouring parts push apart at rest (a particle lies d / sqrt(2) from the far edge of
-// a neighbouring triangle on a square grid of spacing d).
-void add_self_collision_warnings(const scene::Scene& scene, const ClothModel& model,
-                                 std::vector<std::string>& warnings) {
+// Self-collision asked of a solver without it. (A thickness the cloth's spacing breaks is an error
+// of the loader.)
+void add_self_collision_warnings(const scene::Scene& scene, std::vector<std::string>& warnings) {
   const SelfCollisionSettings& self = scene.cloth.self_collision;
   if (!self.enabled) return;
   for (const auto& solver : scene.solvers)
@@ -51,20 +47,6 @@ void add_self_collision_warnings(const scene::Scene& scene, const ClothModel& mo
                          ": cloth.self_collision has no effect on bullet_softbody (Bullet 3.24's "
                          "classic cloth has no self-collision that runs; docs/bullet.md, "
                          "\"Self-collision\")");
-  double shortest = std::numeric_limits<double>::infinity();  // m
-  for (std::size_t e = 0; e < model.springs.size(); ++e)
-    if (model.springs.kind[e] == SpringKind::stretch)
-      shortest = std::min(shortest, model.springs.rest_length[e]);
-  if (self.thickness >= 0.7 * shortest) {
-    std::ostringstream line;
-    line.precision(6);
-    line << "cloth.self_collision.thickness " << self.thickness
-         << " m is not below 0.7 of the shortest rest edge (" << shortest
-         << " m): neighbouring parts of the cloth push each other apart at rest; use a thickness "
-            "below "
-         << 0.7 * shortest << " m";
-    warnings.push_back(line.str());
-  }
 }
 
 // A solver expected to run for over ten minutes, with the faster choice when there is one.
@@ -88,7 +70,7 @@ std::vector<std::string> scene_warnings(const scene::Scene& scene, const ClothMo
   std::vector<std::string> warnings;
   add_long_run_warnings(scene, warnings);
   add_stability_warnings(scene, model, warnings);
-  add_self_collision_warnings(scene, model, warnings);
+  add_self_collision_warnings(scene, warnings);
   return warnings;
 }
 

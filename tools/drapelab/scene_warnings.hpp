@@ -1,6 +1,6 @@
 // Warnings about a valid scene that may still go wrong: a solver's dt above its integrator's stable
-// step estimate, or no stable step at all; self-collision asked of a solver without it, or with a
-// thickness the cloth's own spacing breaks. validate and run print the same ones.
+// step estimate, or no stable step at all; self-collision asked of a solver without it. validate
+// and run print the same ones.
 #pragma once
 
 #include <string>

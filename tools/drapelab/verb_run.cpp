@@ -31,6 +31,9 @@ void add_run_options(CLI::App& verb, RunArguments& arguments) {
   verb.add_flag("--force", arguments.force,
                 "Use a folder that holds a different run or other files: replaces only the files "
                 "drapelab wrote there");
+  verb.add_flag("--allow-start-inside", arguments.allow_start_inside,
+                "Run a cloth that starts inside or through a collider, with a warning (without it, "
+                "bad input: the contact pushes it out at once and the run blows up)");
   verb.add_flag("--quiet,-q", arguments.quiet,
                 "Print only problems (warnings and errors): no notes, no progress, no summary");
   verb.add_flag("--no-progress", arguments.no_progress,
@@ -92,7 +95,9 @@ int run_verb(const RunArguments& arguments, const std::string& command_line,
              const std::atomic<bool>& interrupt) {
   std::vector<std::string> overrides = arguments.overrides;
   if (!arguments.meshes.empty()) overrides.push_back("output.meshes=" + arguments.meshes);
-  const auto loaded = scene::load_scene_file(arguments.scene, overrides);
+  const auto loaded = scene::load_scene_file(
+      arguments.scene, overrides,
+      arguments.allow_start_inside ? scene::StartInside::warning : scene::StartInside::error);
   if (!loaded.ok()) {
     for (const auto& error : loaded.errors) std::cerr << "error: " << error << "\n";
     std::cerr << "nothing was run\n";
@@ -100,6 +105,7 @@ int run_verb(const RunArguments& arguments, const std::string& command_line,
   }
   if (!arguments.quiet)
     for (const auto& note : loaded.notes) std::cerr << "note: " << note << "\n";
+  for (const auto& warning : loaded.warnings) std::cerr << "warning: " << warning << "\n";
   for (const auto& warning : scene_warnings(*loaded.scene, *loaded.model))
     std::cerr << "warning: " << warning << "\n";
   runner::RunOptions options;

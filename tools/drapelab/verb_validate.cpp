@@ -20,18 +20,24 @@ void add_validate_options(CLI::App& verb, ValidateArguments& arguments) {
       "Override a key before validation: key.path=value (list items by index: solvers.0.dt=1e-4)");
   verb.add_flag("--print-resolved", arguments.print_resolved,
                 "Print the resolved scene (every default filled in) as YAML");
+  verb.add_flag("--allow-start-inside", arguments.allow_start_inside,
+                "Accept a cloth that starts inside or through a collider, with a warning (an error "
+                "without it)");
   verb.footer(
       "Example:\n  drapelab validate scenes/curtain.yaml --set cloth.springs.stretch.ks=500\n"
       "Exit code 0 when the scene is valid, 2 with one line per problem otherwise.");
 }
 
 int validate_verb(const ValidateArguments& arguments) {
-  const auto result = scene::load_scene_file(arguments.scene, arguments.overrides);
+  const auto result = scene::load_scene_file(
+      arguments.scene, arguments.overrides,
+      arguments.allow_start_inside ? scene::StartInside::warning : scene::StartInside::error);
   if (!result.ok()) {
     for (const auto& error : result.errors) std::cerr << "error: " << error << "\n";
     return kExitBadInput;
   }
   for (const auto& note : result.notes) std::cerr << "note: " << note << "\n";
+  for (const auto& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
   const scene::Scene& s = *result.scene;
   if (arguments.print_resolved) {
     std::cout << scene::resolved_scene_yaml(s);

@@ -21,7 +21,8 @@ struct RunArguments {
   std::vector<std::string> overrides;  // --set key.path=value
   std::string meshes;  // --meshes obj|pc2|both (shorthand for --set output.meshes=...)
   bool force = false;
-  bool quiet = false;        // problems only: no notes, no progress, no outcome
+  bool allow_start_inside = false;  // a cloth starting inside a collider is a warning, not an error
+  bool quiet = false;               // problems only: no notes, no progress, no outcome
   bool no_progress = false;  // no progress lines (a sweep's runs, whose output is a log file)
 };
 void add_run_options(CLI::App& verb, RunArguments& arguments);
@@ -32,6 +33,7 @@ struct ValidateArguments {
   std::string scene;
   std::vector<std::string> overrides;
   bool print_resolved = false;
+  bool allow_start_inside = false;  // as for run
 };
 void add_validate_options(CLI::App& verb, ValidateArguments& arguments);
 int validate_verb(const ValidateArguments& arguments);

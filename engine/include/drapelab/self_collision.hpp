@@ -11,6 +11,12 @@
 
 namespace drapelab {
 
+// The thickness must stay below this fraction of the cloth's shortest rest edge: on a square grid
+// of spacing d a particle lies d / sqrt(2) (0.707 d) from the far edge of a neighbouring triangle,
+// so a thicker layer pushes a flat sheet's neighbouring parts apart at rest. The scene loader
+// refuses a thickness at or above it.
+inline constexpr double kMaxSelfThicknessPerEdge = 0.7;
+
 struct SelfCollisionSettings {
   bool enabled = false;
   double thickness = 0.0;         // m, the distance two layers keep (0: the cloth's thickness)

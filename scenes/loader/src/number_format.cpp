@@ -20,6 +20,12 @@ std::string format_list(const Eigen::VectorXd& values) {
   return text + "]";
 }
 
+std::string format_figures(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", value);
+  return buffer;
+}
+
 std::string describe_seconds(double seconds) {
   char buffer[32];
   const auto two_figures = [&](double value, const char* unit) {

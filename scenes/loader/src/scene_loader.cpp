@@ -20,6 +20,7 @@
 #include "run_limits.hpp"
 #include "run_memory.hpp"
 #include "solver_reader.hpp"
+#include "start_state.hpp"
 #include "text_checks.hpp"
 #include "tree_limits.hpp"
 #include "value_ranges.hpp"
@@ -30,8 +31,8 @@ namespace {
 
 class SceneBuilder {
  public:
-  SceneBuilder(SceneReader& reader, const std::filesystem::path& folder)
-      : r_(reader), cloth_reader_(reader, scene_, folder) {}
+  SceneBuilder(SceneReader& reader, const std::filesystem::path& folder, StartInside start_inside)
+      : r_(reader), cloth_reader_(reader, scene_, folder), start_inside_(start_inside) {}
 
   Scene build(const YAML::Node& root) {
     MapReader top(
@@ -82,6 +83,7 @@ class SceneBuilder {
   }
 
   std::vector<std::string> notes;
+  std::vector<std::string> warnings;
   std::shared_ptr<const ClothModel> model;  // the scene's cloth, null when it cannot be built
 
  private:
@@ -223,6 +225,8 @@ class SceneBuilder {
     scene_.solvers = scene::read_solvers(r_, solvers, scene_, model.get(), notes);
     check_continuum_is_used();
     check_dynamic_hosts(top);
+    if (model && r_.error_count() == 0)
+      check_start_state(r_, scene_, *model, top.node(), start_inside_, warnings);
   }
 
   // The contract's default solvers: our solver and Bullet's classic cloth, side by side.
@@ -288,6 +292,7 @@ class SceneBuilder {
   SceneReader& r_;
   Scene scene_;
   ClothReader cloth_reader_;
+  StartInside start_inside_;
 };
 
 // The 1-based line where a second document of `text` starts: a "---" marker when content precedes
@@ -338,7 +343,7 @@ std::string text_error(const std::string& where, const TextProblem& problem) {
 
 LoadResult load_from_text(const std::string& text, const std::string& display_name,
                           const std::vector<std::string>& overrides,
-                          const std::filesystem::path& source) {
+                          const std::filesystem::path& source, StartInside start_inside) {
   LoadResult result;
   SceneReader reader(display_name, &result.errors);
   // Every string of a scene reaches summary.json, whose writer refuses anything but UTF-8.
@@ -380,12 +385,13 @@ LoadResult load_from_text(const std::string& text, const std::string& display_na
     add_unlisted_count(reader, display_name, result.errors);
     return result;
   }
-  SceneBuilder builder(reader, source.parent_path());
+  SceneBuilder builder(reader, source.parent_path(), start_inside);
   Scene scene = builder.build(root);
   add_unlisted_count(reader, display_name, result.errors);
   if (!result.errors.empty()) return result;
   scene.source = source;
   result.notes = builder.notes;
+  result.warnings = builder.warnings;
   result.model = builder.model;
   result.scene = std::move(scene);
   return result;
@@ -410,7 +416,7 @@ const char* mesh_output_name(MeshOutput output) {
 int Scene::frame_count() const { return static_cast<int>(std::lround(duration * frame_rate)); }
 
 LoadResult load_scene_file(const std::filesystem::path& file,
-                           const std::vector<std::string>& overrides) {
+                           const std::vector<std::string>& overrides, StartInside start_inside) {
   BoundedFile read = read_bounded_file(file, kMaxInputFileBytes);
   if (!read.ok) {
     LoadResult result;
@@ -418,12 +424,12 @@ LoadResult load_scene_file(const std::filesystem::path& file,
                             "; give the path of a scene file (.yaml)");
     return result;
   }
-  return load_from_text(read.text, file.string(), overrides, file);
+  return load_from_text(read.text, file.string(), overrides, file, start_inside);
 }
 
 LoadResult load_scene_text(const std::string& text, const std::string& display_name,
-                           const std::vector<std::string>& overrides) {
-  return load_from_text(text, display_name, overrides, display_name);
+                           const std::vector<std::string>& overrides, StartInside start_inside) {
+  return load_from_text(text, display_name, overrides, display_name, start_inside);
 }
 
 }  // namespace drapelab::scene

@@ -191,7 +191,8 @@ RunFrames load_run_frames(const fs::path& dir) {
                         " is not a run folder: it has no resolved.yaml or summary.json (write one "
                         "with drapelab run SCENE --out " +
                         dir.string() + " --meshes pc2)");
-  auto loaded = scene::load_scene_file(resolved);
+  // The run is done: a start inside a collider it was allowed (--allow-start-inside) is no error.
+  auto loaded = scene::load_scene_file(resolved, {}, scene::StartInside::warning);
   if (!loaded.ok()) {
     std::string message = "the run's resolved.yaml does not load:";
     for (const auto& error : loaded.errors) message += "\n  " + error;
