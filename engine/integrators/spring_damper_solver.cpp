@@ -18,6 +18,7 @@
 #include "integrators/family_implicit.hpp"
 #include "integrators/particle_loops.hpp"
 #include "integrators/shape_bound.hpp"
+#include "integrators/unstable_cause.hpp"
 #include "integrators/vbd/vertex_block_descent.hpp"
 #include "self_collision/self_contact.hpp"
 
@@ -694,7 +695,16 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
     text << " moves at " << std::sqrt(speed_squared) << " m/s, above the runaway limit of "
          << settings_.max_speed << " m/s";
   text << " after step " << state_.step_count << " (t = " << state_.time << " s, dt = " << h
-       << " s, integrator " << integrator_name(settings_.integrator) << "). Try: ";
+       << " s, integrator " << integrator_name(settings_.integrator) << ").";
+  // What acted in that step, by kind: the colliders touched (and how deep), self-contacts, and the
+  // constraints and drags on the particle.
+  StepContactsSeen seen;
+  seen.colliders = settings_.contacts.get();
+  seen.totals = &contact_totals_;
+  seen.edge_totals = edge_contact_ ? &edge_contact_->totals() : nullptr;
+  seen.self_contacts = self_contact_ ? self_contact_->stats().contacts_last : -1;
+  seen.constraints = settings_.constraints.get();
+  text << unstable_step_cause(*model_, seen, i) << " Try: ";
   if (settings_.adaptive_substeps)
     text << "a smaller dt or adaptive_substeps: false (the substeps follow the shape's stable "
             "step, taken once "
