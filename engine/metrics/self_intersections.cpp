@@ -11,8 +11,8 @@
 namespace drapelab {
 namespace {
 
-using Box = Eigen::AlignedBox3d;
-using BoxList = std::vector<Box, Eigen::aligned_allocator<Box>>;
+using AlignedBox = Eigen::AlignedBox3d;
+using BoxList = std::vector<AlignedBox, Eigen::aligned_allocator<AlignedBox>>;
 using Tree = Eigen::KdBVH<double, 3, int>;
 
 bool finite_column(const Eigen::Matrix3Xd& x, int i) { return x.col(i).allFinite(); }
@@ -30,13 +30,13 @@ class EdgeTriangleIntersector {
         triangle_boxes_(triangle_boxes),
         crossing_(crossing) {}
 
-  bool intersectVolumeVolume(const Box& edges, const Box& triangles) const {
+  bool intersectVolumeVolume(const AlignedBox& edges, const AlignedBox& triangles) const {
     return edges.intersects(triangles);
   }
-  bool intersectVolumeObject(const Box& edges, int triangle) const {
+  bool intersectVolumeObject(const AlignedBox& edges, int triangle) const {
     return edges.intersects(triangle_boxes_[static_cast<std::size_t>(triangle)]);
   }
-  bool intersectObjectVolume(int edge, const Box& triangles) const {
+  bool intersectObjectVolume(int edge, const AlignedBox& triangles) const {
     return edge_boxes_[static_cast<std::size_t>(edge)].intersects(triangles);
   }
   // Returns false: the query goes on over every pair.
@@ -108,15 +108,15 @@ int SelfIntersectionCounter::count(const Eigen::Matrix3Xd& x) const {
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     const int p = edges_[e][0], q = edges_[e][1];
     if (!finite_column(x, p) || !finite_column(x, q)) continue;
-    edge_boxes[e] = Box(x.col(p)).extend(x.col(q));
+    edge_boxes[e] = AlignedBox(x.col(p)).extend(x.col(q));
     edge_ids.push_back(static_cast<int>(e));
     kept_edge_boxes.push_back(edge_boxes[e]);
   }
   for (Eigen::Index t = 0; t < triangles_.cols(); ++t) {
     const Eigen::Vector3i v = triangles_.col(t);
     if (!finite_column(x, v[0]) || !finite_column(x, v[1]) || !finite_column(x, v[2])) continue;
-    Box& box = triangle_boxes[static_cast<std::size_t>(t)];
-    box = Box(x.col(v[0])).extend(x.col(v[1])).extend(x.col(v[2]));
+    AlignedBox& box = triangle_boxes[static_cast<std::size_t>(t)];
+    box = AlignedBox(x.col(v[0])).extend(x.col(v[1])).extend(x.col(v[2]));
     triangle_ids.push_back(static_cast<int>(t));
     kept_triangle_boxes.push_back(box);
   }

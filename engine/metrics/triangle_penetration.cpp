@@ -21,7 +21,7 @@ constexpr unsigned kGjkMaxIterations = 1000;
 
 // The point of triangle a-b-c closest to p (Ericson, "Real-Time Collision Detection", 5.1.5): by
 // the Voronoi region of p among the corners, sides and face.
-Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+Eigen::Vector3d nearest_point_of_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
@@ -99,7 +99,7 @@ double collider_triangle_signed_distance(const FclCollider& collider,
       // shortest separating move is r less that distance.
       const double radius = static_cast<const fcl::Sphere<double>&>(shape).radius;
       const Eigen::Vector3d centre = shape_pose.translation();
-      return (closest_point_on_triangle(centre, a, b, c) - centre).norm() - radius;
+      return (nearest_point_of_triangle(centre, a, b, c) - centre).norm() - radius;
     }
     case fcl::GEOM_BOX:
       return gjk_signed_distance(static_cast<const fcl::Box<double>&>(shape), shape_pose, a, b, c);
