@@ -49,6 +49,10 @@ class BulletHostedSolver final : public BulletWorldSolver {
   std::vector<std::pair<std::string, double>> counters() const override {
     return guest_->counters();
   }
+  std::optional<EnergyLedger> energy_ledger() const override { return guest_->energy_ledger(); }
+  std::optional<double> self_contact_energy() const override {
+    return guest_->self_contact_energy();
+  }
 
   const KinematicColliders& colliders() const override { return *colliders_; }
 

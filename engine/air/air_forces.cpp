@@ -115,7 +115,9 @@ Eigen::Vector3d triangle_air_force(const AirSettings& air, double area,
 }
 
 void add_air_forces(const ClothModel& model, const AirSettings& air, const Wind& wind, double t,
-                    const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force) {
+                    const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
+                    PowerSplit* power) {
+  if (power) *power = {};
   const Eigen::Vector3d w = wind.at(t);
   const bool eddies = wind.varies_in_space();
   for (Eigen::Index k = 0; k < model.triangles.cols(); ++k) {
@@ -131,6 +133,9 @@ void add_air_forces(const ClothModel& model, const AirSettings& air, const Wind&
     force.col(a) += share;
     force.col(b) += share;
     force.col(c) += share;
+    // The triangle's force F = 3 share moves with the corners' mean velocity, here - relative:
+    // F . relative is taken out relative to the air, F . here put in by the wind.
+    if (power) *power += {3.0 * share.dot(relative), 3.0 * share.dot(here)};
   }
 }
 

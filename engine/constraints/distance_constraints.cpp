@@ -69,8 +69,10 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> DistanceConstraints::end_b(
 void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
                                           const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
                                           std::vector<WeightedContact>* couplings,
-                                          std::vector<ColliderForce>* body_loads) const {
+                                          std::vector<ColliderForce>* body_loads,
+                                          PowerSplit* power) const {
   if (body_loads) body_loads->assign(colliders.size(), ColliderForce{});
+  if (power) *power = {};
   for (const DistanceConstraint& c : list) {
     if (c.mode != ConstraintMode::soft || !acts(c, t)) continue;
     const int a = particle_a(c);
@@ -87,6 +89,10 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
     force.col(a) += push * n;
     const bool b_particle = c.b.kind == ConstraintEnd::Kind::particle;
     if (b_particle) force.col(c.b.particle) -= push * n;
+    // A particle end is cloth: only a collider's point or a drag's target moves from outside.
+    if (power)
+      *power += push_power(push, k * (c.length - l), n, v.col(a) - vb,
+                           b_particle ? Eigen::Vector3d::Zero() : Eigen::Vector3d(vb));
     const bool b_body = c.b.kind == ConstraintEnd::Kind::collider_point &&
                         colliders[static_cast<std::size_t>(c.b.collider)].dynamic();
     if (body_loads && b_body) {

@@ -63,6 +63,7 @@ void sum_block_totals(ContactBlockWork& record, const Eigen::Matrix3Xd& x) {
       ++sum.contact_count;
       sum.normal_force += record.applied[e].normal;
       sum.friction_force += record.applied[e].friction;
+      sum.power += record.applied[e].power;
       sum.max_depth = std::max(sum.max_depth, found[e].depth);
       const Eigen::Vector3d& on_cloth = record.applied[e].force;
       sum.force -= on_cloth;
@@ -151,10 +152,12 @@ void ContactPass::finish_contact(ContactBlockWork& record, std::size_t e, double
   const int i = touching.particle;
   const Collider& collider = contacts_.collider(static_cast<std::size_t>(touching.collider));
   double friction_magnitude = 0.0;
-  Eigen::Vector3d on_cloth = fn * touching.normal;  // N
+  Eigen::Vector3d on_cloth = fn * touching.normal;                                  // N
+  const Eigen::Vector3d relative_velocity = v_.col(i) - touching.surface_velocity;  // m/s
+  PowerSplit power = push_power(fn, contacts_.parameters().stiffness * touching.depth,
+                                touching.normal, relative_velocity, touching.surface_velocity);
   if (fn > 0.0 && collider.static_friction > 0.0) {
     const double mass = model_.mass[i];
-    const Eigen::Vector3d relative_velocity = v_.col(i) - touching.surface_velocity;
     const Eigen::Vector3d trial = relative_velocity + (h_ / mass) * force_.col(i);
     const FrictionForce friction =
         coulomb_friction_force(trial - trial.dot(touching.normal) * touching.normal, mass, h_, fn,
@@ -162,8 +165,9 @@ void ContactPass::finish_contact(ContactBlockWork& record, std::size_t e, double
     force_.col(i) += friction.force;
     friction_magnitude = friction.magnitude;
     on_cloth += friction.force;
+    power += friction_power(friction.force, relative_velocity, touching.surface_velocity);
   }
-  record.applied[e] = {fn, friction_magnitude, on_cloth};
+  record.applied[e] = {fn, friction_magnitude, power, on_cloth};
 }
 
 void ContactPass::block_forces(std::int64_t block) const {
@@ -298,6 +302,7 @@ std::int64_t ContactPass::finish(std::vector<ColliderContactTotals>& totals,
       totals[c].contact_count += part.contact_count;
       totals[c].normal_force += part.normal_force;
       totals[c].friction_force += part.friction_force;
+      totals[c].power += part.power;
       totals[c].max_depth = std::max(totals[c].max_depth, part.max_depth);
       totals[c].force += part.force;
       totals[c].torque += part.torque;

@@ -35,6 +35,7 @@ struct TouchingContact {
 struct ContactForceMagnitudes {
   double normal = 0.0;                              // N, the penalty force
   double friction = 0.0;                            // N, |friction force|
+  PowerSplit power;                                 // W, energy_ledger.hpp
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, normal and friction, on the particle
 };
 

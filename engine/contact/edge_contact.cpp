@@ -260,6 +260,7 @@ void EdgeContact::push_and_rub(const ContactModel& contacts, double h, const Eig
     EdgeContactTotals& total = totals_[static_cast<std::size_t>(f.collider)];
     ++total.contact_count;
     total.normal_force += fn;
+    total.power += push_power(fn, p.stiffness * f.depth, f.normal, u, f.surface_velocity);
     total.max_depth = std::max(total.max_depth, f.depth);
     add_load(total, f, x, fn * f.normal);
     if (active) {
@@ -283,11 +284,13 @@ void EdgeContact::push_and_rub(const ContactModel& contacts, double h, const Eig
     const Collider& collider = contacts.collider(static_cast<std::size_t>(f.collider));
     double inverse_effective_mass = 0.0;  // 1/kg
     Eigen::Vector3d trial = -f.surface_velocity;
+    Eigen::Vector3d relative_velocity = -f.surface_velocity;  // m/s, of the cloth point
     for (int s = 0; s < 3; ++s) {
       const int j = f.particle[s];
       if (j < 0) continue;
       inverse_effective_mass += f.weight[s] * f.weight[s] * inverse_mass[j];
       trial += f.weight[s] * (v.col(j) + h * inverse_mass[j] * force.col(j));
+      relative_velocity += f.weight[s] * v.col(j);
     }
     const FrictionForce friction =
         weighted_contact_friction(trial, f.normal, inverse_effective_mass, h, pushes[e],
@@ -296,6 +299,7 @@ void EdgeContact::push_and_rub(const ContactModel& contacts, double h, const Eig
       if (f.particle[s] >= 0) force.col(f.particle[s]) += f.weight[s] * friction.force;
     EdgeContactTotals& total = totals_[static_cast<std::size_t>(f.collider)];
     total.friction_force += friction.magnitude;
+    total.power += friction_power(friction.force, relative_velocity, f.surface_velocity);
     add_load(total, f, x, friction.force);
   }
 }

@@ -72,6 +72,7 @@ struct EdgeContactTotals {
   double max_depth = 0.0;                            // m
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, on the collider (ColliderContactTotals)
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // N*m, about the world origin
+  PowerSplit power;                                  // W (ColliderContactTotals)
 };
 
 class EdgeContact {

@@ -257,6 +257,32 @@ double hinge_element(const ContinuumArrays& c, std::int64_t e, const double* x, 
   return k * bend * bend;
 }
 
+double continuum_damping_power(const ContinuumArrays& c, const double* x, const double* v) {
+  if (!(c.alpha > 0.0)) return 0.0;
+  double power = 0.0;  // W
+  for (std::int64_t t = 0; t < c.triangles; ++t) {
+    const MembraneState m = membrane_state(c, t, x);
+    double w1[3], w2[3], fdot[6];
+    edges(v, c.triangle + 3 * t, w1, w2);
+    deformation(m.g, w1, w2, fdot);
+    // dG/dt = sym(F^T dF/dt); the damping stress alpha C : dG/dt takes A alpha dG/dt : C : dG/dt.
+    const double d00 = dot3(m.f, fdot), d11 = dot3(m.f + 3, fdot + 3);
+    const double d01 = 0.5 * (dot3(m.f, fdot + 3) + dot3(m.f + 3, fdot));
+    const double trace = d00 + d11;
+    power += m.area * c.alpha *
+             (2.0 * c.mu * (d00 * d00 + 2.0 * d01 * d01 + d11 * d11) + c.lambda * trace * trace);
+  }
+  for (std::int64_t e = 0; e < c.hinges; ++e) {
+    const HingeState s = hinge_state(c, e, x);
+    double rate = 0.0;  // rad/s
+    for (int k = 0; k < 4; ++k)
+      for (int a = 0; a < 3; ++a)
+        rate += s.grad[3 * k + a] * v[3 * static_cast<std::int64_t>(c.hinge[4 * e + k]) + a];
+    power += 2.0 * c.hinge_stiffness[e] * c.alpha * rate * rate;
+  }
+  return power;
+}
+
 double continuum_energy_sum(const ContinuumArrays& c, const double* x, double* membrane,
                             double* bending) {
   double m = 0.0, b = 0.0;

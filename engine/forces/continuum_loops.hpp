@@ -54,6 +54,11 @@ double membrane_element(const ContinuumArrays& c, std::int64_t t, const double* 
 double hinge_element(const ContinuumArrays& c, std::int64_t e, const double* x, double* angle,
                      double* force, double* hessian);
 
+// The power the Kelvin-Voigt damping takes at (x, v) (W): A alpha (2 mu |dG/dt|^2 + lambda
+// tr(dG/dt)^2) per triangle and 2 k alpha (d theta / dt)^2 per hinge. One plain pass over the
+// elements, in element order.
+double continuum_damping_power(const ContinuumArrays& c, const double* x, const double* v);
+
 // The whole elastic energy at x (J).
 double continuum_energy_sum(const ContinuumArrays& c, const double* x, double* membrane,
                             double* bending);

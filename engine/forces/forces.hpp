@@ -8,8 +8,9 @@
 
 namespace drapelab {
 
-// Every spring's damped force (spring_force.hpp), +f on v0 and -f on v1.
-void add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x,
-                       const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
+// Every spring's damped force (spring_force.hpp), +f on v0 and -f on v1. Returns the power the
+// dampers take, kd ((v0 - v1) . d / l)^2 summed over the springs (W).
+double add_spring_forces(const ClothModel& model, const Eigen::Matrix3Xd& x,
+                         const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
 
 }  // namespace drapelab

@@ -44,6 +44,9 @@ class SpringFamilies {
     kernels::split_state_range(x, v, scratch_, begin, end);
   }
 
+  // The power the springs' dampers took in the last call of either of the above (W).
+  double damper_power() const { return scratch_.damper_power(); }
+
   int family_count() const { return static_cast<int>(families_.size()); }
   const std::vector<SpringFamily>& families() const { return families_; }
 

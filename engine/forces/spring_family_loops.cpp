@@ -33,6 +33,14 @@ void FamilyScratch::resize(std::int64_t particle_count, std::int64_t families,
   padding = max_offset;
   state.assign(static_cast<std::size_t>(6 * (particles + padding)), 0.0);
   forces.assign(static_cast<std::size_t>(3 * families * (padding + particles)), 0.0);
+  block_damper_power.assign(static_cast<std::size_t>((particles + kGatherBlock - 1) / kGatherBlock),
+                            0.0);
+}
+
+double FamilyScratch::damper_power() const {
+  double total = 0.0;
+  for (const double block : block_damper_power) total += block;
+  return total;
 }
 
 void set_thread_count(int threads) {
@@ -56,10 +64,12 @@ namespace {
 // The force on the first particle of every spring slot in [begin, end) of one family (N), into the
 // family's three slot rows: -[ks (l - l0) + kd (dv . d) / l] d / l with d = x(i) - x(i + offset).
 // A family with shared stiffness then clears its empty slots in the range (they computed a force
-// towards a non-neighbour or the padding).
-void family_slot_forces(const SpringFamily& fam, const double* px, const double* py,
-                        const double* pz, const double* vx, const double* vy, const double* vz,
-                        double* tx, double* ty, double* tz, std::int64_t begin, std::int64_t end) {
+// towards a non-neighbour or the padding). Returns the power the range's dampers take (W),
+// kd ((dv . d) / l)^2 per spring.
+double family_slot_forces(const SpringFamily& fam, const double* px, const double* py,
+                          const double* pz, const double* vx, const double* vy, const double* vz,
+                          double* tx, double* ty, double* tz, std::int64_t begin,
+                          std::int64_t end) {
   const std::int64_t o = fam.offset;
   // The same expression for both layouts, so a slot's force does not depend on which one ran.
   const auto slot_force = [&](std::int64_t i, double rest, double ks, double kd) {
@@ -68,34 +78,41 @@ void family_slot_forces(const SpringFamily& fam, const double* px, const double*
     const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
     const double inverse =
         l > 0.0 ? 1.0 / l : 0.0;  // a zero-length spring has no direction: no force
-    const double magnitude =
-        ks * (l - rest) + kd * (dvx * dx + dvy * dy + dvz * dz) * inverse;  // N
+    const double closing = dvx * dx + dvy * dy + dvz * dz;              // m^2/s, (dv . d)
+    const double magnitude = ks * (l - rest) + kd * closing * inverse;  // N
     const double scale = -magnitude * inverse;
     tx[i] = scale * dx;
     ty[i] = scale * dy;
     tz[i] = scale * dz;
+    const double rate = closing * inverse;  // m/s, the spring's rate of stretch
+    return kd * rate * rate;                // W
   };
+  double power = 0.0;  // W
   if (fam.uniform || fam.uniform_stiffness) {
     const double ks = fam.uniform_ks, kd = fam.uniform_kd;
     if (fam.uniform) {
       const double rest = fam.uniform_rest;
-#pragma omp simd
-      for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest, ks, kd);
+#pragma omp simd reduction(+ : power)
+      for (std::int64_t i = begin; i < end; ++i) power += slot_force(i, rest, ks, kd);
     } else {
       const double* rest = fam.rest.data();
-#pragma omp simd
-      for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest[i], ks, kd);
+#pragma omp simd reduction(+ : power)
+      for (std::int64_t i = begin; i < end; ++i) power += slot_force(i, rest[i], ks, kd);
     }
+    // An empty slot's "damper" joins unrelated particles: its power is taken back out.
     const auto first = std::lower_bound(fam.empty_slots.begin(), fam.empty_slots.end(), begin);
-    for (auto e = first; e != fam.empty_slots.end() && *e < end; ++e)
+    for (auto e = first; e != fam.empty_slots.end() && *e < end; ++e) {
+      power -= slot_force(*e, fam.uniform ? fam.uniform_rest : fam.rest[*e], ks, kd);
       tx[*e] = ty[*e] = tz[*e] = 0.0;
+    }
   } else {
     const double* rest = fam.rest.data();
     const double* ks = fam.ks.data();
     const double* kd = fam.kd.data();
-#pragma omp simd
-    for (std::int64_t i = begin; i < end; ++i) slot_force(i, rest[i], ks[i], kd[i]);
+#pragma omp simd reduction(+ : power)
+    for (std::int64_t i = begin; i < end; ++i) power += slot_force(i, rest[i], ks[i], kd[i]);
   }
+  return power;
 }
 
 // Particle i of [begin, end) gathers f(i) + sum over families, in order, of t(i) - t(i - offset).
@@ -172,10 +189,13 @@ void add_family_forces(const double* x, const double* v, const std::vector<Sprin
     const ThreadRun run = thread_run(blocks, kGatherBlock, n, max_offset);
     for (std::int64_t block = run.first_block; block < run.end_block; ++block) {
       const std::int64_t begin = block * kGatherBlock, end = std::min(n, begin + kGatherBlock);
+      double damper_power = 0.0;  // W
       for (std::int64_t family = 0; family < family_count; ++family)
-        family_slot_forces(families[static_cast<std::size_t>(family)], px, py, pz, vx, vy, vz,
-                           scratch.force_row(family, 0), scratch.force_row(family, 1),
-                           scratch.force_row(family, 2), begin, end);
+        damper_power +=
+            family_slot_forces(families[static_cast<std::size_t>(family)], px, py, pz, vx, vy, vz,
+                               scratch.force_row(family, 0), scratch.force_row(family, 1),
+                               scratch.force_row(family, 2), begin, end);
+      scratch.block_damper_power[static_cast<std::size_t>(block)] = damper_power;
       if (body) set_body_forces_range(begin, end, body->weight, body->mass, body->air, v, f);
       const std::int64_t gather_begin = std::max(begin, run.deferred_end);
       if (gather_begin < end) gather(families, scratch, f, gather_begin, end);

@@ -41,7 +41,13 @@ struct FamilyScratch {
   std::int64_t padding = 0;
   std::vector<double> state;   // 6 x (particles + padding)
   std::vector<double> forces;  // families x 3 x (padding + particles)
+  // W: per block of kPhaseBlock particles, the power its springs' dampers took in the last call,
+  // kd ((v_i - v_j) . d / l)^2 summed over the springs whose first particle is in the block.
+  std::vector<double> block_damper_power;
   void resize(std::int64_t particles, std::int64_t families, std::int64_t max_offset);
+  // The last call's damper power over every spring (W), summed in block order: the same bits on
+  // any number of threads.
+  double damper_power() const;
   double* state_row(int row) { return state.data() + row * (particles + padding); }
   double* force_row(std::int64_t family, int component) {
     return forces.data() + (3 * family + component) * (padding + particles) + padding;

@@ -25,6 +25,16 @@ inline Eigen::Vector3d damped_spring_force(const Eigen::Vector3d& x1, const Eige
   return -(elastic + viscous) * direction;
 }
 
+// The power the damper takes, kd ((v1 - v2) . (x1 - x2) / |x1 - x2|)^2 (W); zero at zero length.
+inline double spring_damper_power(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2,
+                                  const Eigen::Vector3d& v1, const Eigen::Vector3d& v2, double kd) {
+  const Eigen::Vector3d d = x1 - x2;
+  const double length = d.norm();
+  if (length == 0.0) return 0.0;
+  const double rate = (v1 - v2).dot(d) / length;  // m/s
+  return kd * rate * rate;
+}
+
 // Elastic energy 1/2 ks (|x1 - x2| - l0)^2 (J); its negative gradient w.r.t. x1 is the elastic
 // force.
 inline double spring_energy(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, double ks,

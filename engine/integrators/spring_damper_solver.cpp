@@ -187,9 +187,11 @@ void SpringDamperSolver::add_pair_contact_forces(const Eigen::Matrix3Xd& x,
   // The implicit solve takes the couplings of its one (start-of-step) evaluation.
   // So does vertex block descent, as the contacts' energies in its descent.
   std::vector<WeightedContact>* couplings = implicit_stats() || vbd_ ? &active_couplings_ : nullptr;
+  pair_power_ = {};
   if (self_contact_) {
     PhaseTimer timer(stats_, StepPhase::self_contacts);
     self_contact_->add_forces(x, v, h, model_->inverse_mass, force_, couplings);
+    pair_power_.dissipated += self_contact_->stats().dissipated_power_last;
   }
   if (edge_contact_) {
     PhaseTimer timer(stats_, StepPhase::contacts);
@@ -199,12 +201,16 @@ void SpringDamperSolver::add_pair_contact_forces(const Eigen::Matrix3Xd& x,
   if (soft_constraints_) {
     PhaseTimer timer(stats_, StepPhase::springs);
     // The bodies take the reactions of the step's last evaluation.
-    settings_.constraints->add_soft_forces(t, x, v, force_, couplings,
-                                           constraints_on_bodies_ ? &constraint_loads_ : nullptr);
+    PowerSplit power;
+    settings_.constraints->add_soft_forces(
+        t, x, v, force_, couplings, constraints_on_bodies_ ? &constraint_loads_ : nullptr, &power);
+    pair_power_ += power;
   }
   if (settings_.air.enabled) {
     PhaseTimer timer(stats_, StepPhase::body_forces);
-    add_air_forces(*model_, settings_.air, wind_, t, x, v, force_);
+    PowerSplit power;
+    add_air_forces(*model_, settings_.air, wind_, t, x, v, force_, &power);
+    pair_power_ += power;
   }
 }
 
@@ -219,6 +225,7 @@ void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x,
                                                  settings_.air_damping, force_,
                                                  solver_state && split_state_is_current_);
     split_state_is_current_ = solver_state;
+    body_and_spring_power_ = {spring_families_->damper_power() + air_damping_power(v), 0.0};
     return;
   }
   {
@@ -228,11 +235,62 @@ void SpringDamperSolver::set_body_and_spring_forces(const Eigen::Matrix3Xd& x,
                              settings_.air_damping, v.data(), force_.data());
   }
   PhaseTimer timer(stats_, StepPhase::springs);
-  if (model_->uses_continuum())
-    kernels::add_continuum_forces(continuum_arrays(*model_->continuum), x.data(), v.data(),
-                                  continuum_element_force_.data(), force_.data());
-  else
-    add_spring_forces(*model_, x, v, force_);
+  if (model_->uses_continuum()) {
+    const kernels::ContinuumArrays arrays = continuum_arrays(*model_->continuum);
+    kernels::add_continuum_forces(arrays, x.data(), v.data(), continuum_element_force_.data(),
+                                  force_.data());
+    body_and_spring_power_ = {
+        kernels::continuum_damping_power(arrays, x.data(), v.data()) + air_damping_power(v), 0.0};
+  } else {
+    body_and_spring_power_ = {add_spring_forces(*model_, x, v, force_) + air_damping_power(v), 0.0};
+  }
+}
+
+double SpringDamperSolver::air_damping_power(const Eigen::Matrix3Xd& v) const {
+  // Air damping -c m v takes c m |v|^2 from each particle.
+  if (!(settings_.air_damping > 0.0)) return 0.0;
+  return settings_.air_damping * (coordinate_mass_.array() * v.array().square()).sum();
+}
+
+double SpringDamperSolver::kinetic_energy() const {
+  return 0.5 * (coordinate_mass_.array() * state_.v.array().square()).sum();
+}
+
+PinnedStart SpringDamperSolver::pinned_start() const {
+  PinnedStart start;
+  if (!settings_.attachments) return start;
+  const std::vector<Attachment>& list = settings_.attachments->list;
+  start.x.resize(3, static_cast<Eigen::Index>(list.size()));
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const int i = list[k].particle;
+    start.x.col(static_cast<Eigen::Index>(k)) = state_.x.col(i);
+    start.kinetic_energy += 0.5 * model_->mass[i] * state_.v.col(i).squaredNorm();
+  }
+  return start;
+}
+
+void SpringDamperSolver::account_step(double h, const PinnedStart& pins) {
+  PowerSplit power = body_and_spring_power_;
+  power += pair_power_;
+  for (const ColliderContactTotals& total : contact_totals_) power += total.power;
+  ledger_.add(power, h);
+  if (!settings_.attachments) return;
+  // A pin moved by its collider takes whatever force holds it on its path: the collider's work
+  // is the pin's change of kinetic energy less the work of the cloth's own forces on it (the
+  // last evaluation's), - sum f . dx.
+  const std::vector<Attachment>& list = settings_.attachments->list;
+  double work = -pins.kinetic_energy;  // J
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const int i = list[k].particle;
+    work += 0.5 * model_->mass[i] * state_.v.col(i).squaredNorm() -
+            force_.col(i).dot(state_.x.col(i) - pins.x.col(static_cast<Eigen::Index>(k)));
+  }
+  ledger_.external_work += work;
+}
+
+std::optional<double> SpringDamperSolver::self_contact_energy() const {
+  if (!self_contact_) return std::nullopt;
+  return self_contact_->stats().spring_energy_last;
 }
 
 std::int64_t SpringDamperSolver::add_contact_forces(const Eigen::Matrix3Xd& x,
@@ -256,6 +314,7 @@ void SpringDamperSolver::add_edge_contact_totals() {
     contact_totals_[c].max_depth = std::max(contact_totals_[c].max_depth, edges.max_depth);
     contact_totals_[c].force += edges.force;
     contact_totals_[c].torque += edges.torque;
+    contact_totals_[c].power += edges.power;
   }
 }
 
@@ -400,6 +459,7 @@ void SpringDamperSolver::step_without_tunnelling(double h) {
       std::clamp(std::ceil(fastest * h / bound), 1.0, static_cast<double>(kMostPieces)));
   step_start_x_ = state_.x;
   step_start_v_ = state_.v;
+  const EnergyLedger start_ledger = ledger_;
   const double start_time = state_.time;
   const std::int64_t start_count = state_.step_count;
   for (;;) {
@@ -423,6 +483,7 @@ void SpringDamperSolver::step_without_tunnelling(double h) {
     state_.v = step_start_v_;
     state_.time = start_time;
     state_.step_count = start_count;
+    ledger_ = start_ledger;
     two_level_step_ = 0.0;
     split_state_is_current_ = false;
     pieces *= 2;
@@ -468,6 +529,7 @@ void SpringDamperSolver::single_step(double h) {
   const double force_seconds_before = force_phase_seconds();
   std::optional<std::int64_t> scanned;  // the Euler passes scan the new state as they write it
   if (settings_.attachments) settings_.attachments->place(state_.time, state_.x, state_.v);
+  const PinnedStart pins = pinned_start();
   switch (settings_.integrator) {
     case Integrator::explicit_euler:
     case Integrator::symplectic_euler:
@@ -495,10 +557,17 @@ void SpringDamperSolver::single_step(double h) {
   // The schemes moved the attached particles with their velocities at the step's start; they end
   // it where their colliders are.
   if (settings_.attachments) settings_.attachments->place(state_.time + h, state_.x, state_.v);
+  // vbd's backward Euler step evaluates no force: its springs at the end state, where its forces
+  // act, give the ledger its dampers' power and the attachments their loads.
+  if (settings_.integrator == Integrator::vbd) set_body_and_spring_forces(state_.x, state_.v);
   if (attachments_on_bodies_) record_attachment_loads();
+  account_step(h, pins);
   const bool projects = hard_constraints_;
   if (projects) {
+    // The projection's change of kinetic energy is the hard constraints' dissipation.
+    const double before = kinetic_energy();  // J
     project_constraints(state_.time + h, h);
+    ledger_.dissipated += before - kinetic_energy();
     scanned.reset();  // the projection moved particles after the Euler pass scanned them
   }
   // Only the Euler pair with colliders keeps the spring kernel's split state in step with the
@@ -537,7 +606,6 @@ void SpringDamperSolver::project_constraints(double t, double h) {
 
 void SpringDamperSolver::record_attachment_loads() {
   const Attachments& attached = *settings_.attachments;
-  if (settings_.integrator == Integrator::vbd) set_body_and_spring_forces(state_.x, state_.v);
   attachment_loads_.assign(attached.colliders.size(), ColliderForce{});
   for (std::size_t k = 0; k < attached.list.size(); ++k) {
     if (!attached.on_dynamic(k)) continue;
@@ -619,10 +687,13 @@ std::int64_t SpringDamperSolver::spring_and_contact_forces_together(
         for (std::int64_t block = first_block; block < end_block; ++block) c.pass->run_block(block);
       },
       &contacts};
+  // The Euler update in the region overwrites the velocities: air damping's power before it.
+  const double air_power = air_damping_power(state_.v);  // W
   const auto springs_start = Clock::now();
   spring_families_->set_body_and_spring_forces(state_.x, state_.v, weight_, coordinate_mass_,
                                                settings_.air_damping, force_,
                                                split_state_is_current_, &hook);
+  body_and_spring_power_ = {spring_families_->damper_power() + air_power, 0.0};
   const std::int64_t flagged =
       pass.finish(contact_totals_, implicit_stats() ? &active_contacts_ : nullptr);
   const auto end = Clock::now();

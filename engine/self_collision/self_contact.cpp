@@ -8,6 +8,7 @@
 #include "cloth/mesh_edges.hpp"
 #include "core/pair_penalty.hpp"
 #include "core/proximity.hpp"
+#include "drapelab/energy_ledger.hpp"
 
 namespace drapelab {
 namespace {
@@ -235,6 +236,8 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
     for (const Contact& contact : contacts_) loads_.add(contact.particle, contact.weight);
   }
   double normal_total = 0.0;
+  double spring_energy = 0.0;  // J
+  PowerSplit power;            // W
   std::int64_t pushing = 0;
   for (std::size_t e = 0; e < contacts_.size(); ++e) {
     const Contact& contact = contacts_[e];
@@ -254,6 +257,11 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
     const PairPenalty push =
         pair_penalty(r, u, contact.fallback_normal, thickness_, rates.stiffness, rates.damping);
     normal_[e] = push.normal;
+    const double overlap = thickness_ - push.distance;  // m
+    if (overlap > 0.0) {
+      spring_energy += 0.5 * k * overlap * overlap;
+      power += push_power(push.force, k * overlap, push.normal, u, Eigen::Vector3d::Zero());
+    }
     if (push.force <= 0.0) continue;
     normal_force_[e] = push.force;
     for (int s = 0; s < 4; ++s)
@@ -285,12 +293,14 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
       const Contact& contact = contacts_[e];
       double inverse_effective_mass = 0.0;  // 1/kg
       Eigen::Vector3d trial = Eigen::Vector3d::Zero();
+      Eigen::Vector3d relative_velocity = Eigen::Vector3d::Zero();  // m/s, of the two sides
       for (int s = 0; s < 4; ++s) {
         const int j = contact.particle[s];
         if (j < 0) continue;
         const double w = contact.weight[s];
         inverse_effective_mass += w * w * inverse_mass[j];
         trial += w * (v.col(j) + h * inverse_mass[j] * force.col(j));
+        relative_velocity += w * v.col(j);
       }
       if (inverse_effective_mass <= 0.0) continue;
       const FrictionForce f = weighted_contact_friction(trial, normal_[e], inverse_effective_mass,
@@ -298,11 +308,14 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
       for (int s = 0; s < 4; ++s)
         if (contact.particle[s] >= 0) force.col(contact.particle[s]) += contact.weight[s] * f.force;
       friction_total += f.magnitude;
+      power += friction_power(f.force, relative_velocity, Eigen::Vector3d::Zero());
     }
   stats_.contacts_last = pushing;
   stats_.contacts_total += pushing;
   stats_.normal_force_last = normal_total;
   stats_.friction_force_last = friction_total;
+  stats_.spring_energy_last = spring_energy;
+  stats_.dissipated_power_last = power.dissipated;
 }
 
 }  // namespace drapelab

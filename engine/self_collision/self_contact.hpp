@@ -34,6 +34,10 @@ struct SelfContactStats {
   std::int64_t contacts_total = 0;   // summed over evaluations
   double normal_force_last = 0.0;    // N, sum of |fn| of the last evaluation
   double friction_force_last = 0.0;  // N, sum of |friction| of the last evaluation
+  // The last evaluation's springs' energy, sum of k (thickness - d)^2 / 2 (J), and the power its
+  // dampers and friction took (W, energy_ledger.hpp).
+  double spring_energy_last = 0.0;
+  double dissipated_power_last = 0.0;
 };
 
 class SelfContact {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "drapelab/cloth_model.hpp"
+#include "drapelab/energy_ledger.hpp"
 
 namespace drapelab {
 
@@ -69,9 +70,12 @@ class Wind {
 };
 
 // Adds the drag and lift of every triangle of `model` at (x, v) and time t (s) to `force` (N,
-// 3 x N). Pinned particles take their share too (it is their holders' to bear).
+// 3 x N). Pinned particles take their share too (it is their holders' to bear). When `power` is
+// given, it is reset and receives the drag's dissipation relative to the air and the wind's work
+// (W, energy_ledger.hpp).
 void add_air_forces(const ClothModel& model, const AirSettings& air, const Wind& wind, double t,
-                    const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force);
+                    const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& force,
+                    PowerSplit* power = nullptr);
 
 // The force on one triangle of area `area` (m^2) and unit normal `normal` whose air moves at
 // `relative` (m/s, the wind minus the triangle's velocity): drag plus lift (N).

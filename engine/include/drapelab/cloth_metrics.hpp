@@ -35,12 +35,19 @@ struct ClothMetrics {
   // The energy audit (docs/metrics.md, "Energy audit"), filled in by the run's frame loop (J):
   // elastic_energy is the springs' (spring_energy) or, for our continuum solver, the membranes' and
   // hinges'; contact_energy the penalty springs' 1/2 k d^2 (empty without colliders);
-  // constraint_energy the soft constraints' and drags' (empty without them); total_energy
-  // kinetic + gravity + elastic + contact + constraint.
+  // constraint_energy the soft constraints' and drags' (empty without them); self_contact_energy
+  // the self-contacts' penalty springs' (our solver with self-collision only); total_energy
+  // kinetic + gravity + elastic + contact + constraint + self-contact. The balance (our solver
+  // only, energy_ledger.hpp): dissipated and external_work since t = 0, and energy_error =
+  // total_energy + dissipated - external_work minus its value at t = 0.
   std::optional<double> elastic_energy;
   std::optional<double> contact_energy;
   std::optional<double> constraint_energy;
+  std::optional<double> self_contact_energy;
   std::optional<double> total_energy;
+  std::optional<double> external_work;
+  std::optional<double> dissipated;
+  std::optional<double> energy_error;
 };
 
 ClothMetrics compute_cloth_metrics(const ClothModel& model, const ClothState& state,

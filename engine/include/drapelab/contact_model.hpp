@@ -12,6 +12,7 @@
 #include "drapelab/collider.hpp"
 #include "drapelab/collider_pose_table.hpp"
 #include "drapelab/contact_fcl.hpp"
+#include "drapelab/energy_ledger.hpp"
 
 namespace drapelab {
 
@@ -31,6 +32,9 @@ struct ColliderContactTotals {
   // the load a dynamic collider's body takes (N, N*m).
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  // The contacts' dissipation (dampers, friction, the clamp) and the work the collider's motion
+  // does on the cloth through them (W), for the energy ledger (energy_ledger.hpp).
+  PowerSplit power;
 };
 
 // A particle that a collider's penalty spring pushed in the last evaluation, for the implicit

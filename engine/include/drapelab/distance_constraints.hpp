@@ -19,6 +19,7 @@
 #include "drapelab/collider.hpp"
 #include "drapelab/collider_pose_table.hpp"
 #include "drapelab/drag_track.hpp"
+#include "drapelab/energy_ledger.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/weighted_contact.hpp"
 
@@ -90,10 +91,13 @@ struct DistanceConstraints {
   // on a particle b, depth L - l, the push f = k (L - l) - c (v_a - v_b).n), so that implicit
   // Euler and vbd take its stiffness and damping into their solves. When `body_loads` is given
   // (one entry per collider), it is reset and receives the reactions on the dynamic colliders:
-  // the force on each (N) and its moment about the world origin (N*m).
+  // the force on each (N) and its moment about the world origin (N*m). When `power` is given, it
+  // is reset and receives the dampers' dissipation and the moving ends' work (W,
+  // energy_ledger.hpp).
   void add_soft_forces(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                        Eigen::Matrix3Xd& force, std::vector<WeightedContact>* couplings,
-                       std::vector<ColliderForce>* body_loads = nullptr) const;
+                       std::vector<ColliderForce>* body_loads = nullptr,
+                       PowerSplit* power = nullptr) const;
 
   // Moves the particles of x (m) onto the hard and rope constraints at time t (s): Gauss-Seidel
   // sweeps, each moving a constraint's ends along it in proportion to their inverse masses (a

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "drapelab/cloth_state.hpp"
+#include "drapelab/energy_ledger.hpp"
 
 namespace drapelab {
 
@@ -69,6 +70,12 @@ class Solver {
   virtual std::vector<std::pair<std::string, double>> counters() const { return {}; }
   // The dynamic colliders' bodies, in scene order (empty without dynamic colliders).
   virtual std::vector<BodyState> bodies() const { return {}; }
+  // The energy the cloth's dampers, friction and air took out and its drivers put in since the
+  // start (energy_ledger.hpp); none for a solver that cannot account for it.
+  virtual std::optional<EnergyLedger> energy_ledger() const { return std::nullopt; }
+  // The self-contacts' spring energy at the last force evaluation (J), a potential of the cloth
+  // that its state alone does not give; none without self-collision.
+  virtual std::optional<double> self_contact_energy() const { return std::nullopt; }
 };
 
 }  // namespace drapelab

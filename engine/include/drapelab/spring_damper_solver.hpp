@@ -120,6 +120,12 @@ struct StepStats {
   std::int64_t constraint_unconverged_steps = 0;
 };
 
+// The pins carried by colliders at a step's start, for the work the colliders do through them.
+struct PinnedStart {
+  double kinetic_energy = 0.0;  // J
+  Eigen::Matrix3Xd x;           // m, one column per attachment
+};
+
 class SpringDamperSolver final : public Solver {
  public:
   SpringDamperSolver(std::string name, std::shared_ptr<const ClothModel> model, ClothState initial,
@@ -135,6 +141,8 @@ class SpringDamperSolver final : public Solver {
   std::vector<ColliderForce> collider_forces() const override;
   std::vector<std::pair<std::string, double>> phase_seconds() const override;
   std::vector<std::pair<std::string, double>> counters() const override;
+  std::optional<EnergyLedger> energy_ledger() const override { return ledger_; }
+  std::optional<double> self_contact_energy() const override;
 
   const ClothModel& model() const { return *model_; }
   const SpringDamperSettings& settings() const { return settings_; }
@@ -202,7 +210,7 @@ class SpringDamperSolver final : public Solver {
   // velocity bookkeeping (Verlet's history, leapfrog's stored force).
   void project_constraints(double t, double h);
   // The loads of the particles attached to dynamic colliders: each particle's force of the step's
-  // last evaluation (vbd, which evaluates none, takes gravity and the springs at the end state),
+  // last evaluation (for vbd, gravity and the springs at the end state),
   // which its body supplies the reaction to, so it pushes on the body with it.
   void record_attachment_loads();
   std::int64_t add_contact_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double t,
@@ -220,6 +228,15 @@ class SpringDamperSolver final : public Solver {
   std::vector<std::pair<std::string, double>> scheme_counters() const;
   // `scanned`: the step's own scan of the new state, if it made one.
   void check_health(double h, std::optional<std::int64_t> scanned);
+  // The energy ledger's share of one step of h (s): the power of the step's last force evaluation
+  // times h, and the work of the pins carried by moving colliders (energy_ledger.hpp).
+  void account_step(double h, const PinnedStart& pins);
+  // The pins on colliders at the step's start: their kinetic energy (J) and positions (m).
+  PinnedStart pinned_start() const;
+  // The power air damping takes at velocities v (W), c sum m |v|^2.
+  double air_damping_power(const Eigen::Matrix3Xd& v) const;
+  // The kinetic energy of all particles (J).
+  double kinetic_energy() const;
 
   std::string name_;
   std::shared_ptr<const ClothModel> model_;
@@ -267,6 +284,12 @@ class SpringDamperSolver final : public Solver {
   std::unique_ptr<ShapeBoundWorkspace>
       shape_bound_;  // adaptive substeps: each particle's springs, for the bound
   StepStats stats_;
+  // The energy ledger (energy_ledger.hpp): its running sums, and the power of the last force
+  // evaluation's phases (W): gravity and springs with air damping, and the forces between
+  // particles (self-contacts, soft constraints, the air field). The collider contacts' power is in
+  // contact_totals_.
+  EnergyLedger ledger_;
+  PowerSplit body_and_spring_power_, pair_power_;
   SolverStatus status_ = SolverStatus::ok;
   std::string message_;
 };

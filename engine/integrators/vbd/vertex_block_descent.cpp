@@ -485,8 +485,11 @@ void VertexBlockDescent::record_contact_totals(const Eigen::Matrix3Xd& x, double
           x.col(static_cast<Eigen::Index>(i)) - start_.col(static_cast<Eigen::Index>(i)) - surface;
       const double fn =
           std::max(0.0, contact_.stiffness * depth - contact_.damping * rel.dot(n) / h);
-      if (fn <= 0.0) continue;
       ColliderContactTotals& t = totals[static_cast<std::size_t>(plane_collider_[e])];
+      // The step's mean velocities relative to the surface and of the surface (m/s).
+      const Eigen::Vector3d relative_velocity = rel / h, surface_velocity = surface / h;
+      t.power += push_power(fn, contact_.stiffness * depth, n, relative_velocity, surface_velocity);
+      if (fn <= 0.0) continue;
       ++t.contact_count;
       t.normal_force += fn;
       const Eigen::Vector3d slide = rel - rel.dot(n) * n;  // m over the step
@@ -497,7 +500,11 @@ void VertexBlockDescent::record_contact_totals(const Eigen::Matrix3Xd& x, double
       t.friction_force += friction;
       t.max_depth = std::max(t.max_depth, depth);
       Eigen::Vector3d on_cloth = fn * n;  // N
-      if (slip > 0.0) on_cloth -= (friction / slip) * slide;
+      if (slip > 0.0) {
+        const Eigen::Vector3d rub = -(friction / slip) * slide;  // N
+        on_cloth += rub;
+        t.power += friction_power(rub, relative_velocity, surface_velocity);
+      }
       t.force -= on_cloth;
       t.torque -= Eigen::Vector3d(x.col(static_cast<Eigen::Index>(i))).cross(on_cloth);
     }

@@ -77,8 +77,9 @@ EnergyAudit::EnergyAudit(std::shared_ptr<const ClothModel> model, const scene::S
 }
 
 void EnergyAudit::measure(const ContactModel* contacts, const CollisionMetrics* collisions,
-                          const DistanceConstraints* constraints, const ClothState& state, double t,
+                          const DistanceConstraints* constraints, const Solver& solver, double t,
                           ClothMetrics& metrics) {
+  const ClothState& state = solver.state();
   const double elastic = model_->uses_continuum() ? continuum_energy(*model_->continuum, state.x)
                                                   : metrics.spring_energy;  // J
   metrics.elastic_energy = elastic;
@@ -95,7 +96,16 @@ void EnergyAudit::measure(const ContactModel* contacts, const CollisionMetrics* 
     metrics.constraint_energy = constraints->soft_energy(t, state.x);
     total += *metrics.constraint_energy;
   }
+  metrics.self_contact_energy = solver.self_contact_energy();
+  if (metrics.self_contact_energy) total += *metrics.self_contact_energy;
   metrics.total_energy = total;
+  if (const std::optional<EnergyLedger> ledger = solver.energy_ledger()) {
+    metrics.external_work = ledger->external_work;
+    metrics.dissipated = ledger->dissipated;
+    const double balance = total + ledger->dissipated - ledger->external_work;  // J
+    if (!balance_start_) balance_start_ = balance;
+    metrics.energy_error = balance - *balance_start_;
+  }
 }
 
 void EnergyAudit::check(int frame, double time, const ClothMetrics& metrics,

@@ -105,7 +105,7 @@ FrameMeasure measure_frame(const scene::Scene& scene, const SceneSetup& setup, S
   const std::shared_ptr<const DistanceConstraints> constraints =
       own_poses ? constraints_on_own_bodies(setup.constraints, own_poses) : setup.constraints;
   run.energy->measure(contacts.get(), measure.collisions ? &*measure.collisions : nullptr,
-                      constraints.get(), state, time, measure.metrics);
+                      constraints.get(), solver, time, measure.metrics);
   run.energy->check(frame, time, measure.metrics, *run.spec);
   return measure;
 }

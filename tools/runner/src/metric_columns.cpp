@@ -36,6 +36,10 @@ const std::vector<MetricColumn>& metric_columns() {
       {"contact_energy", [](M m) { return m.contact_energy; }},
       {"constraint_energy", [](M m) { return m.constraint_energy; }},
       {"total_energy", [](M m) { return m.total_energy; }},
+      {"external_work", [](M m) { return m.external_work; }},
+      {"dissipated", [](M m) { return m.dissipated; }},
+      {"energy_error", [](M m) { return m.energy_error; }},
+      {"self_contact_energy", [](M m) { return m.self_contact_energy; }},
   };
   return columns;
 }

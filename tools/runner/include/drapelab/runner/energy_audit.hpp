@@ -22,6 +22,7 @@
 #include "drapelab/contact_model.hpp"
 #include "drapelab/distance_constraints.hpp"
 #include "drapelab/scene/scene.hpp"
+#include "drapelab/solver.hpp"
 
 namespace drapelab::runner {
 
@@ -49,9 +50,10 @@ class EnergyAudit {
   // Fills metrics' elastic, contact, constraint and total energies for `state` at time t (s), with
   // the colliders posed by `contacts`, their particles' clearance queries `collisions` and the soft
   // constraints of `constraints` (each null: none; with dynamic colliders, all three where this
-  // solver's own bodies are).
+  // solver's own bodies are); and, from `solver`, the self-contacts' energy and the balance
+  // (external_work, dissipated, energy_error) where the solver keeps an energy ledger.
   void measure(const ContactModel* contacts, const CollisionMetrics* collisions,
-               const DistanceConstraints* constraints, const ClothState& state, double t,
+               const DistanceConstraints* constraints, const Solver& solver, double t,
                ClothMetrics& metrics);
   // After measure: in a passive scene, records a warning when the total rose above the tolerance,
   // its cause naming `solver`'s method and step.
@@ -78,6 +80,8 @@ class EnergyAudit {
   };
   ContactShares contact_now_, contact_before_;
   double worst_rise_ = 0.0;
+  // total + dissipated - external work at the first measure (J): energy_error's zero.
+  std::optional<double> balance_start_;
   std::vector<EnergyWarning> warnings_;
 };
 
