@@ -272,6 +272,7 @@ class SpringDamperSolver final : public Solver {
   std::unique_ptr<EdgeContact> edge_contact_;      // null without collider edges
   // Self-collision: the state a step restarts from (m, m/s) and the start of its piece (m).
   Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
+  Eigen::Matrix3Xd projection_start_v_;  // m/s: hard constraints, the velocity before projection
   std::vector<ColliderContactTotals> contact_totals_;
   std::vector<ColliderForce> attachment_loads_;  // per collider: force (N), moment (N*m)
   std::vector<ColliderForce> constraint_loads_;  // soft constraints' reactions, per collider
