@@ -10,24 +10,12 @@
 #include "drapelab/obj_reader.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "materials.hpp"
+#include "scene_keys.hpp"
 #include "text_checks.hpp"
 #include "value_ranges.hpp"
 
 namespace drapelab::scene {
 namespace {
-
-const std::vector<std::string> kClothCommonKeys = {
-    "shape",         "center",      "rotation",     "material",      "mass",
-    "areal_density", "thickness",   "perturbation", "model",         "springs",
-    "continuum",     "air_damping", "pins",         "self_collision"};
-
-std::vector<std::string> keys_for(const std::string& shape) {
-  std::vector<std::string> keys = kClothCommonKeys;
-  if (shape == "grid") keys.insert(keys.end(), {"size", "resolution", "plane"});
-  if (shape == "disc") keys.insert(keys.end(), {"radius", "rings"});
-  if (shape == "mesh") keys.insert(keys.end(), {"path", "scale"});
-  return keys;
-}
 
 // Why a mesh moved by `scale`, `rotation` and `center` is not a usable cloth: a coordinate beyond
 // kMaxCoordinate, a size outside the cloth's length range, or a triangle that lost its area (a
@@ -54,11 +42,12 @@ ClothReader::ClothReader(SceneReader& reader, Scene& scene, std::filesystem::pat
 
 void ClothReader::read(const YAML::Node& node) {
   // The shape decides which keys exist, so read it first.
-  std::string shape = "grid";
+  std::string shape = default_choice(key("cloth.shape"));
   if (node.IsMap() && node["shape"].IsDefined())
-    if (const auto chosen = r_.choice(node["shape"], "cloth.shape", {"grid", "disc", "mesh"}))
+    if (const auto chosen =
+            r_.choice(node["shape"], "cloth.shape", key_choices(key("cloth.shape"))))
       shape = *chosen;
-  MapReader cloth(r_, node, "cloth", keys_for(shape));
+  MapReader cloth(r_, node, "cloth", key_names("cloth", shape));
   if (!cloth.valid()) return;
   cloth_node_.reset(node);  // reset: `=` would overwrite the node it held
   ClothSpec& spec = scene_.cloth;
@@ -67,20 +56,29 @@ void ClothReader::read(const YAML::Node& node) {
   // A mesh keeps its file's coordinates unless moved; grids and discs default to 1 m up.
   const Eigen::Vector3d default_center =
       shape == "mesh" ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0, 1, 0);
-  if (const auto center = cloth.numbers("center", 3, coordinate_range(), default_center))
+  if (const auto center = cloth.numbers(key("cloth.center"), default_center))
     common.center = *center;
-  if (const auto rotation = cloth.numbers("rotation", 3, angle_range(), Eigen::Vector3d::Zero()))
-    common.rotation = *rotation;
+  if (const auto rotation = cloth.numbers(key("cloth.rotation"))) common.rotation = *rotation;
+  // The table's defaults of the keys a material preset may set (apply_material), and of the
+  // springs and continuum parameters it gives.
+  common.thickness = default_number(key("cloth.thickness"));
+  spec.air_damping = default_number(key("cloth.air_damping"));
+  common.stretch = {default_number(key("cloth.springs.stretch.ks")),
+                    default_number(key("cloth.springs.stretch.kd"))};
+  common.shear = {default_number(key("cloth.springs.shear.ks")),
+                  default_number(key("cloth.springs.shear.kd"))};
+  common.bend = {default_number(key("cloth.springs.bend.ks")),
+                 default_number(key("cloth.springs.bend.kd"))};
   if (shape == "grid") read_grid(cloth);
   if (shape == "disc") read_disc(cloth);
   if (shape == "mesh") read_mesh(cloth);
   apply_material(cloth);
   read_mass(cloth);
   common.thickness =
-      cloth.number("thickness", thickness_range(), common.thickness).value_or(common.thickness);
-  spec.perturbation = cloth.number("perturbation", perturbation_range(), 0.0).value_or(0.0);
+      cloth.number(key("cloth.thickness"), common.thickness).value_or(common.thickness);
+  spec.perturbation = cloth.number(key("cloth.perturbation")).value_or(0.0);
   spec.air_damping =
-      cloth.number("air_damping", air_damping_range(), spec.air_damping).value_or(spec.air_damping);
+      cloth.number(key("cloth.air_damping"), spec.air_damping).value_or(spec.air_damping);
   read_model(cloth);
   if (cloth.has("pins")) read_pins(cloth.get("pins"));
   read_self_collision(cloth);
@@ -92,18 +90,16 @@ void ClothReader::read_self_collision(MapReader& cloth) {
   self.static_friction = self.friction;
   if (!cloth.has("self_collision")) return;
   MapReader map(r_, cloth.get("self_collision"), "cloth.self_collision",
-                {"enabled", "thickness", "stiffness", "damping", "friction", "static_friction"});
+                key_names("cloth.self_collision"));
   if (!map.valid()) return;
-  self.enabled = map.boolean("enabled", true).value_or(true);
+  self.enabled = map.boolean(key("cloth.self_collision.enabled")).value_or(true);
   self.thickness =
-      map.number("thickness", thickness_range(), self.thickness).value_or(self.thickness);
-  self.stiffness =
-      map.number("stiffness", contact_stiffness_range(), self.stiffness).value_or(self.stiffness);
-  self.damping =
-      map.number("damping", contact_damping_range(), self.damping).value_or(self.damping);
-  self.friction = map.number("friction", friction_range(), self.friction).value_or(self.friction);
-  self.static_friction =
-      map.number("static_friction", friction_range(), self.friction).value_or(self.friction);
+      map.number(key("cloth.self_collision.thickness"), self.thickness).value_or(self.thickness);
+  self.stiffness = map.number(key("cloth.self_collision.stiffness")).value_or(self.stiffness);
+  self.damping = map.number(key("cloth.self_collision.damping")).value_or(self.damping);
+  self.friction = map.number(key("cloth.self_collision.friction")).value_or(self.friction);
+  self.static_friction = map.number(key("cloth.self_collision.static_friction"), self.friction)
+                             .value_or(self.friction);
   if (map.has("static_friction") && self.static_friction < self.friction)
     r_.error(map.get("static_friction"), "cloth.self_collision.static_friction",
              "must be >= cloth.self_collision.friction (" + format_number(self.friction) +
@@ -112,17 +108,17 @@ void ClothReader::read_self_collision(MapReader& cloth) {
 
 void ClothReader::read_grid(MapReader& cloth) {
   GridClothSpec& grid = scene_.cloth.grid;
-  if (const auto size = cloth.numbers("size", 2, cloth_length_range(), Eigen::Vector2d(1.0, 1.0)))
-    grid.size = *size;
-  if (const auto plane = cloth.choice("plane", {"xz", "xy"}, "xz"))
+  if (const auto size = cloth.numbers(key("cloth.size"))) grid.size = *size;
+  if (const auto plane = cloth.choice(key("cloth.plane")))
     grid.plane = *plane == "xz" ? GridPlane::xz : GridPlane::xy;
   if (!cloth.has("resolution")) {
     cloth.missing("resolution",
                   "particles along each side, for example [33, 33] ([1, N] is a chain)");
     return;
   }
+  const SceneKey& row = key("cloth.resolution");
   const auto resolution =
-      r_.integers(cloth.get("resolution"), "cloth.resolution", 2, resolution_range());
+      r_.integers(cloth.get("resolution"), "cloth.resolution", row.size, row.range);
   if (!resolution) return;
   grid.nx = static_cast<int>((*resolution)[0]);
   grid.ny = static_cast<int>((*resolution)[1]);
@@ -139,8 +135,9 @@ void ClothReader::read_disc(MapReader& cloth) {
   DiscSpec& disc = scene_.cloth.disc;
   const std::size_t errors = r_.error_count();
   if (cloth.has("rings")) rings_node_.reset(cloth.get("rings"));
-  disc.radius = cloth.number("radius", cloth_length_range(), 0.15).value_or(disc.radius);
-  disc.rings = static_cast<int>(cloth.integer("rings", rings_range(), 20).value_or(20));
+  disc.radius = cloth.number(key("cloth.radius")).value_or(disc.radius);
+  disc.rings = static_cast<int>(
+      cloth.integer(key("cloth.rings")).value_or(default_integer(key("cloth.rings"))));
   disc.center = scene_.cloth.grid.center;
   disc.rotation = scene_.cloth.grid.rotation;
   geometry_ok_ = r_.error_count() == errors;
@@ -148,7 +145,7 @@ void ClothReader::read_disc(MapReader& cloth) {
 
 void ClothReader::read_mesh(MapReader& cloth) {
   ClothSpec& spec = scene_.cloth;
-  spec.mesh_scale = cloth.number("scale", mesh_scale_range(), 1.0).value_or(1.0);
+  spec.mesh_scale = cloth.number(key("cloth.scale")).value_or(1.0);
   if (!cloth.has("path")) {
     cloth.missing(
         "path",
@@ -210,7 +207,7 @@ double ClothReader::particle_spacing() const {
 
 void ClothReader::apply_material(MapReader& cloth) {
   if (!cloth.has("material")) return;
-  const auto name = cloth.choice("material", material_names(), std::nullopt);
+  const auto name = cloth.choice(key("cloth.material"));
   if (!name) return;
   const Material material = *find_material(*name);
   preset_continuum_ = material_continuum(material);
@@ -234,9 +231,9 @@ void ClothReader::read_mass(MapReader& cloth) {
              "cannot be given together with cloth.mass; give one of them");
   } else if (has_mass) {
     grid.areal_density.reset();  // an explicit mass replaces a material's density
-    if (const auto mass = cloth.number("mass", mass_range(), std::nullopt)) grid.mass = *mass;
+    if (const auto mass = cloth.number(key("cloth.mass"))) grid.mass = *mass;
   } else if (has_density) {
-    if (const auto density = cloth.number("areal_density", areal_density_range(), std::nullopt)) {
+    if (const auto density = cloth.number(key("cloth.areal_density"))) {
       grid.areal_density = *density;
       if (scene_.cloth.shape == "grid" && geometry_ok_ && (grid.nx == 1 || grid.ny == 1))
         r_.error(cloth.get("areal_density"), "cloth.areal_density",
@@ -250,26 +247,29 @@ void ClothReader::read_mass(MapReader& cloth) {
 }
 
 void ClothReader::read_model(MapReader& cloth) {
-  const auto model = cloth.choice("model", {"springs", "continuum"}, "springs");
+  const auto model = cloth.choice(key("cloth.model"));
   ClothSpec& spec = scene_.cloth;
   // The fabric's continuum parameters: the preset's values (or the defaults), then the explicit
   // keys, key by key. A springs cloth keeps them for its solvers with model: continuum.
-  ContinuumParams params = preset_continuum_.value_or(ContinuumParams{});
+  ContinuumParams params = preset_continuum_.value_or(
+      ContinuumParams{default_number(key("cloth.continuum.stretch_modulus")),
+                      default_number(key("cloth.continuum.poisson")),
+                      default_number(key("cloth.continuum.bending_rigidity")),
+                      default_number(key("cloth.continuum.damping"))});
   if (cloth.has("continuum")) {
     spec.continuum_given = true;
-    MapReader map(r_, cloth.get("continuum"), "cloth.continuum",
-                  {"stretch_modulus", "poisson", "bending_rigidity", "damping"});
+    MapReader map(r_, cloth.get("continuum"), "cloth.continuum", key_names("cloth.continuum"));
     if (map.valid()) {
       params.stretch_modulus =
-          map.number("stretch_modulus", stretch_modulus_range(), params.stretch_modulus)
+          map.number(key("cloth.continuum.stretch_modulus"), params.stretch_modulus)
               .value_or(params.stretch_modulus);
       params.poisson =
-          map.number("poisson", poisson_range(), params.poisson).value_or(params.poisson);
+          map.number(key("cloth.continuum.poisson"), params.poisson).value_or(params.poisson);
       params.bending_rigidity =
-          map.number("bending_rigidity", bending_rigidity_range(), params.bending_rigidity)
+          map.number(key("cloth.continuum.bending_rigidity"), params.bending_rigidity)
               .value_or(params.bending_rigidity);
       params.damping =
-          map.number("damping", continuum_damping_range(), params.damping).value_or(params.damping);
+          map.number(key("cloth.continuum.damping"), params.damping).value_or(params.damping);
     }
   }
   spec.continuum = params;
@@ -305,22 +305,25 @@ void ClothReader::read_model(MapReader& cloth) {
 }
 
 void ClothReader::read_springs(const YAML::Node& node) {
-  MapReader springs(r_, node, "cloth.springs", {"stretch", "shear", "bend"});
+  MapReader springs(r_, node, "cloth.springs", key_names("cloth.springs"));
   if (!springs.valid()) return;
   GridClothSpec& grid = scene_.cloth.grid;
-  // Stretch springs hold the cloth together, so their ks must be > 0; shear and bend may be off.
-  read_spring_kind(springs, "stretch", stretch_ks_range(), grid.stretch);
-  read_spring_kind(springs, "shear", spring_ks_range(), grid.shear);
-  read_spring_kind(springs, "bend", spring_ks_range(), grid.bend);
+  // Each kind's defaults are a preset's, or the table's (read).
+  read_spring_kind(springs, key("cloth.springs.stretch.ks"), key("cloth.springs.stretch.kd"),
+                   grid.stretch);
+  read_spring_kind(springs, key("cloth.springs.shear.ks"), key("cloth.springs.shear.kd"),
+                   grid.shear);
+  read_spring_kind(springs, key("cloth.springs.bend.ks"), key("cloth.springs.bend.kd"), grid.bend);
 }
 
-void ClothReader::read_spring_kind(MapReader& springs, const std::string& kind,
-                                   const Range& ks_range, SpringParams& out) {
+void ClothReader::read_spring_kind(MapReader& springs, const SceneKey& ks, const SceneKey& kd,
+                                   SpringParams& out) {
+  const std::string kind(ks.parent().substr(ks.parent().rfind('.') + 1));
   if (!springs.has(kind)) return;
-  MapReader params(r_, springs.get(kind), springs.path_of(kind), {"ks", "kd"});
+  MapReader params(r_, springs.get(kind), springs.path_of(kind), key_names(ks.parent()));
   if (!params.valid()) return;
-  out.ks = params.number("ks", ks_range, out.ks).value_or(out.ks);
-  out.kd = params.number("kd", spring_kd_range(), out.kd).value_or(out.kd);
+  out.ks = params.number(ks, out.ks).value_or(out.ks);
+  out.kd = params.number(kd, out.kd).value_or(out.kd);
 }
 
 void ClothReader::read_pins(const YAML::Node& node) {
@@ -360,7 +363,7 @@ void ClothReader::read_pins(const YAML::Node& node) {
 
 std::optional<PinSelector> ClothReader::read_pin_map(const YAML::Node& item,
                                                      const std::string& path, std::string& attach) {
-  MapReader pin(r_, item, path, {"index", "within", "attach"});
+  MapReader pin(r_, item, path, key_names("cloth.pins[]"));
   if (!pin.valid()) return std::nullopt;
   if (const auto name = pin.text("attach", std::nullopt)) attach = *name;
   if (pin.has("index") == pin.has("within")) {
@@ -368,14 +371,14 @@ std::optional<PinSelector> ClothReader::read_pin_map(const YAML::Node& item,
     return std::nullopt;
   }
   if (pin.has("index")) {
-    const auto index = pin.integer("index", particle_index_range(), std::nullopt);
+    const auto index = pin.integer(key("cloth.pins[].index"));
     if (!index) return std::nullopt;
     return PinIndex{static_cast<int>(*index)};
   }
-  MapReader ball(r_, pin.get("within"), pin.path_of("within"), {"center", "radius"});
+  MapReader ball(r_, pin.get("within"), pin.path_of("within"), key_names("cloth.pins[].within"));
   if (!ball.valid()) return std::nullopt;
-  const auto center = ball.numbers("center", 3, coordinate_range(), std::nullopt);
-  const auto radius = ball.number("radius", pin_radius_range(), std::nullopt);
+  const auto center = ball.numbers(key("cloth.pins[].within.center"));
+  const auto radius = ball.number(key("cloth.pins[].within.radius"));
   if (!ball.has("center")) ball.missing("center", "the ball's centre [x, y, z] in m");
   if (!ball.has("radius")) ball.missing("radius", "the ball's radius in m, > 0");
   if (!center || !radius) return std::nullopt;

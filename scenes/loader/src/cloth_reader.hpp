@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "drapelab/scene/scene.hpp"
+#include "scene_key.hpp"
 #include "yaml_reader.hpp"
 
 namespace drapelab::scene {
@@ -35,7 +36,8 @@ class ClothReader {
   // preset's first, and the springs derived from them).
   void read_model(MapReader& cloth);
   void read_springs(const YAML::Node& node);
-  void read_spring_kind(MapReader& springs, const std::string& kind, const Range& ks_range,
+  // One kind of spring: `ks` and `kd` are its rows in the key table (cloth.springs.KIND.ks).
+  void read_spring_kind(MapReader& springs, const SceneKey& ks, const SceneKey& kd,
                         SpringParams& out);
   void read_pins(const YAML::Node& node);
   // cloth.self_collision, resolved: thickness defaults to the cloth's, static_friction to friction.

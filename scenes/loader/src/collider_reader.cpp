@@ -5,23 +5,12 @@
 #include <set>
 
 #include "drapelab/scene/number_format.hpp"
+#include "scene_keys.hpp"
 #include "text_checks.hpp"
 #include "value_ranges.hpp"
 
 namespace drapelab::scene {
 namespace {
-
-const std::vector<std::string> kTypes = {"sphere", "cylinder", "capsule", "box", "plane"};
-
-// Keys every collider may have, and those of each shape.
-const std::vector<std::string> kColliderCommonKeys = {
-    "name", "type", "rotation", "friction", "static_friction", "motion", "parent", "dynamic"};
-const std::map<std::string, std::vector<std::string>> kShapeKeys = {
-    {"sphere", {"center", "radius"}},
-    {"cylinder", {"center", "radius", "height", "axis"}},
-    {"capsule", {"center", "radius", "height", "axis"}},
-    {"box", {"center", "half_extents"}},
-    {"plane", {"point", "normal"}}};
 
 ColliderShape shape_of(const std::string& type) {
   if (type == "cylinder") return ColliderShape::cylinder;
@@ -44,13 +33,12 @@ Eigen::Vector3d stable_normalized(const Eigen::Vector3d& v) {
 }
 
 // A direction: three numbers, not all zero; returned normalised.
-std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map,
-                                              const std::string& key,
-                                              const Eigen::Vector3d& fallback) {
-  const auto value = map.numbers(key, 3, direction_range(), fallback);
+std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map, const SceneKey& row) {
+  const auto value = map.numbers(row);
   if (!value) return std::nullopt;
+  const std::string name(row.name());
   if (value->norm() < kMinDirection) {
-    r.error(map.get(key), map.path_of(key), "must be a non-zero direction, got [0, 0, 0]");
+    r.error(map.get(name), map.path_of(name), "must be a non-zero direction, got [0, 0, 0]");
     return std::nullopt;
   }
   return stable_normalized(*value);
@@ -58,12 +46,10 @@ std::optional<Eigen::Vector3d> read_direction(SceneReader& r, MapReader& map,
 
 void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path,
                  ColliderMotion& motion) {
-  MapReader map(r, node, path, {"velocity", "angular_velocity", "keyframes"});
+  MapReader map(r, node, path, key_names("colliders[].motion"));
   if (!map.valid()) return;
-  if (const auto v = map.numbers("velocity", 3, velocity_range(), Eigen::Vector3d::Zero()))
-    motion.velocity = *v;
-  if (const auto w =
-          map.numbers("angular_velocity", 3, angular_velocity_range(), Eigen::Vector3d::Zero()))
+  if (const auto v = map.numbers(key("colliders[].motion.velocity"))) motion.velocity = *v;
+  if (const auto w = map.numbers(key("colliders[].motion.angular_velocity")))
     motion.angular_velocity = *w;
   if (!map.has("keyframes")) return;
   if (map.has("velocity") || map.has("angular_velocity")) {
@@ -82,17 +68,18 @@ void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path
   double previous_t = -1.0;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string key_path = list_path + "." + std::to_string(k);
-    MapReader key(r, list[k], key_path, {"t", "center", "rotation"});
-    if (!key.valid()) continue;
+    MapReader item(r, list[k], key_path, key_names("colliders[].motion.keyframes[]"));
+    if (!item.valid()) continue;
     ColliderKeyframe frame;
-    const auto t = key.number("t", keyframe_time_range(), std::nullopt);
-    if (!key.has("t")) key.missing("t", "the keyframe's time in s, >= 0");
-    const auto center = key.numbers("center", 3, coordinate_range(), std::nullopt);
-    if (!key.has("center")) key.missing("center", "the collider's centre [x, y, z] in m at time t");
-    const auto rotation = key.numbers("rotation", 3, angle_range(), Eigen::Vector3d::Zero());
+    const auto t = item.number(key("colliders[].motion.keyframes[].t"));
+    if (!item.has("t")) item.missing("t", "the keyframe's time in s, >= 0");
+    const auto center = item.numbers(key("colliders[].motion.keyframes[].center"));
+    if (!item.has("center"))
+      item.missing("center", "the collider's centre [x, y, z] in m at time t");
+    const auto rotation = item.numbers(key("colliders[].motion.keyframes[].rotation"));
     if (!t || !center || !rotation) continue;
     if (*t <= previous_t) {
-      r.error(key.get("t"), key.path_of("t"),
+      r.error(item.get("t"), item.path_of("t"),
               "must be later than the previous keyframe's t = " + format_number(previous_t) +
                   ", got " + format_number(*t));
       continue;
@@ -108,12 +95,12 @@ void read_motion(SceneReader& r, const YAML::Node& node, const std::string& path
 // Keyframes give the collider's centre at every time (its `rotation` is composed with theirs, see
 // collider_pose): a `center` (a plane's `point`) that disagrees with the first keyframe would be
 // silently ignored, so it is an error; a missing one is the first keyframe's.
-void keyframe_center(SceneReader& r, MapReader& map, const std::string& key, Collider& c) {
+void keyframe_center(SceneReader& r, MapReader& map, const std::string& center_key, Collider& c) {
   const Eigen::Vector3d first = c.motion.keyframes.front().center;
-  if (!map.has(key)) {
+  if (!map.has(center_key)) {
     c.center = first;
   } else if (c.center != first) {
-    r.error(map.get(key), map.path_of(key),
+    r.error(map.get(center_key), map.path_of(center_key),
             "must equal the first keyframe's center " + format_list(first) +
                 " or be left out (with keyframes " +
                 "the keyframes give the centre at every time), got " + format_list(c.center));
@@ -124,10 +111,10 @@ void keyframe_center(SceneReader& r, MapReader& map, const std::string& key, Col
 // and a plane (infinite, solid below) has no mass to give.
 void read_dynamic(SceneReader& r, MapReader& map, Collider& c) {
   const std::string path = map.path_of("dynamic");
-  MapReader dynamic(r, map.get("dynamic"), path, {"mass"});
+  MapReader dynamic(r, map.get("dynamic"), path, key_names("colliders[].dynamic"));
   if (!dynamic.valid()) return;
   if (!dynamic.has("mass")) dynamic.missing("mass", "the body's mass in kg, > 0");
-  const auto mass = dynamic.number("mass", mass_range(), std::nullopt);
+  const auto mass = dynamic.number(key("colliders[].dynamic.mass"));
   if (!mass) return;
   const char* clash = c.shape == ColliderShape::plane ? "a plane cannot be dynamic"
                       : map.has("motion")             ? "a dynamic collider has no motion key"
@@ -149,7 +136,8 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
   std::string type = "sphere";
   record_key_lines(r, node, path);  // so that an empty type: is reported on its own line
   if (node.IsMap() && node["type"].IsDefined()) {
-    const auto chosen = r.choice(node["type"], path + ".type", kTypes);
+    const auto chosen =
+        r.choice(node["type"], path + ".type", key_choices(key("colliders[].type")));
     if (!chosen) return std::nullopt;
     type = *chosen;
   } else if (node.IsMap()) {
@@ -157,10 +145,7 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
             "is required: one of sphere | cylinder | capsule | box | plane", node);
     return std::nullopt;
   }
-  std::vector<std::string> allowed = kColliderCommonKeys;
-  const auto& shape_keys = kShapeKeys.at(type);
-  allowed.insert(allowed.end(), shape_keys.begin(), shape_keys.end());
-  MapReader map(r, node, path, allowed);
+  MapReader map(r, node, path, key_names("colliders[]", type));
   if (!map.valid()) return std::nullopt;
   const std::size_t errors_before = r.error_count();
 
@@ -175,57 +160,51 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
     map.missing("name", "a unique label such as ball or table ([a-z0-9_-]+, at most " +
                             std::to_string(kMaxNameLength) + " characters)");
   }
-  auto required_vector = [&](const std::string& key,
-                             const std::string& expected) -> Eigen::Vector3d {
-    if (!map.has(key)) map.missing(key, expected);
-    return map.numbers(key, 3, coordinate_range(), Eigen::Vector3d::Zero())
-        .value_or(Eigen::Vector3d::Zero());
+  // A required key left out is reported, and read as a stand-in so that the rest is checked.
+  auto required_vector = [&](const SceneKey& row, const std::string& expected) -> Eigen::Vector3d {
+    if (!map.has(std::string(row.name()))) map.missing(std::string(row.name()), expected);
+    return map.numbers(row, Eigen::Vector3d::Zero()).value_or(Eigen::Vector3d::Zero());
   };
-  auto required_length = [&](const std::string& key, const std::string& expected) -> double {
-    if (!map.has(key)) map.missing(key, expected);
-    return map.number(key, collider_size_range(), 1.0).value_or(1.0);
+  auto required_length = [&](const SceneKey& row, const std::string& expected) -> double {
+    if (!map.has(std::string(row.name()))) map.missing(std::string(row.name()), expected);
+    return map.number(row, 1.0).value_or(1.0);
   };
   // With keyframes the centre comes from them, so `center` may be left out.
   const bool keyframed =
       map.has("motion") && map.get("motion").IsMap() && map.get("motion")["keyframes"].IsDefined();
   const std::string center_key = c.shape == ColliderShape::plane ? "point" : "center";
   if (c.shape == ColliderShape::plane) {
-    c.center = map.numbers("point", 3, coordinate_range(), Eigen::Vector3d::Zero())
-                   .value_or(Eigen::Vector3d::Zero());
-    c.normal = read_direction(r, map, "normal", Eigen::Vector3d::UnitY())
-                   .value_or(Eigen::Vector3d::UnitY());
+    c.center = map.numbers(key("colliders[].point")).value_or(Eigen::Vector3d::Zero());
+    c.normal = read_direction(r, map, key("colliders[].normal")).value_or(Eigen::Vector3d::UnitY());
   } else if (keyframed) {
-    c.center = map.numbers("center", 3, coordinate_range(), Eigen::Vector3d::Zero())
+    c.center = map.numbers(key("colliders[].center"), Eigen::Vector3d::Zero())
                    .value_or(Eigen::Vector3d::Zero());
   } else {
-    c.center = required_vector("center", "the collider's centre [x, y, z] in m");
+    c.center = required_vector(key("colliders[].center"), "the collider's centre [x, y, z] in m");
   }
   if (c.shape == ColliderShape::sphere || c.shape == ColliderShape::cylinder ||
       c.shape == ColliderShape::capsule)
-    c.radius = required_length("radius", "the radius in m, > 0");
+    c.radius = required_length(key("colliders[].radius"), "the radius in m, > 0");
   if (c.shape == ColliderShape::cylinder || c.shape == ColliderShape::capsule) {
     c.height = required_length(
-        "height", c.shape == ColliderShape::capsule
-                      ? "the length of the capsule's axis segment in m (without its caps), > 0"
-                      : "the full length along the axis in m, > 0");
-    c.axis =
-        read_direction(r, map, "axis", Eigen::Vector3d::UnitY()).value_or(Eigen::Vector3d::UnitY());
+        key("colliders[].height"),
+        c.shape == ColliderShape::capsule
+            ? "the length of the capsule's axis segment in m (without its caps), > 0"
+            : "the full length along the axis in m, > 0");
+    c.axis = read_direction(r, map, key("colliders[].axis")).value_or(Eigen::Vector3d::UnitY());
   }
   if (c.shape == ColliderShape::box) {
     if (!map.has("half_extents"))
       map.missing("half_extents", "half the box's size along x, y, z in m, each > 0");
-    c.half_extents =
-        map.numbers("half_extents", 3, collider_size_range(), Eigen::Vector3d::Constant(0.5))
-            .value_or(Eigen::Vector3d::Constant(0.5));
+    c.half_extents = map.numbers(key("colliders[].half_extents"), Eigen::Vector3d::Constant(0.5))
+                         .value_or(Eigen::Vector3d::Constant(0.5));
   }
-  c.rotation = map.numbers("rotation", 3, angle_range(), Eigen::Vector3d::Zero())
-                   .value_or(Eigen::Vector3d::Zero());
-  c.friction =
-      map.number("friction", friction_range(), contact.friction).value_or(contact.friction);
+  c.rotation = map.numbers(key("colliders[].rotation")).value_or(Eigen::Vector3d::Zero());
+  c.friction = map.number(key("colliders[].friction"), contact.friction).value_or(contact.friction);
   // A collider that sets only its kinetic coefficient gets the same static one.
   const double static_default = map.has("friction") ? c.friction : contact.static_friction;
   c.static_friction =
-      map.number("static_friction", friction_range(), static_default).value_or(static_default);
+      map.number(key("colliders[].static_friction"), static_default).value_or(static_default);
   if (c.static_friction < c.friction && r.error_count() == errors_before)
     r.error(map.has("static_friction") ? map.get("static_friction") : map.get("friction"),
             map.path_of("static_friction"),

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "drapelab/scene/number_format.hpp"
+#include "scene_keys.hpp"
 #include "text_checks.hpp"
 #include "value_ranges.hpp"
 
@@ -59,16 +60,15 @@ class ConstraintReader {
       : r_(reader), scene_(scene), model_(model) {}
 
   std::optional<DistanceConstraint> read(const YAML::Node& item, const std::string& path) {
-    MapReader entry(r_, item, path,
-                    {"type", "a", "b", "length", "mode", "stiffness", "damping", "tolerance"});
+    MapReader entry(r_, item, path, key_names("constraints[]"));
     if (!entry.valid()) return std::nullopt;
     DistanceConstraint c;
     bool ok = true;
     if (!entry.has("type"))
       entry.missing("type", "the constraint's kind: distance");
     else
-      ok = entry.choice("type", {"distance"}, std::nullopt).has_value() && ok;
-    const auto mode = entry.choice("mode", {"hard", "rope", "soft"}, "hard");
+      ok = entry.choice(key("constraints[].type")).has_value() && ok;
+    const auto mode = entry.choice(key("constraints[].mode"));
     if (!mode) return std::nullopt;
     c.mode = *mode == "hard"   ? ConstraintMode::hard
              : *mode == "rope" ? ConstraintMode::rope
@@ -85,13 +85,13 @@ class ConstraintReader {
                "is for modes hard and rope only (a soft constraint is a spring)");
     if (soft) {
       if (!entry.has("stiffness")) entry.missing("stiffness", "the spring's stiffness in N/m, > 0");
-      const auto k = entry.number("stiffness", stretch_ks_range(), std::nullopt);
-      const auto d = entry.number("damping", spring_kd_range(), 0.0);
+      const auto k = entry.number(key("constraints[].stiffness"));
+      const auto d = entry.number(key("constraints[].damping"));
       ok = ok && k && d;
       if (k) c.stiffness = *k;
       if (d) c.damping = *d;
     } else {
-      const auto tolerance = entry.number("tolerance", constraint_tolerance_range(), 1e-6);
+      const auto tolerance = entry.number(key("constraints[].tolerance"));
       ok = ok && tolerance;
       if (tolerance) c.tolerance = *tolerance;
     }
@@ -105,7 +105,7 @@ class ConstraintReader {
       entry.missing("b", std::string("the other end: ") + kEndForms);
     else
       b = read_end(entry.get("b"), entry.path_of("b"), c.mode);
-    const auto length = entry.number("length", cloth_length_range(), std::nullopt);
+    const auto length = entry.number(key("constraints[].length"), std::nullopt);
     if (entry.has("length") && !length) ok = false;
     if (!ok || !a || !b) return std::nullopt;
     c.a = *a;
@@ -116,7 +116,7 @@ class ConstraintReader {
       c.length = *length;
     } else {
       c.length = rest_distance(c);
-      if (!(c.length >= cloth_length_range().min.value_or(0.0))) {
+      if (!(c.length >= key("constraints[].length").range.min.value_or(0.0))) {
         r_.error(item, path,
                  "has ends " + format_number(c.length) +
                      " m apart at rest; give its length (m, at least 0.001)");
@@ -142,7 +142,7 @@ class ConstraintReader {
       end.particle = *particle;
       return end;
     }
-    MapReader m(r_, node, path, {"point", "collider", "offset"});
+    MapReader m(r_, node, path, key_names("constraints[].b"));
     if (!m.valid()) return std::nullopt;
     if (m.has("point")) {
       if (m.has("collider") || m.has("offset")) {
@@ -151,7 +151,7 @@ class ConstraintReader {
                  "both");
         return std::nullopt;
       }
-      const auto point = m.numbers("point", 3, coordinate_range(), std::nullopt);
+      const auto point = m.numbers(key("constraints[].b.point"));
       if (!point) return std::nullopt;
       end.kind = ConstraintEnd::Kind::point;
       end.point = *point;
@@ -162,7 +162,7 @@ class ConstraintReader {
       return std::nullopt;
     }
     const auto name = m.text("collider", std::nullopt);
-    const auto offset = m.numbers("offset", 3, coordinate_range(), Eigen::Vector3d::Zero());
+    const auto offset = m.numbers(key("constraints[].b.offset"));
     if (!name || !offset) return std::nullopt;
     std::vector<std::string> names;
     for (const Collider& c : scene_.colliders) names.push_back(c.name);

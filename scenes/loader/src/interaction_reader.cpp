@@ -3,7 +3,7 @@
 
 #include "constraint_reader.hpp"
 #include "drapelab/scene/number_format.hpp"
-#include "value_ranges.hpp"
+#include "scene_keys.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -22,21 +22,22 @@ std::optional<std::vector<DragKeyframe>> read_keyframes(SceneReader& r, const YA
   double previous_t = -1.0;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string key_path = path + "." + std::to_string(k);
-    MapReader key(r, list[k], key_path, {"t", "target"});
-    if (!key.valid()) {
+    MapReader frame(r, list[k], key_path, key_names("interactions[].keyframes[]"));
+    if (!frame.valid()) {
       ok = false;
       continue;
     }
-    if (!key.has("t")) key.missing("t", "the keyframe's time in s, >= 0");
-    if (!key.has("target")) key.missing("target", "the point [x, y, z] in m the spring pulls to");
-    const auto t = key.number("t", keyframe_time_range(), std::nullopt);
-    const auto target = key.numbers("target", 3, coordinate_range(), std::nullopt);
+    if (!frame.has("t")) frame.missing("t", "the keyframe's time in s, >= 0");
+    if (!frame.has("target"))
+      frame.missing("target", "the point [x, y, z] in m the spring pulls to");
+    const auto t = frame.number(key("interactions[].keyframes[].t"));
+    const auto target = frame.numbers(key("interactions[].keyframes[].target"));
     if (!t || !target) {
       ok = false;
       continue;
     }
     if (*t <= previous_t) {
-      r.error(key.get("t"), key.path_of("t"),
+      r.error(frame.get("t"), frame.path_of("t"),
               "must be later than the previous keyframe's t = " + format_number(previous_t) +
                   ", got " + format_number(*t));
       ok = false;
@@ -51,13 +52,13 @@ std::optional<std::vector<DragKeyframe>> read_keyframes(SceneReader& r, const YA
 
 std::optional<DragSpec> read_drag(SceneReader& r, const YAML::Node& item, const std::string& path,
                                   const Scene& scene, const ClothModel* model) {
-  MapReader entry(r, item, path, {"type", "particle", "stiffness", "damping", "keyframes"});
+  MapReader entry(r, item, path, key_names("interactions[]"));
   if (!entry.valid()) return std::nullopt;
   bool ok = true;
   if (!entry.has("type"))
     entry.missing("type", "the interaction's kind: drag");
   else
-    ok = entry.choice("type", {"drag"}, std::nullopt).has_value() && ok;
+    ok = entry.choice(key("interactions[].type")).has_value() && ok;
   DragSpec drag;
   std::optional<int> particle;
   if (!entry.has("particle"))
@@ -66,8 +67,8 @@ std::optional<DragSpec> read_drag(SceneReader& r, const YAML::Node& item, const 
     particle =
         read_cloth_particle(r, entry.get("particle"), entry.path_of("particle"), scene, model);
   if (!entry.has("stiffness")) entry.missing("stiffness", "the spring's stiffness in N/m, > 0");
-  const auto stiffness = entry.number("stiffness", stretch_ks_range(), std::nullopt);
-  const auto damping = entry.number("damping", spring_kd_range(), 0.0);
+  const auto stiffness = entry.number(key("interactions[].stiffness"));
+  const auto damping = entry.number(key("interactions[].damping"));
   std::optional<std::vector<DragKeyframe>> keyframes;
   if (!entry.has("keyframes"))
     entry.missing("keyframes", "a list of {t, target}: where the spring pulls, and when");

@@ -19,6 +19,7 @@
 #include "overrides.hpp"
 #include "run_limits.hpp"
 #include "run_memory.hpp"
+#include "scene_keys.hpp"
 #include "solver_reader.hpp"
 #include "start_state.hpp"
 #include "text_checks.hpp"
@@ -35,10 +36,7 @@ class SceneBuilder {
       : r_(reader), cloth_reader_(reader, scene_, folder), start_inside_(start_inside) {}
 
   Scene build(const YAML::Node& root) {
-    MapReader top(
-        r_, root, "",
-        {"name", "description", "duration", "frame_rate", "gravity", "seed", "cloth", "colliders",
-         "constraints", "interactions", "air", "contact", "solvers", "metrics", "output"});
+    MapReader top(r_, root, "", key_names(""));
     if (!top.valid()) return scene_;
     if (const auto name = top.text("name", std::nullopt)) {
       if (const auto problem = name_problem(*name))
@@ -50,12 +48,13 @@ class SceneBuilder {
                               std::to_string(kMaxNameLength) + " characters)");
     }
     scene_.description = top.text("description", "").value_or("");
-    if (const auto duration = top.number("duration", duration_range(), std::nullopt))
+    if (const auto duration = top.number(key("duration")))
       scene_.duration = *duration;
     else if (!top.has("duration"))
       top.missing("duration", "simulated seconds, a number > 0");
-    scene_.frame_rate = top.number("frame_rate", frame_rate_range(), 60.0).value_or(60.0);
-    if (const auto g = top.numbers("gravity", 3, gravity_range(), Eigen::Vector3d(0, -9.81, 0))) {
+    const double frame_rate = default_number(key("frame_rate"));
+    scene_.frame_rate = top.number(key("frame_rate")).value_or(frame_rate);
+    if (const auto g = top.numbers(key("gravity"))) {
       if (g->norm() <= kMaxGravity)
         scene_.gravity = *g;
       else
@@ -63,7 +62,7 @@ class SceneBuilder {
                  "must have a magnitude of at most " + format_number(kMaxGravity) + " m/s^2, got " +
                      format_number(g->norm()));
     }
-    scene_.seed = static_cast<std::uint64_t>(top.integer("seed", seed_range(), 0).value_or(0));
+    scene_.seed = static_cast<std::uint64_t>(top.integer(key("seed")).value_or(0));
 
     check_frame_count(top);
     if (top.has("cloth"))
@@ -106,27 +105,25 @@ class SceneBuilder {
   }
 
   void read_contact(const YAML::Node& node) {
-    MapReader contact(r_, node, "contact",
-                      {"stiffness", "damping", "friction", "static_friction", "triangles"});
+    MapReader contact(r_, node, "contact", key_names("contact"));
     if (!contact.valid()) return;
     ContactSpec& c = scene_.contact;
-    c.stiffness =
-        contact.number("stiffness", contact_stiffness_range(), c.stiffness).value_or(c.stiffness);
-    c.damping = contact.number("damping", contact_damping_range(), c.damping).value_or(c.damping);
-    c.friction = contact.number("friction", friction_range(), c.friction).value_or(c.friction);
+    c.stiffness = contact.number(key("contact.stiffness")).value_or(c.stiffness);
+    c.damping = contact.number(key("contact.damping")).value_or(c.damping);
+    c.friction = contact.number(key("contact.friction")).value_or(c.friction);
     c.static_friction =
-        contact.number("static_friction", friction_range(), c.friction).value_or(c.friction);
+        contact.number(key("contact.static_friction"), c.friction).value_or(c.friction);
     if (c.static_friction < c.friction)
       r_.error(contact.get("static_friction"), "contact.static_friction",
                "must be >= contact.friction (" + format_number(c.friction) + "), got " +
                    format_number(c.static_friction));
-    c.triangles = contact.boolean("triangles", c.triangles).value_or(c.triangles);
+    c.triangles = contact.boolean(key("contact.triangles")).value_or(c.triangles);
   }
 
   // metrics.drape_support: a collider's name (a vertical cylinder or capsule, or a sphere: its
   // horizontal cross-section) or a radius in m (a disc centred under the cloth's centre).
   void read_metrics(const YAML::Node& node) {
-    MapReader metrics(r_, node, "metrics", {"drape_support"});
+    MapReader metrics(r_, node, "metrics", key_names("metrics"));
     if (!metrics.valid() || !metrics.has("drape_support")) return;
     const YAML::Node support = metrics.get("drape_support");
     DrapeSupportSpec spec;
@@ -159,7 +156,8 @@ class SceneBuilder {
       spec.collider = *name;
       spec.disc = *disc;
     } else {
-      const auto radius = r_.number(support, "metrics.drape_support", drape_support_range());
+      const auto radius =
+          r_.number(support, "metrics.drape_support", key("metrics.drape_support").range);
       if (!radius) return;
       spec.disc = {scene_.cloth.grid.center, *radius};
     }
@@ -191,9 +189,9 @@ class SceneBuilder {
   }
 
   void read_output(const YAML::Node& node) {
-    MapReader output(r_, node, "output", {"meshes"});
+    MapReader output(r_, node, "output", key_names("output"));
     if (!output.valid()) return;
-    if (const auto meshes = output.choice("meshes", {"none", "obj", "pc2", "both"}, "none")) {
+    if (const auto meshes = output.choice(key("output.meshes"))) {
       if (*meshes == "obj")
         scene_.output.meshes = MeshOutput::obj;
       else if (*meshes == "pc2")

@@ -8,6 +8,7 @@
 #include "drapelab/scene/number_format.hpp"
 #include "drapelab/stability.hpp"
 #include "run_limits.hpp"
+#include "scene_keys.hpp"
 #include "step_rates.hpp"
 #include "text_checks.hpp"
 #include "value_ranges.hpp"
@@ -18,14 +19,6 @@ namespace {
 // vbd without a dt: two steps per 60 Hz frame (docs/physics.md, "Vertex block descent": the step
 // and sweep count at which the drape scenes keep their stretch and penetration).
 constexpr double kVbdDefaultStep = 1.0 / 120.0;  // s
-
-const std::vector<std::string> kSolverCommonKeys = {"name",     "type",      "dt",
-                                                    "round_dt", "max_speed", "runaway_stretch"};
-const std::vector<std::string> kSpringDamperKeys = {"integrator", "host",  "implicit",
-                                                    "vbd",        "model", "adaptive_substeps"};
-const std::vector<std::string> kBulletSoftBodyKeys = {"iterations", "margin", "voxel_size",
-                                                      "collider_margin", "kLST"};
-const std::vector<std::string> kBulletDeformableKeys = {"margin", "voxel_size", "collider_margin"};
 
 class SolverReader {
  public:
@@ -38,18 +31,12 @@ class SolverReader {
     SolverType type = SolverType::spring_damper;
     record_key_lines(r_, node, path);
     if (node.IsMap() && node["type"].IsDefined()) {
-      std::vector<std::string> names;
-      for (const SolverType known : kSolverTypes) names.emplace_back(solver_type_name(known));
-      const auto chosen = r_.choice(node["type"], path + ".type", names);
+      const auto chosen =
+          r_.choice(node["type"], path + ".type", key_choices(key("solvers[].type")));
       if (!chosen) return std::nullopt;
       type = *parse_solver_type(*chosen);
     }
-    std::vector<std::string> allowed = kSolverCommonKeys;
-    const auto& own = type == SolverType::spring_damper     ? kSpringDamperKeys
-                      : type == SolverType::bullet_softbody ? kBulletSoftBodyKeys
-                                                            : kBulletDeformableKeys;
-    allowed.insert(allowed.end(), own.begin(), own.end());
-    MapReader solver(r_, node, path, allowed);
+    MapReader solver(r_, node, path, key_names("solvers[]", solver_type_name(type)));
     if (!solver.valid()) return std::nullopt;
     const std::size_t errors_before = r_.error_count();
     SolverSpec spec;
@@ -60,33 +47,32 @@ class SolverReader {
     if (type == SolverType::spring_damper) {
       read_integrator(solver, path, spec);
       const bool cloth_continuum = scene_.cloth.grid.continuum.has_value();
-      spec.continuum =
-          solver
-              .choice("model", {"springs", "continuum"}, cloth_continuum ? "continuum" : "springs")
-              .value_or(cloth_continuum ? "continuum" : "springs") == "continuum";
+      const std::string model = cloth_continuum ? "continuum" : "springs";  // the cloth's
+      spec.continuum = solver.choice(key("solvers[].model"), model).value_or(model) == "continuum";
       if (spec.continuum && model_ && model_->triangles.cols() == 0)
         r_.error(solver.get("model"), path + ".model",
                  "is continuum, which needs a two-dimensional cloth; this cloth is a chain, with "
                  "no triangles: use model: springs");
       // A plugin in a Bullet world (default), or stepped bare, without Bullet.
-      spec.bullet_host =
-          solver.choice("host", {"bullet", "none"}, "bullet").value_or("bullet") == "bullet";
+      const std::string host = default_choice(key("solvers[].host"));
+      spec.bullet_host = solver.choice(key("solvers[].host")).value_or(host) == "bullet";
       read_adaptive_substeps(solver, path, spec);
     } else
       read_bullet_options(solver, spec);
     const double frame_period = scene_.frame_period();
     if (solver.has("dt"))
-      spec.dt = solver.number("dt", Range::positive(), std::nullopt).value_or(frame_period);
+      spec.dt = solver.number(key("solvers[].dt"), std::nullopt).value_or(frame_period);
     else
       spec.dt = automatic_step(spec);
     estimate_cost(spec);
-    spec.round_dt = solver.boolean("round_dt", false).value_or(false);
+    spec.round_dt = solver.boolean(key("solvers[].round_dt")).value_or(false);
     const double free_fall_speed = scene_.gravity.norm() * std::max(scene_.duration, 0.0);  // m/s
     const double default_max_speed = 100.0 + 2.0 * free_fall_speed;
-    spec.max_speed = solver.number("max_speed", max_speed_range(), default_max_speed)
-                         .value_or(default_max_speed);
+    spec.max_speed =
+        solver.number(key("solvers[].max_speed"), default_max_speed).value_or(default_max_speed);
+    const double runaway_stretch = default_number(key("solvers[].runaway_stretch"));
     spec.runaway_stretch =
-        solver.number("runaway_stretch", runaway_stretch_range(), 10.0).value_or(10.0);
+        solver.number(key("solvers[].runaway_stretch")).value_or(runaway_stretch);
     if (r_.error_count() != errors_before) return std::nullopt;
     if (!whole_steps_per_frame(solver, path, spec)) return std::nullopt;
     return spec;
@@ -96,8 +82,8 @@ class SolverReader {
   void read_integrator(MapReader& solver, const std::string& path, SolverSpec& spec) {
     spec.integrator_named = solver.has("integrator");
     if (solver.has("integrator"))
-      if (const auto name =
-              r_.choice(solver.get("integrator"), path + ".integrator", integrator_names()))
+      if (const auto name = r_.choice(solver.get("integrator"), path + ".integrator",
+                                      key_choices(key("solvers[].integrator"))))
         spec.integrator = *parse_integrator(*name);
     read_vbd(solver, path, spec);
     if (!solver.has("implicit")) return;
@@ -108,15 +94,14 @@ class SolverReader {
       return;
     }
     MapReader implicit(r_, solver.get("implicit"), solver.path_of("implicit"),
-                       {"tolerance", "max_iterations"});
+                       key_names("solvers[].implicit"));
     if (!implicit.valid()) return;
-    const ImplicitSolveSettings defaults;
+    const ImplicitSolveSettings defaults;  // the table's (test_scene_keys.cpp)
     spec.implicit.tolerance =
-        implicit.number("tolerance", {0.0, false, 1.0, false}, defaults.tolerance)
-            .value_or(defaults.tolerance);
-    spec.implicit.max_iterations = static_cast<int>(
-        implicit.integer("max_iterations", {1.0, true, 1e6, true}, defaults.max_iterations)
-            .value_or(defaults.max_iterations));
+        implicit.number(key("solvers[].implicit.tolerance")).value_or(defaults.tolerance);
+    spec.implicit.max_iterations =
+        static_cast<int>(implicit.integer(key("solvers[].implicit.max_iterations"))
+                             .value_or(defaults.max_iterations));
   }
 
   void read_vbd(MapReader& solver, const std::string& path, SolverSpec& spec) {
@@ -127,23 +112,19 @@ class SolverReader {
                    std::string(integrator_name(spec.integrator)) + ")");
       return;
     }
-    MapReader vbd(r_, solver.get("vbd"), solver.path_of("vbd"),
-                  {"iterations", "order", "chebyshev_rho", "friction_velocity", "coarse"});
+    MapReader vbd(r_, solver.get("vbd"), solver.path_of("vbd"), key_names("solvers[].vbd"));
     if (!vbd.valid()) return;
-    const VbdSettings defaults;
-    spec.vbd.iterations =
-        static_cast<int>(vbd.integer("iterations", {1.0, true, 1e4, true}, defaults.iterations)
-                             .value_or(defaults.iterations));
-    spec.vbd.order = static_cast<int>(
-        vbd.integer("order", {1.0, true, 2.0, true}, defaults.order).value_or(defaults.order));
+    const VbdSettings defaults;  // the table's (test_scene_keys.cpp)
+    spec.vbd.iterations = static_cast<int>(
+        vbd.integer(key("solvers[].vbd.iterations")).value_or(defaults.iterations));
+    spec.vbd.order =
+        static_cast<int>(vbd.integer(key("solvers[].vbd.order")).value_or(defaults.order));
     spec.vbd.coarse_correction =
-        vbd.boolean("coarse", defaults.coarse_correction).value_or(defaults.coarse_correction);
+        vbd.boolean(key("solvers[].vbd.coarse")).value_or(defaults.coarse_correction);
     spec.vbd.chebyshev_rho =
-        vbd.number("chebyshev_rho", {0.0, true, 1.0, false}, defaults.chebyshev_rho)
-            .value_or(defaults.chebyshev_rho);
+        vbd.number(key("solvers[].vbd.chebyshev_rho")).value_or(defaults.chebyshev_rho);
     spec.vbd.friction_velocity =
-        vbd.number("friction_velocity", {0.0, false, 10.0, true}, defaults.friction_velocity)
-            .value_or(defaults.friction_velocity);
+        vbd.number(key("solvers[].vbd.friction_velocity")).value_or(defaults.friction_velocity);
   }
 
   // Adaptive substeps follow symplectic Euler's stable step as the shape changes: its damped
@@ -151,7 +132,7 @@ class SolverReader {
   // bound is built from the springs, so the continuum model, which our solver uses in their place,
   // has none.
   void read_adaptive_substeps(MapReader& solver, const std::string& path, SolverSpec& spec) {
-    spec.adaptive_substeps = solver.boolean("adaptive_substeps", false).value_or(false);
+    spec.adaptive_substeps = solver.boolean(key("solvers[].adaptive_substeps")).value_or(false);
     if (spec.adaptive_substeps && spec.integrator != Integrator::symplectic_euler)
       r_.error(solver.get("adaptive_substeps"), path + ".adaptive_substeps",
                "needs integrator symplectic_euler, whose stable step the shape bound gives exactly "
@@ -170,20 +151,23 @@ class SolverReader {
   void read_bullet_options(MapReader& solver, SolverSpec& spec) {
     if (spec.type == SolverType::bullet_softbody)
       spec.iterations =
-          static_cast<int>(solver.integer("iterations", {1.0, true, 1000.0, true}, 1).value_or(1));
+          static_cast<int>(solver.integer(key("solvers[].iterations"))
+                               .value_or(default_integer(key("solvers[].iterations"))));
     const double thickness = scene_.cloth.grid.thickness;  // every shape's thickness lives in grid
-    spec.margin = solver.number("margin", bullet_length_range(), thickness).value_or(thickness);
+    spec.margin = solver.number(key("solvers[].margin"), thickness).value_or(thickness);
+    const double collider_margin = default_number(key("solvers[].collider_margin"));
     spec.collider_margin =
-        solver.number("collider_margin", bullet_length_range(), 1e-3).value_or(1e-3);
+        solver.number(key("solvers[].collider_margin")).value_or(collider_margin);
     const double voxel = bullet::default_voxel_size(scene_.colliders, spec.margin);
-    spec.voxel_size = solver.number("voxel_size", bullet_length_range(), voxel).value_or(voxel);
+    spec.voxel_size = solver.number(key("solvers[].voxel_size"), voxel).value_or(voxel);
     if (!solver.has("kLST")) return;
-    MapReader raw(r_, solver.get("kLST"), solver.path_of("kLST"), {"stretch", "shear", "bend"});
+    MapReader raw(r_, solver.get("kLST"), solver.path_of("kLST"), key_names("solvers[].kLST"));
     if (!raw.valid()) return;
-    const Range unit{0.0, true, 1.0, true};
-    const char* kinds[] = {"stretch", "shear", "bend"};
+    // In the order of link_stiffness: stretch, shear, bend.
+    const SceneKey* kinds[] = {&key("solvers[].kLST.stretch"), &key("solvers[].kLST.shear"),
+                               &key("solvers[].kLST.bend")};
     for (int k = 0; k < 3; ++k)
-      if (raw.has(kinds[k])) spec.link_stiffness[k] = raw.number(kinds[k], unit, std::nullopt);
+      if (raw.has(std::string(kinds[k]->name()))) spec.link_stiffness[k] = raw.number(*kinds[k]);
   }
 
   // Without a dt: our solver takes 0.9 of its integrator's stable step estimate on its springs,

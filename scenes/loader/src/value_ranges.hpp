@@ -22,65 +22,65 @@ inline constexpr double kMaxDirection = 1e6;    // each component of an axis or 
 inline constexpr double kMinDirection = 1e-12;  // the smallest length of an axis or normal
 
 // Positions (m): centres, points, keyframe centres.
-inline Range coordinate_range() { return {-kMaxCoordinate, true, kMaxCoordinate, true}; }
-inline Range angle_range() { return {-kMaxAngle, true, kMaxAngle, true}; }  // deg
-inline Range direction_range() { return {-kMaxDirection, true, kMaxDirection, true}; }
-inline Range gravity_range() { return {-kMaxGravity, true, kMaxGravity, true}; }  // m/s^2
+constexpr Range coordinate_range() { return {-kMaxCoordinate, true, kMaxCoordinate, true}; }
+constexpr Range angle_range() { return {-kMaxAngle, true, kMaxAngle, true}; }  // deg
+constexpr Range direction_range() { return {-kMaxDirection, true, kMaxDirection, true}; }
+constexpr Range gravity_range() { return {-kMaxGravity, true, kMaxGravity, true}; }  // m/s^2
 
 // Time (s) and rate (1/s).
-inline Range duration_range() { return {0.0, false, 1e8, true}; }
-inline Range frame_rate_range() { return {0.0, false, 1e6, true}; }
-inline Range keyframe_time_range() { return {0.0, true, 1e8, true}; }
+constexpr Range duration_range() { return {0.0, false, 1e8, true}; }
+constexpr Range frame_rate_range() { return {0.0, false, 1e6, true}; }
+constexpr Range keyframe_time_range() { return {0.0, true, 1e8, true}; }
 
 // The cloth.
-inline Range cloth_length_range() { return {1e-3, true, 1e3, true}; }  // m: size, radius, extent
-inline Range mesh_scale_range() { return {1e-6, true, 1e6, true}; }
-inline Range mass_range() { return {1e-9, true, 1e6, true}; }           // kg
-inline Range areal_density_range() { return {1e-6, true, 1e3, true}; }  // kg/m^2
-inline Range thickness_range() { return {1e-6, true, 1.0, true}; }      // m
-inline Range perturbation_range() { return {0.0, true, 1.0, true}; }    // m
-inline Range air_damping_range() { return {0.0, true, 1e4, true}; }     // 1/s
-inline Range stretch_ks_range() { return {0.0, false, 1e12, true}; }    // N/m
-inline Range spring_ks_range() { return {0.0, true, 1e12, true}; }      // N/m: shear, bend
-inline Range spring_kd_range() { return {0.0, true, 1e9, true}; }       // N*s/m
-inline Range pin_radius_range() { return {0.0, false, 1e5, true}; }     // m
+constexpr Range cloth_length_range() { return {1e-3, true, 1e3, true}; }  // m: size, radius, extent
+constexpr Range mesh_scale_range() { return {1e-6, true, 1e6, true}; }
+constexpr Range mass_range() { return {1e-9, true, 1e6, true}; }           // kg
+constexpr Range areal_density_range() { return {1e-6, true, 1e3, true}; }  // kg/m^2
+constexpr Range thickness_range() { return {1e-6, true, 1.0, true}; }      // m
+constexpr Range perturbation_range() { return {0.0, true, 1.0, true}; }    // m
+constexpr Range air_damping_range() { return {0.0, true, 1e4, true}; }     // 1/s
+constexpr Range stretch_ks_range() { return {0.0, false, 1e12, true}; }    // N/m
+constexpr Range spring_ks_range() { return {0.0, true, 1e12, true}; }      // N/m: shear, bend
+constexpr Range spring_kd_range() { return {0.0, true, 1e9, true}; }       // N*s/m
+constexpr Range pin_radius_range() { return {0.0, false, 1e5, true}; }     // m
 
 // The continuum model (cloth.continuum).
-inline Range stretch_modulus_range() { return {0.0, false, 1e12, true}; }   // N/m
-inline Range poisson_range() { return {0.0, true, 0.5, false}; }            // [0, 0.5)
-inline Range bending_rigidity_range() { return {0.0, true, 1e3, true}; }    // N*m
-inline Range continuum_damping_range() { return {0.0, true, 10.0, true}; }  // s
+constexpr Range stretch_modulus_range() { return {0.0, false, 1e12, true}; }   // N/m
+constexpr Range poisson_range() { return {0.0, true, 0.5, false}; }            // [0, 0.5)
+constexpr Range bending_rigidity_range() { return {0.0, true, 1e3, true}; }    // N*m
+constexpr Range continuum_damping_range() { return {0.0, true, 10.0, true}; }  // s
 
 // Colliders and contact.
-inline Range collider_size_range() { return {1e-6, true, 1e4, true}; }     // m
-inline Range velocity_range() { return {-1e3, true, 1e3, true}; }          // m/s
-inline Range angular_velocity_range() { return {-1e5, true, 1e5, true}; }  // deg/s
-inline Range friction_range() { return {0.0, true, 100.0, true}; }
-inline Range contact_stiffness_range() { return {0.0, false, 1e12, true}; }  // N/m
-inline Range contact_damping_range() { return {0.0, true, 1e9, true}; }      // N*s/m
-inline Range drape_support_range() { return {0.0, false, 1e4, true}; }       // m
+constexpr Range collider_size_range() { return {1e-6, true, 1e4, true}; }     // m
+constexpr Range velocity_range() { return {-1e3, true, 1e3, true}; }          // m/s
+constexpr Range angular_velocity_range() { return {-1e5, true, 1e5, true}; }  // deg/s
+constexpr Range friction_range() { return {0.0, true, 100.0, true}; }
+constexpr Range contact_stiffness_range() { return {0.0, false, 1e12, true}; }  // N/m
+constexpr Range contact_damping_range() { return {0.0, true, 1e9, true}; }      // N*s/m
+constexpr Range drape_support_range() { return {0.0, false, 1e4, true}; }       // m
 
 // Solvers.
-inline Range max_speed_range() { return {0.0, false, 1e12, true}; }       // m/s
-inline Range runaway_stretch_range() { return {0.0, false, 1e6, true}; }  // of the rest length
-inline Range bullet_length_range() { return {1e-7, true, 1.0, true}; }    // m: margins, voxel size
+constexpr Range max_speed_range() { return {0.0, false, 1e12, true}; }       // m/s
+constexpr Range runaway_stretch_range() { return {0.0, false, 1e6, true}; }  // of the rest length
+constexpr Range bullet_length_range() { return {1e-7, true, 1.0, true}; }  // m: margins, voxel size
 
 // Whole numbers, each checked before it is converted to an int.
-inline Range resolution_range() { return {1.0, true, 1e6, true}; }
-inline Range rings_range() { return {1.0, true, 1000.0, true}; }
-inline Range particle_index_range() {
+constexpr Range resolution_range() { return {1.0, true, 1e6, true}; }
+constexpr Range rings_range() { return {1.0, true, 1000.0, true}; }
+constexpr Range particle_index_range() {
   return {0.0, true, static_cast<double>(kMaxClothParticles - 1), true};
 }
-inline Range grid_coordinate_range() { return {0.0, true, 1e6 - 1.0, true}; }
+constexpr Range grid_coordinate_range() { return {0.0, true, 1e6 - 1.0, true}; }
 // air: density (kg/m^3), drag and lift coefficients, wind (m/s per component), gusts.
-inline Range air_density_range() { return {0.0, true, 1e4, true}; }
-inline Range air_coefficient_range() { return {0.0, true, 100.0, true}; }
-inline Range wind_range() { return {-1000.0, true, 1000.0, true}; }
-inline Range gust_amplitude_range() { return {0.0, true, 1000.0, true}; }
-inline Range gust_period_range() { return {1e-3, true, 1e6, true}; }
-inline Range turbulence_length_range() { return {1e-3, true, 1e4, true}; }  // m
+constexpr Range air_density_range() { return {0.0, true, 1e4, true}; }
+constexpr Range air_coefficient_range() { return {0.0, true, 100.0, true}; }
+constexpr Range wind_range() { return {-1000.0, true, 1000.0, true}; }
+constexpr Range gust_amplitude_range() { return {0.0, true, 1000.0, true}; }
+constexpr Range gust_period_range() { return {1e-3, true, 1e6, true}; }
+constexpr Range turbulence_length_range() { return {1e-3, true, 1e4, true}; }  // m
 // constraints[].tolerance: the largest relative length error a hard or rope projection leaves.
-inline Range constraint_tolerance_range() { return {1e-12, true, 0.1, true}; }
-inline Range seed_range() { return {0.0, true, 9.2e18, true}; }
+constexpr Range constraint_tolerance_range() { return {1e-12, true, 0.1, true}; }
+constexpr Range seed_range() { return {0.0, true, 9.2e18, true}; }
 
 }  // namespace drapelab::scene

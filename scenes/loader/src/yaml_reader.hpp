@@ -14,6 +14,8 @@
 
 namespace drapelab::scene {
 
+struct SceneKey;  // scene_key.hpp
+
 // The most errors a load lists; the rest are counted in one line after them.
 inline constexpr std::size_t kMaxListedErrors = 20;
 // The longest error line, in bytes (values in it are cut shorter still: text_checks.hpp).
@@ -26,9 +28,9 @@ struct Range {
   std::optional<double> max;
   bool max_inclusive = true;
 
-  static Range any() { return {}; }
-  static Range positive() { return {0.0, false, std::nullopt, true}; }
-  static Range non_negative() { return {0.0, true, std::nullopt, true}; }
+  static constexpr Range any() { return {}; }
+  static constexpr Range positive() { return {0.0, false, std::nullopt, true}; }
+  static constexpr Range non_negative() { return {0.0, true, std::nullopt, true}; }
   bool contains(double value) const;
   std::string describe() const;  // "> 0", ">= 0 and <= 1", ...
   // For a value outside the range: the bound it breaks ("must be <= 10000"), and the whole range
@@ -107,6 +109,19 @@ class MapReader {
   std::optional<std::string> choice(const std::string& key, const std::vector<std::string>& choices,
                                     std::optional<std::string> fallback);
   std::optional<Eigen::VectorXd> numbers(const std::string& key, int size, const Range& range,
+                                         std::optional<Eigen::VectorXd> fallback);
+
+  // The same by a row of the key table (scene_key.hpp): its name, range, size and choices. The
+  // first form falls back on the row's default (none unless Given::value); the second on the one
+  // given, for a default computed from other keys or a preset (scene_keys.cpp).
+  std::optional<double> number(const SceneKey& key);
+  std::optional<double> number(const SceneKey& key, std::optional<double> fallback);
+  std::optional<long long> integer(const SceneKey& key);
+  std::optional<bool> boolean(const SceneKey& key);
+  std::optional<std::string> choice(const SceneKey& key);
+  std::optional<std::string> choice(const SceneKey& key, std::optional<std::string> fallback);
+  std::optional<Eigen::VectorXd> numbers(const SceneKey& key);
+  std::optional<Eigen::VectorXd> numbers(const SceneKey& key,
                                          std::optional<Eigen::VectorXd> fallback);
 
  private:
