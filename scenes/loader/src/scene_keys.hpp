@@ -10,6 +10,7 @@
 #include "scene_key.hpp"
 #include "scene_keys_cloth.hpp"
 #include "scene_keys_colliders.hpp"
+#include "scene_keys_fabric.hpp"
 #include "scene_keys_solvers.hpp"
 #include "scene_keys_top.hpp"
 
