@@ -88,7 +88,11 @@ const std::vector<std::string> kMetricsColumns = {"solver",
                                                   "elastic_energy",
                                                   "contact_energy",
                                                   "constraint_energy",
-                                                  "total_energy"};
+                                                  "total_energy",
+                                                  "external_work",
+                                                  "dissipated",
+                                                  "energy_error",
+                                                  "self_contact_energy"};
 const std::vector<std::string> kCompareColumns = {
     "solver_a", "solver_b", "frame", "time", "rms_distance", "max_distance", "hausdorff_distance"};
 const std::vector<std::string> kContactsColumns = {
@@ -96,9 +100,9 @@ const std::vector<std::string> kContactsColumns = {
     "contact_count", "normal_force", "friction_force", "max_penetration"};
 // Empty while the scene has no colliders and no drape support.
 const std::vector<std::string> kEmptyMetricsColumns = {
-    "min_clearance",     "max_penetration", "contact_count",
-    "drape_coefficient", "drape_nodes",     "triangle_penetration",
-    "constraint_error",  "contact_energy",  "constraint_energy"};
+    "min_clearance",     "max_penetration",      "contact_count",    "drape_coefficient",
+    "drape_nodes",       "triangle_penetration", "constraint_error", "contact_energy",
+    "constraint_energy", "self_contact_energy"};
 
 // A parsed CSV file: header and rows, each row a map from column name to cell.
 struct Csv {
@@ -285,6 +289,20 @@ TEST_F(Cli, MetricsCsvHasEveryColumnAndOneRowPerFrame) {
   EXPECT_EQ(std::stod(csv.cell(0, "time")), 0.0);
   // The cloth falls: its centroid is lower at the last frame than at frame 0.
   EXPECT_LT(std::stod(csv.cell(kFrames, "centroid_y")), std::stod(csv.cell(0, "centroid_y")));
+  // The balance: energy_error is total + dissipated - external work less its start (nothing
+  // drives this sheet), and small beside the kinetic energy the fall gave.
+  const double start = std::stod(csv.cell(0, "total_energy"));  // J
+  for (std::size_t r = 0; r < csv.rows.size(); ++r) {
+    const double total = std::stod(csv.cell(r, "total_energy"));
+    const double dissipated = std::stod(csv.cell(r, "dissipated"));
+    EXPECT_EQ(std::stod(csv.cell(r, "external_work")), 0.0);
+    EXPECT_NEAR(std::stod(csv.cell(r, "energy_error")), total + dissipated - start,
+                1e-12 * std::abs(start));
+  }
+  const double dissipated = std::stod(csv.cell(kFrames, "dissipated"));
+  EXPECT_GT(dissipated, 0.0);
+  EXPECT_LT(std::abs(std::stod(csv.cell(kFrames, "energy_error"))),
+            0.05 * std::stod(csv.cell(kFrames, "kinetic_energy")));
 }
 
 // The mesh audits for every solver: the sheet of kSmall, free, on a sphere 5 mm (its thickness)
