@@ -154,21 +154,8 @@ void ContactPass::finish_contact(ContactBlockWork& record, std::size_t e, double
   double friction_magnitude = 0.0;
   Eigen::Vector3d on_cloth = fn * touching.normal;                                  // N
   const Eigen::Vector3d relative_velocity = v_.col(i) - touching.surface_velocity;  // m/s
-  const double stiffness = contacts_.parameters().stiffness;                        // N/m
-  PowerSplit power;
-  if (normal_scheme_ == ContactNormalScheme::linearly_implicit) {
-    // The end-of-step push moves the particle at the velocity it predicts, u' (with every push of
-    // the particle in), while the depth goes from d to d - h u': its spring part is the mean,
-    // k (d - h u' / 2), and the rest (the damper and the implicit spring's own loss,
-    // k h u'^2 / 2) dissipates.
-    const Eigen::Vector3d predicted = relative_velocity + (h_ / model_.mass[i]) * force_.col(i);
-    const double closing = predicted.dot(touching.normal);  // m/s, u'
-    power = push_power(fn, stiffness * (touching.depth - 0.5 * h_ * closing), touching.normal,
-                       predicted, touching.surface_velocity);
-  } else {
-    power = push_power(fn, stiffness * touching.depth, touching.normal, relative_velocity,
-                       touching.surface_velocity);
-  }
+  PowerSplit power = push_power(fn, contacts_.parameters().stiffness * touching.depth,
+                                touching.normal, relative_velocity, touching.surface_velocity);
   if (fn > 0.0 && collider.static_friction > 0.0) {
     const double mass = model_.mass[i];
     const Eigen::Vector3d trial = relative_velocity + (h_ / mass) * force_.col(i);
