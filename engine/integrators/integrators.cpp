@@ -1,5 +1,4 @@
-// Integrator names and properties. The Euler pair's updates are passes of particle_loops.hpp; the
-// other schemes are in explicit_schemes.cpp and implicit_euler.cpp.
+// Integrator names and properties. The schemes themselves are in schemes/.
 #include "drapelab/integrators.hpp"
 
 #include <cmath>

@@ -175,4 +175,32 @@ double stable_step_estimate(const ClothModel& model, double air_damping, Contact
                          ratio_bounds_step ? damping_ratio_step(model, contact) : 0.0);
 }
 
+DefaultStep default_step(const ClothModel& model, Integrator integrator, bool adaptive_substeps,
+                         double air_damping, ContactRates contact, const ParticleRates& extra) {
+  DefaultStep chosen;
+  if (adaptive_substeps) {
+    chosen.step = kAdaptiveOuterStep;
+    return chosen;
+  }
+  if (integrator == Integrator::implicit_euler) {
+    chosen.step = kImplicitEulerDefaultStep;
+    return chosen;
+  }
+  if (integrator == Integrator::vbd) {
+    chosen.step = kVbdDefaultStep;
+    return chosen;
+  }
+  chosen.from_stable_step = true;
+  chosen.bound_integrator = integrator;
+  chosen.bound = stable_step_estimate(model, air_damping, contact, integrator, extra);
+  chosen.factor = 0.9;
+  if (chosen.bound == 0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step
+    chosen.bound = symplectic_euler_stable_step(model, air_damping, contact);
+    chosen.bound_integrator = Integrator::symplectic_euler;
+    chosen.factor = 0.1;
+  }
+  chosen.step = chosen.factor * chosen.bound;
+  return chosen;
+}
+
 }  // namespace drapelab

@@ -1,11 +1,9 @@
 // Time integrators for the particle system M x'' = f(x, v). Pinned particles (inverse mass 0) keep
 // their position and a zero velocity under every scheme.
 //
-// The single-evaluation updates (both Euler schemes) are per-particle passes (particle_loops.hpp);
-// the multi-stage schemes (midpoint, RK4), the two-level schemes (Verlet, leapfrog) and implicit
-// Euler need the solver's force evaluation and live in spring_damper_solver / explicit_schemes.cpp
-// / implicit_euler.hpp. Each scheme's update, its order, its force evaluations per step and its
-// stability on x'' = -w^2 x:
+// Each family of schemes is a unit of the solver's engine/integrators/schemes/ (make_scheme.cpp
+// says which runs each integrator). Each scheme's update, its order, its force evaluations per step
+// and its stability on x'' = -w^2 x:
 //
 // clang-format off
 //   scheme            update                                         order  evals  stable undamped
@@ -35,7 +33,7 @@ enum class Integrator {
   symplectic_euler,  // v(n+1) = v(n) + a(n) h,  x(n+1) = x(n) + v(n+1) h    (semi-implicit Euler)
   midpoint,          // explicit midpoint rule (RK2)
   rk4,               // classic fourth-order Runge-Kutta
-  verlet,            // position (Stoermer) Verlet; velocity estimated, see explicit_schemes.cpp
+  verlet,            // position (Stoermer) Verlet; velocity estimated (two_level_schemes.cpp)
   leapfrog,          // kick-drift-kick (velocity Verlet)
   implicit_euler,    // backward Euler linearised once per step (Baraff & Witkin 1998)
   vbd,  // backward Euler minimised by vertex block descent (Chen et al. 2024), a fixed budget

@@ -87,4 +87,24 @@ double step_from_rates(const NetworkRates& rates, Integrator integrator, double 
 double stable_step_estimate(const ClothModel& model, double air_damping, ContactRates contact,
                             Integrator integrator, const ParticleRates& extra = {});
 
+// The step our solver takes when a scene gives none, as each integrator asks for it: its own
+// default for the schemes with one (implicit Euler 1/240 s, vbd 1/120 s, the adaptive substeps'
+// outer step 1/120 s), otherwise a safety factor times its stable step estimate (0.9), or, for
+// explicit Euler and midpoint on an undamped spring (no stable step at all), 0.1 times symplectic
+// Euler's.
+constexpr double kImplicitEulerDefaultStep = 1.0 / 240.0;  // s
+constexpr double kVbdDefaultStep = 1.0 / 120.0;            // s: two steps per 60 Hz frame
+constexpr double kAdaptiveOuterStep = 1.0 / 120.0;         // s: the substeps follow the shape
+struct DefaultStep {
+  double step = 0.0;  // s
+  // How it was found: the scheme's own default (false), or `factor` times `bound` (s), the stable
+  // step estimate of `bound_integrator`.
+  bool from_stable_step = false;
+  double factor = 1.0;
+  double bound = 0.0;  // s
+  Integrator bound_integrator = Integrator::symplectic_euler;
+};
+DefaultStep default_step(const ClothModel& model, Integrator integrator, bool adaptive_substeps,
+                         double air_damping, ContactRates contact, const ParticleRates& extra = {});
+
 }  // namespace drapelab

@@ -16,10 +16,6 @@
 namespace drapelab::scene {
 namespace {
 
-// vbd without a dt: two steps per 60 Hz frame (docs/physics.md, "Vertex block descent": the step
-// and sweep count at which the drape scenes keep their stretch and penetration).
-constexpr double kVbdDefaultStep = 1.0 / 120.0;  // s
-
 class SolverReader {
  public:
   SolverReader(SceneReader& r, const Scene& scene, const ClothModel* model,
@@ -170,15 +166,11 @@ class SolverReader {
       if (raw.has(std::string(kinds[k]->name()))) spec.link_stiffness[k] = raw.number(*kinds[k]);
   }
 
-  // Without a dt: our solver takes 0.9 of its integrator's stable step estimate on its springs,
-  // dampers and contact (stability.hpp; explicit Euler and midpoint 0.1 of the symplectic bound
-  // when some spring is undamped, since they have no stable step then), and implicit Euler 1/240 s
-  // (four steps per 60 Hz frame: large steps are its point, but contacts and friction are explicit
-  // in it); Bullet's classic cloth the step where its stiffness mapping holds, ks w h^2 = 0.1. All
-  // are rounded down to a whole number of steps per frame. With adaptive substeps, 1/120 s: the
-  // solver re-evaluates its shape's stable step at every step and splits the step to fit (every
-  // scene of scenes/ stays stable with one evaluation per 60 Hz frame; the evaluation costs about
-  // five substeps).
+  // Without a dt: our solver takes the step its integrator asks for (default_step,
+  // stability.hpp): its own default, or a share of its stable step estimate on the springs,
+  // dampers, contact and the forces between particles. Bullet's classic cloth takes the step where
+  // its stiffness mapping holds, ks w h^2 = 0.1; the deformable cloth 0.9 of its explicit springs'
+  // stable step. All are rounded down to a whole number of steps per frame.
   double automatic_step(SolverSpec& spec) {
     const double frame_period = scene_.frame_period();
     if (!model_ || r_.error_count() > 0) return frame_period;  // the scene is refused anyway
@@ -198,29 +190,12 @@ class SolverReader {
       const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
       if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);
       reason = "0.9 x the stable step of its explicit springs";
-    } else if (spec.adaptive_substeps) {
-      target = 1.0 / 120.0;
-      reason = "1/120 s: the solver splits each step into the substeps its current shape needs";
-    } else if (spec.integrator == Integrator::implicit_euler) {
-      target = 1.0 / 240.0;
-      reason = "implicit Euler's default of 1/240 s";
-    } else if (spec.integrator == Integrator::vbd) {
-      target = kVbdDefaultStep;
-      reason = "vbd's default of 1/120 s with " + std::to_string(spec.vbd.iterations) +
-               " sweeps per step";
     } else {
-      double bound = stable_step_estimate(model, scene_.cloth.air_damping, scene_.contact_rates(),
-                                          spec.integrator, explicit_particle_rates(scene_, model));
-      double factor = 0.9;
-      if (bound ==
-          0.0) {  // an undamped spring: explicit Euler or midpoint has no stable step at all
-        bound =
-            symplectic_euler_stable_step(model, scene_.cloth.air_damping, scene_.contact_rates());
-        factor = 0.1;
-      }
-      target = factor * bound;
-      reason = format_number(factor) + " x the " + integrator_name(spec.integrator) +
-               " stable step estimate " + format_number(bound) + " s";
+      const DefaultStep chosen =
+          default_step(model, spec.integrator, spec.adaptive_substeps, scene_.cloth.air_damping,
+                       scene_.contact_rates(), explicit_particle_rates(scene_, model));
+      target = chosen.step;
+      reason = default_step_reason(spec, chosen);
     }
     const double steps = std::max(1.0, std::ceil(frame_period / target));
     spec.note =
@@ -229,6 +204,18 @@ class SolverReader {
     if (spec.type == SolverType::spring_damper && !spec.integrator_named && !spec.adaptive_substeps)
       return choose_integrator(spec, model, dt);
     return dt;
+  }
+
+  // Why the engine's default step is what it is, for the resolved scene's note.
+  static std::string default_step_reason(const SolverSpec& spec, const DefaultStep& chosen) {
+    if (chosen.from_stable_step)
+      return format_number(chosen.factor) + " x the " + integrator_name(spec.integrator) +
+             " stable step estimate " + format_number(chosen.bound) + " s";
+    if (spec.adaptive_substeps)
+      return "1/120 s: the solver splits each step into the substeps its current shape needs";
+    if (spec.integrator == Integrator::implicit_euler) return "implicit Euler's default of 1/240 s";
+    return "vbd's default of 1/120 s with " + std::to_string(spec.vbd.iterations) +
+           " sweeps per step";
   }
 
   // No integrator named and no dt: symplectic Euler at its stable step, unless that would take over

@@ -1,0 +1,72 @@
+// Vertex block descent as a scheme. The contacts between particles are found at the step's start:
+// their pushes enter the descent as energies of the particles' motion, their friction as an
+// explicit force of the step.
+#include <sstream>
+
+#include "integrators/schemes/implicit_schemes.hpp"
+#include "integrators/vbd/vertex_block_descent.hpp"
+
+namespace drapelab {
+
+VbdScheme::VbdScheme(const SchemeContext& context)
+    : IntegratorScheme(context),
+      descent_(std::make_unique<VertexBlockDescent>(ctx_.model, ctx_.settings.vbd)) {}
+
+VbdScheme::~VbdScheme() = default;
+
+std::optional<std::int64_t> VbdScheme::step(double h) {
+  ClothState& state = ctx_.state;
+  ForceEvaluator& forces = ctx_.forces;
+  VbdStepInput input;
+  input.t = state.time;
+  input.h = h;
+  input.gravity = ctx_.settings.gravity;
+  input.air_damping = ctx_.settings.air_damping;
+  input.contacts = ctx_.settings.contacts.get();
+  if (forces.has_pair_terms()) {
+    forces.couplings().clear();
+    Eigen::Matrix3Xd& force = forces.force();
+    force.setZero();
+    forces.add_pair_forces(state.x, state.v, state.time, h);
+    for (const WeightedContact& c : forces.couplings())  // leaves the friction only
+      for (int s = 0; s < 4; ++s)
+        if (c.particle[s] >= 0) force.col(c.particle[s]) -= (c.weight[s] * c.force) * c.normal;
+    input.couplings = &forces.couplings();
+    input.explicit_force = &force;
+  }
+  descent_->step(ctx_.model, input, state.x, state.v, forces.contact_totals());
+  forces.add_edge_contact_totals();
+  return std::nullopt;
+}
+
+// The backward Euler step evaluates no force: its springs at the end state, where its forces act,
+// give the ledger its dampers' power and the attachments their loads.
+void VbdScheme::finish_step() {
+  ctx_.forces.set_body_and_spring_forces(ctx_.state.x, ctx_.state.v);
+}
+
+const VbdStats* VbdScheme::vbd_stats() const { return &descent_->stats(); }
+
+Counters VbdScheme::counters() const {
+  const VbdStats& s = descent_->stats();
+  const VbdSettings& settings = ctx_.settings.vbd;
+  return {{"vbd_iterations", settings.iterations},
+          {"vbd_order", settings.order},
+          {"vbd_chebyshev_rho", settings.chebyshev_rho},
+          {"vbd_colors", s.colors},
+          {"vbd_last_sweep_move", s.last_sweep_move},
+          {"vbd_last_sweep_move_max", s.last_sweep_move_max},
+          {"vbd_contact_planes_last", static_cast<double>(s.contacts_last)}};
+}
+
+std::string VbdScheme::step_advice() const {
+  std::ostringstream text;
+  text.precision(4);
+  text << "a smaller dt or more vbd iterations (" << ctx_.settings.vbd.iterations
+       << " sweeps per step left particles moving by up to " << descent_->stats().last_sweep_move
+       << " m in the last sweep; a collider moving faster than its contact can push back also "
+          "needs a smaller dt), ";
+  return text.str();
+}
+
+}  // namespace drapelab
