@@ -214,7 +214,7 @@ RunResult run_scene(const scene::Scene& scene, const RunOptions& options, std::o
   for (const auto& spec : scene.solvers) {
     SolverRun run;
     run.spec = &spec;
-    run.solver = make_solver(scene, spec, setup.model, setup.initial, setup.contacts);
+    run.solver = make_solver(scene, spec, setup.model, setup.initial, *setup.world);
     runs.push_back(std::move(run));
   }
 

@@ -25,10 +25,34 @@ SceneSetup build_scene_setup(const scene::Scene& scene, std::shared_ptr<const Cl
   setup.self_intersections =
       std::make_shared<const SelfIntersectionCounter>(setup.model->triangles);
   setup.constraints = scene::scene_constraints(scene);
+  setup.world = build_world(scene, setup.initial, setup.contacts, setup.constraints);
   if (scene.drape_support)
     setup.drape =
         std::make_shared<const DrapeMeter>(*setup.model, scene.drape_support->disc, up_of(scene));
   return setup;
+}
+
+std::shared_ptr<const World> build_world(const scene::Scene& scene, const ClothState& initial,
+                                         std::shared_ptr<const ContactModel> contacts,
+                                         std::shared_ptr<const DistanceConstraints> constraints,
+                                         const std::vector<DistanceConstraint>& extra_constraints) {
+  auto world = std::make_shared<World>();
+  world->gravity = scene.gravity;
+  world->air_damping = scene.cloth.air_damping;
+  world->contacts = std::move(contacts);
+  world->collider_edges = scene.contact.triangles;
+  world->self_collision = scene.cloth.self_collision;
+  world->attachments = scene::scene_attachments(scene, initial);
+  if (!extra_constraints.empty()) {
+    auto all = constraints ? std::make_shared<DistanceConstraints>(*constraints)
+                           : std::make_shared<DistanceConstraints>();
+    all->colliders = scene.colliders;
+    all->list.insert(all->list.end(), extra_constraints.begin(), extra_constraints.end());
+    constraints = std::move(all);
+  }
+  world->constraints = std::move(constraints);
+  world->air = scene.air;
+  return world;
 }
 
 ClothMetrics frame_metrics(const SceneSetup& setup, const scene::Scene& scene,

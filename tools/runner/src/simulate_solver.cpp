@@ -53,7 +53,7 @@ SimulationResult simulate_solver(const scene::Scene& scene, const scene::SolverS
   std::vector<SolverRun> runs(1);
   SolverRun& run = runs.front();
   run.spec = &spec;
-  run.solver = make_solver(scene, spec, setup.model, setup.initial, setup.contacts);
+  run.solver = make_solver(scene, spec, setup.model, setup.initial, *setup.world);
   TrialObserver observer(result, options);
   FrameLoopOptions loop;
   loop.stretch_limit = options.stretch_limit;

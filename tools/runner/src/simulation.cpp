@@ -32,9 +32,11 @@ struct Simulation::Impl {
     for (std::size_t k = 0; k < scene.solvers.size(); ++k) {
       SolverRun run;
       run.spec = &scene.solvers[k];
-      run.solver =
-          make_solver(scene, *run.spec, setup.model, starts.empty() ? setup.initial : starts[k],
-                      setup.contacts, extra_constraints);
+      const ClothState& start = starts.empty() ? setup.initial : starts[k];
+      // The pins carried by colliders are placed from the start; the drag is the user's input.
+      const std::shared_ptr<const World> world =
+          build_world(scene, start, setup.contacts, setup.constraints, extra_constraints);
+      run.solver = make_solver(scene, *run.spec, setup.model, start, *world);
       if (k < runs.size()) {
         run.wall_seconds = runs[k].wall_seconds;
         run.steps = runs[k].steps;

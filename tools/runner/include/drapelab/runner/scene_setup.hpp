@@ -13,6 +13,7 @@
 #include "drapelab/drape_metrics.hpp"
 #include "drapelab/scene/scene.hpp"
 #include "drapelab/self_intersections.hpp"
+#include "drapelab/world.hpp"
 
 namespace drapelab::runner {
 
@@ -23,7 +24,19 @@ struct SceneSetup {
   std::shared_ptr<const DrapeMeter> drape;       // null without metrics.drape_support
   std::shared_ptr<const SelfIntersectionCounter> self_intersections;  // the model's edges, once
   std::shared_ptr<const DistanceConstraints> constraints;  // null when the scene has none
+  // What every solver simulates (build_world from the state above), built once and shared.
+  std::shared_ptr<const World> world;
 };
+
+// The world every solver of `scene` simulates from `initial` (world.hpp): gravity, air damping and
+// air, the colliders' contact (`contacts`, null without colliders), self-collision, the pins
+// carried by colliders (placed from `initial`), and the scene's distance constraints
+// (`constraints`) with `extra_constraints` added (the viewer's live drag).
+std::shared_ptr<const World> build_world(
+    const scene::Scene& scene, const ClothState& initial,
+    std::shared_ptr<const ContactModel> contacts,
+    std::shared_ptr<const DistanceConstraints> constraints,
+    const std::vector<DistanceConstraint>& extra_constraints = {});
 
 // Builds the cloth (any shape) unless `model` is given (the loader's, scene::LoadResult::model,
 // built from this very scene), its initial state (scene.cloth.perturbation, scene.seed), the

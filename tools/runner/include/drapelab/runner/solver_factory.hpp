@@ -2,23 +2,20 @@
 #pragma once
 
 #include <memory>
-#include <vector>
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
-#include "drapelab/contact_model.hpp"
-#include "drapelab/distance_constraints.hpp"
 #include "drapelab/scene/scene.hpp"
 #include "drapelab/solver.hpp"
+#include "drapelab/world.hpp"
 
 namespace drapelab::runner {
 
-// `contacts` holds the scene's colliders (may be null when there are none). `extra_constraints` are
-// added to the scene's (the viewer's live drag).
+// `world` is what every solver of the scene simulates (build_world, scene_setup.hpp); the spec
+// adds this solver's numerics, and `model` is the scene's cloth (our solver with model: continuum
+// runs the continuum's elements of it).
 std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
                                     std::shared_ptr<const ClothModel> model,
-                                    const ClothState& initial,
-                                    std::shared_ptr<const ContactModel> contacts,
-                                    const std::vector<DistanceConstraint>& extra_constraints = {});
+                                    const ClothState& initial, const World& world);
 
 }  // namespace drapelab::runner
