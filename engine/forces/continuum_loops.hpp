@@ -1,8 +1,9 @@
-// The continuum model's element kernels (drapelab/continuum.hpp) on plain arrays. Like the other
-// *_loops files this header and its source include no Eigen: the source is built with OpenMP for
-// the build machine's CPU. Positions and velocities are 3 x n packed as in ClothState. Forces are
-// first computed per element, then summed per particle over its elements in a fixed order, so the
-// result does not depend on the number of threads.
+// The continuum model's element kernels (drapelab/continuum.hpp) on plain arrays: one element at a
+// time in continuum_elements.cpp, the vectorised force loop in continuum_force_loops.cpp. Like the
+// other *_loops files this header and its sources include no Eigen: the sources are built with
+// OpenMP for the build machine's CPU. Positions and velocities are 3 x n packed as in ClothState.
+// Forces are first computed per element, then summed per particle over its elements in a fixed
+// order, so the result does not depend on the number of threads.
 #pragma once
 
 #include <cstdint>
