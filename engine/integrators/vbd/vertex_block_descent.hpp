@@ -1,7 +1,8 @@
 // The driver of vertex block descent (drapelab/vertex_block_descent.hpp): the particles' spring
 // lists and colouring, built once; per step the collider contact planes, the contacts between
 // particles, the inertial target y, the initial guess, the sweeps (vbd_loops.hpp) with optional
-// Chebyshev acceleration, and the new velocities.
+// Chebyshev acceleration, and the new velocities. Sources: vertex_block_descent.cpp (the step),
+// particle_graph.cpp (neighbours, colours, aggregates), coarse_step.cpp (the coarse system).
 #pragma once
 
 #include <Eigen/Core>
