@@ -7,7 +7,6 @@
 #include <numbers>
 
 #include "cloth/mesh_edges.hpp"
-#include "core/pair_penalty.hpp"
 #include "core/proximity.hpp"
 
 namespace drapelab {
@@ -75,6 +74,15 @@ Eigen::AlignedBox3d segment_box(const Eigen::Vector3d& a, const Eigen::Vector3d&
   return box;
 }
 
+// The collider edges' rules in the shared pass (weighted_contact_pass.hpp): the other side is the
+// collider's moving surface; a contact whose particles are all pinned takes no push, a push's
+// power counts only while it pushes, and friction acts whatever the static coefficient.
+constexpr WeightedContactRules kColliderEdgeRules{.against_surface = true,
+                                                  .skip_pinned = true,
+                                                  .push_needs_overlap = false,
+                                                  .power_of_clamped_push = false,
+                                                  .friction_needs_static = false};
+
 }  // namespace
 
 ColliderFeatures collider_features(const Collider& collider, double thickness) {
@@ -89,20 +97,21 @@ ColliderFeatures collider_features(const Collider& collider, double thickness) {
 }
 
 EdgeContact::EdgeContact(const ClothModel& model, const ContactModel& contacts)
-    : model_(model), thickness_(model.thickness), loads_(model.particle_count()) {
+    : model_(model), thickness_(model.thickness), pass_(model.particle_count()) {
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     features_.push_back(collider_features(contacts.collider(c), thickness_));
     active_ = active_ || !features_.back().empty();
   }
   if (active_) edges_ = mesh_edges(model.triangles);
+  pass_totals_.resize(contacts.size());
   totals_.resize(contacts.size());
 }
 
-void EdgeContact::add_load(EdgeContactTotals& total, const Found& f, const Eigen::Matrix3Xd& x,
-                           const Eigen::Vector3d& on_cloth) {
+void EdgeContact::add_load(EdgeContactTotals& total, const WeightedContactPoint& f,
+                           const Eigen::Matrix3Xd& x, const Eigen::Vector3d& on_cloth) {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // m
   double weights = 0.0;
-  for (int s = 0; s < 3; ++s)
+  for (int s = 0; s < 4; ++s)
     if (f.particle[s] >= 0) {
       point += f.weight[s] * x.col(f.particle[s]);
       weights += f.weight[s];
@@ -128,7 +137,7 @@ double EdgeContact::stored_energy(const ContactModel& contacts, double t,
   find_contacts(contacts, t, x);
   const double k = contacts.parameters().stiffness;  // N/m
   double energy = 0.0;                               // J
-  for (const Found& f : found_) energy += 0.5 * k * f.depth * f.depth;
+  for (const WeightedContactPoint& f : found_) energy += 0.5 * k * f.depth * f.depth;
   return energy;
 }
 
@@ -138,7 +147,7 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
   // Where a cloth point at `cloth` touches a collider feature at `feature` with outward `outward`:
   // the push direction and depth, or nothing when farther than the thickness.
   auto touch = [&](const Eigen::Vector3d& cloth, const Eigen::Vector3d& feature,
-                   const Eigen::Vector3d& outward, Found& into) {
+                   const Eigen::Vector3d& outward, WeightedContactPoint& into) {
     const Eigen::Vector3d r = cloth - feature;
     const double d2 = r.squaredNorm();
     if (d2 >= h2) return false;
@@ -151,6 +160,14 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
   for (std::size_t c = 0; c < features_.size(); ++c) {
     const ColliderFeatures& local = features_[c];
     if (local.empty()) continue;
+    const Collider& collider = contacts.collider(c);
+    // Keeps the nearest contact found, if any, with its collider's friction.
+    const auto keep = [&](WeightedContactPoint& best) {
+      if (best.particle[0] < 0) return;
+      best.static_friction = collider.static_friction;
+      best.kinetic_friction = collider.friction;
+      found_.push_back(best);
+    };
     const Eigen::Isometry3d pose = contacts.pose(c, t);
     const Eigen::Isometry3d to_local = pose.inverse();
     posed_edges_.clear();
@@ -172,7 +189,7 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
     for (const auto& edge : edges_) {
       const int a = edge[0], b = edge[1];  // named, not bound: lambdas capture them below
       if (!segment_box(x.col(a), x.col(b)).intersects(reach)) continue;
-      Found best;
+      WeightedContactPoint best;
       double best_distance2 = h2;
       local.candidate_edges(
           to_local * x.col(a), to_local * x.col(b), thickness_, [&](std::size_t index) {
@@ -182,16 +199,16 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
             if (!(near.s > 0.0 && near.s < 1.0)) return;
             const double d2 = (near.on_first - near.on_second).squaredNorm();
             if (d2 >= best_distance2) return;
-            Found candidate;
+            WeightedContactPoint candidate;
             if (!touch(near.on_first, near.on_second, e.outward, candidate)) return;
-            candidate.particle = {a, b, -1};
-            candidate.weight = {1.0 - near.s, near.s, 0.0};
+            candidate.particle = {a, b, -1, -1};
+            candidate.weight = {1.0 - near.s, near.s, 0.0, 0.0};
             candidate.surface_velocity = contacts.surface_velocity(c, t, near.on_second);
-            candidate.collider = static_cast<int>(c);
+            candidate.group = static_cast<int>(c);
             best = candidate;
             best_distance2 = d2;
           });
-      if (best.particle[0] >= 0) found_.push_back(best);
+      keep(best);
     }
     // Collider corners against the inside of cloth triangles.
     if (posed_corners_.empty()) continue;
@@ -201,7 +218,7 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
       Eigen::AlignedBox3d span = segment_box(x.col(i), x.col(j));
       span.extend(x.col(k));
       if (!span.intersects(reach)) continue;
-      Found best;
+      WeightedContactPoint best;
       double best_distance2 = h2;
       for (const auto& corner : posed_corners_) {
         if (span.exteriorDistance(corner.at) >= thickness_) continue;
@@ -210,16 +227,16 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
         if (near.region != TriangleRegion::face) continue;
         const double d2 = (near.closest - corner.at).squaredNorm();
         if (d2 >= best_distance2) continue;
-        Found candidate;
+        WeightedContactPoint candidate;
         if (!touch(near.closest, corner.at, corner.outward, candidate)) continue;
-        candidate.particle = {i, j, k};
-        candidate.weight = {near.weights[0], near.weights[1], near.weights[2]};
+        candidate.particle = {i, j, k, -1};
+        candidate.weight = {near.weights[0], near.weights[1], near.weights[2], 0.0};
         candidate.surface_velocity = contacts.surface_velocity(c, t, corner.at);
-        candidate.collider = static_cast<int>(c);
+        candidate.group = static_cast<int>(c);
         best = candidate;
         best_distance2 = d2;
       }
-      if (best.particle[0] >= 0) found_.push_back(best);
+      keep(best);
     }
   }
 }
@@ -227,81 +244,30 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
 void EdgeContact::push_and_rub(const ContactModel& contacts, double h, const Eigen::Matrix3Xd& x,
                                const Eigen::Matrix3Xd& v, const Eigen::VectorXd& inverse_mass,
                                Eigen::Matrix3Xd& force, std::vector<WeightedContact>* active) {
-  // Penalty pushes first, then friction from the forces with every push in. An explicit scheme
-  // (no `active` list) takes each push bounded for its step (explicit_contact_bound.hpp).
   const ContactParameters& p = contacts.parameters();
-  const bool bounded = active == nullptr;
-  if (bounded) {
-    loads_.clear();
-    for (const Found& f : found_) loads_.add(f.particle, f.weight);
+  pass_.run(found_, kColliderEdgeRules, p.stiffness, p.damping, h, v, inverse_mass, force, active,
+            pass_totals_);
+  for (std::size_t c = 0; c < totals_.size(); ++c) {
+    const WeightedContactTotals& sum = pass_totals_[c];
+    EdgeContactTotals& total = totals_[c];
+    total.contact_count = static_cast<int>(sum.pushing);
+    total.normal_force = sum.normal_force;
+    total.friction_force = sum.friction_force;
+    total.power = sum.power;
   }
-  std::vector<double>& pushes = pushes_;
-  pushes.assign(found_.size(), 0.0);
+  // The collider's load: every push, then every friction, as the pass applied them.
+  const std::vector<WeightedContactOutcome>& outcome = pass_.outcomes();
   for (std::size_t e = 0; e < found_.size(); ++e) {
-    Found& f = found_[e];
-    Eigen::Vector3d u = -f.surface_velocity;  // m/s, the cloth point relative to the surface
-    double inverse_effective_mass = 0.0;      // 1/kg
-    for (int s = 0; s < 3; ++s)
-      if (f.particle[s] >= 0) {
-        u += f.weight[s] * v.col(f.particle[s]);
-        inverse_effective_mass += f.weight[s] * f.weight[s] * inverse_mass[f.particle[s]];
-      }
-    if (!(inverse_effective_mass > 0.0)) continue;  // every particle of it is pinned
-    const PenaltyRates rates =
-        bounded ? step_bounded_penalty(p.stiffness, p.damping, inverse_effective_mass,
-                                       loads_.load(f.particle, f.weight), h)
-                : PenaltyRates{p.stiffness, p.damping};
-    const double fn =
-        penalty_normal_force(f.depth, f.normal.dot(u), rates.stiffness, rates.damping);
-    if (fn <= 0.0) continue;
-    pushes[e] = fn;
-    for (int s = 0; s < 3; ++s)
-      if (f.particle[s] >= 0) force.col(f.particle[s]) += (f.weight[s] * fn) * f.normal;
-    EdgeContactTotals& total = totals_[static_cast<std::size_t>(f.collider)];
-    ++total.contact_count;
-    total.normal_force += fn;
-    total.power += push_power(fn, p.stiffness * f.depth, f.normal, u, f.surface_velocity);
+    if (outcome[e].push <= 0.0) continue;
+    const WeightedContactPoint& f = found_[e];
+    EdgeContactTotals& total = totals_[static_cast<std::size_t>(f.group)];
     total.max_depth = std::max(total.max_depth, f.depth);
-    add_load(total, f, x, fn * f.normal);
-    if (active) {
-      WeightedContact w;
-      for (int s = 0; s < 3; ++s) {
-        w.particle[s] = f.particle[s];
-        w.weight[s] = f.weight[s];
-      }
-      w.normal = f.normal;
-      w.stiffness = p.stiffness;
-      w.damping = p.damping;
-      w.depth = f.depth;
-      w.force = fn;
-      active->push_back(w);
-    }
+    add_load(total, f, x, outcome[e].push * f.normal);
   }
-  // Friction one contact after another, each seeing the friction before it (self_contact.cpp).
-  for (std::size_t e = 0; e < found_.size(); ++e) {
-    if (pushes[e] <= 0.0 || h <= 0.0) continue;
-    const Found& f = found_[e];
-    const Collider& collider = contacts.collider(static_cast<std::size_t>(f.collider));
-    double inverse_effective_mass = 0.0;  // 1/kg
-    Eigen::Vector3d trial = -f.surface_velocity;
-    Eigen::Vector3d relative_velocity = -f.surface_velocity;  // m/s, of the cloth point
-    for (int s = 0; s < 3; ++s) {
-      const int j = f.particle[s];
-      if (j < 0) continue;
-      inverse_effective_mass += f.weight[s] * f.weight[s] * inverse_mass[j];
-      trial += f.weight[s] * (v.col(j) + h * inverse_mass[j] * force.col(j));
-      relative_velocity += f.weight[s] * v.col(j);
-    }
-    const FrictionForce friction =
-        weighted_contact_friction(trial, f.normal, inverse_effective_mass, h, pushes[e],
-                                  collider.static_friction, collider.friction);
-    for (int s = 0; s < 3; ++s)
-      if (f.particle[s] >= 0) force.col(f.particle[s]) += f.weight[s] * friction.force;
-    EdgeContactTotals& total = totals_[static_cast<std::size_t>(f.collider)];
-    total.friction_force += friction.magnitude;
-    total.power += friction_power(friction.force, relative_velocity, f.surface_velocity);
-    add_load(total, f, x, friction.force);
-  }
+  for (std::size_t e = 0; e < found_.size(); ++e)
+    if (outcome[e].rubbed)
+      add_load(totals_[static_cast<std::size_t>(found_[e].group)], found_[e], x,
+               outcome[e].friction);
 }
 
 }  // namespace drapelab

@@ -22,7 +22,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/explicit_contact_bound.hpp"
+#include "core/weighted_contact_pass.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/collider.hpp"
 #include "drapelab/contact_model.hpp"
@@ -95,33 +95,26 @@ class EdgeContact {
  private:
   // The contacts at (x, t), into found_.
   void find_contacts(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x);
-  // Their penalty and friction forces (add_forces after the search).
+  // Their penalty and friction forces (add_forces after the search), through the pass the self
+  // contacts take too (weighted_contact_pass.hpp), and what they did to each collider.
   void push_and_rub(const ContactModel& contacts, double h, const Eigen::Matrix3Xd& x,
                     const Eigen::Matrix3Xd& v, const Eigen::VectorXd& inverse_mass,
                     Eigen::Matrix3Xd& force, std::vector<WeightedContact>* active);
-  struct Found {
-    std::array<int, 3> particle{-1, -1, -1};
-    std::array<double, 3> weight{};
-    Eigen::Vector3d normal;            // unit
-    double depth = 0.0;                // m
-    Eigen::Vector3d surface_velocity;  // m/s
-    int collider = 0;
-  };
   // Adds the reaction of `on_cloth` (N, a force on the cloth at the contact's cloth point, the
   // weighted sum of its particles) to the collider's load.
-  static void add_load(EdgeContactTotals& total, const Found& f, const Eigen::Matrix3Xd& x,
-                       const Eigen::Vector3d& on_cloth);
+  static void add_load(EdgeContactTotals& total, const WeightedContactPoint& f,
+                       const Eigen::Matrix3Xd& x, const Eigen::Vector3d& on_cloth);
 
   const ClothModel& model_;
   double thickness_;  // m
   bool active_ = false;
   std::vector<ColliderFeatures> features_;  // per collider, in its frame
   std::vector<std::array<std::int32_t, 2>> edges_;
-  std::vector<Found> found_;
+  std::vector<WeightedContactPoint> found_;              // group: the collider's index
   std::vector<ColliderFeatures::Edge> posed_edges_;      // one collider's, in the world
   std::vector<ColliderFeatures::Corner> posed_corners_;  // one collider's, in the world
-  std::vector<double> pushes_;                           // N, per found contact
-  ContactLoads loads_;  // contacts per particle, for the explicit schemes' bound
+  WeightedContactPass pass_;
+  std::vector<WeightedContactTotals> pass_totals_;  // per collider
   std::vector<EdgeContactTotals> totals_;
 };
 

@@ -27,17 +27,32 @@ struct PairPenalty {
   double force = 0.0;                                 // N, fn >= 0
 };
 
+// The push fn (N) at overlap `depth` = thickness - d (m) and normal velocity n . u (m/s): none at
+// all unless the spring pushes, so a closing damper alone never pushes beyond the thickness.
+inline double pair_push(double depth, double normal_velocity, double stiffness, double damping) {
+  const double spring = stiffness * depth;  // N
+  if (spring <= 0.0) return 0.0;
+  return std::max(0.0, spring - damping * normal_velocity);
+}
+
+// n and d of `separation` = r (m); a zero r takes `fallback_normal`. Only normal and distance are
+// set.
+inline PairPenalty pair_separation(const Eigen::Vector3d& separation,
+                                   const Eigen::Vector3d& fallback_normal) {
+  PairPenalty out;
+  out.distance = separation.norm();
+  out.normal = out.distance > 0.0 ? Eigen::Vector3d(separation / out.distance) : fallback_normal;
+  return out;
+}
+
 // `separation` = r (m), `relative_velocity` = u (m/s). A zero r takes `fallback_normal`.
 inline PairPenalty pair_penalty(const Eigen::Vector3d& separation,
                                 const Eigen::Vector3d& relative_velocity,
                                 const Eigen::Vector3d& fallback_normal, double thickness,
                                 double stiffness, double damping) {
-  PairPenalty out;
-  out.distance = separation.norm();
-  out.normal = out.distance > 0.0 ? Eigen::Vector3d(separation / out.distance) : fallback_normal;
-  const double spring = stiffness * (thickness - out.distance);
-  if (spring <= 0.0) return out;
-  out.force = std::max(0.0, spring - damping * out.normal.dot(relative_velocity));
+  PairPenalty out = pair_separation(separation, fallback_normal);
+  out.force =
+      pair_push(thickness - out.distance, out.normal.dot(relative_velocity), stiffness, damping);
   return out;
 }
 

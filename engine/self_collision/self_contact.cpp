@@ -8,7 +8,6 @@
 #include "cloth/mesh_edges.hpp"
 #include "core/pair_penalty.hpp"
 #include "core/proximity.hpp"
-#include "drapelab/energy_ledger.hpp"
 
 namespace drapelab {
 namespace {
@@ -36,6 +35,15 @@ Eigen::Vector3d unit_or_up(const Eigen::Vector3d& v) {
   return length > 0.0 ? Eigen::Vector3d(v / length) : Eigen::Vector3d::UnitY();
 }
 
+// The self contacts' rules in the shared pass (weighted_contact_pass.hpp): both sides are the
+// cloth's; a push needs an overlap (pair_penalty.hpp), and its power and friction are counted as
+// at the particle contacts.
+constexpr WeightedContactRules kSelfContactRules{.against_surface = false,
+                                                 .skip_pinned = false,
+                                                 .push_needs_overlap = true,
+                                                 .power_of_clamped_push = true,
+                                                 .friction_needs_static = true};
+
 }  // namespace
 
 SelfContact::SelfContact(const ClothModel& model, const SelfCollisionSettings& settings)
@@ -44,7 +52,7 @@ SelfContact::SelfContact(const ClothModel& model, const SelfCollisionSettings& s
       thickness_(settings.thickness_or(model.thickness)),
       margin_(2.0 * thickness_) {
   const int n = model.particle_count();
-  loads_ = ContactLoads(n);
+  pass_ = WeightedContactPass(n);
   edges_ = mesh_edges(model.triangles);
   neighbour_start_.assign(static_cast<std::size_t>(n) + 1, 0);
   for (const auto& e : edges_) {
@@ -170,10 +178,10 @@ void SelfContact::find_contacts(const Eigen::Matrix3Xd& x) {
     const PointTriangleProximity near = closest_point_on_triangle(x.col(p), a, b, c);
     if ((x.col(p) - near.closest).squaredNorm() >= thickness2) continue;
     if (near.region == TriangleRegion::face) {
-      Contact contact;
+      WeightedContactPoint contact;
       contact.particle = {p, corner[0], corner[1], corner[2]};
       contact.weight = {1.0, -near.weights[0], -near.weights[1], -near.weights[2]};
-      contact.fallback_normal = unit_or_up((b - a).cross(c - a));
+      contact.normal = unit_or_up((b - a).cross(c - a));  // where the sides meet
       contacts_.push_back(contact);
     } else if (near.region == TriangleRegion::edge) {
       const int i = corner[(near.feature + 1) % 3], j = corner[(near.feature + 2) % 3];
@@ -193,17 +201,16 @@ void SelfContact::find_contacts(const Eigen::Matrix3Xd& x) {
     // Nearest at an end: that end's particle-triangle test has the contact already.
     if (!(near.s > 0.0 && near.s < 1.0 && near.t > 0.0 && near.t < 1.0)) continue;
     if ((near.on_first - near.on_second).squaredNorm() >= thickness2) continue;
-    Contact contact;
+    WeightedContactPoint contact;
     contact.particle = {e[0], e[1], f[0], f[1]};
     contact.weight = {1.0 - near.s, near.s, -(1.0 - near.t), -near.t};
-    contact.fallback_normal =
-        unit_or_up((x.col(e[1]) - x.col(e[0])).cross(x.col(f[1]) - x.col(f[0])));
+    contact.normal = unit_or_up((x.col(e[1]) - x.col(e[0])).cross(x.col(f[1]) - x.col(f[0])));
     contacts_.push_back(contact);
   }
   std::sort(shared_.begin(), shared_.end());
   shared_.erase(std::unique(shared_.begin(), shared_.end()), shared_.end());
   for (const SharedFeature& s : shared_) {
-    Contact contact;
+    WeightedContactPoint contact;
     if (s.c < 0) {
       contact.particle = {s.a, s.b, -1, -1};
       contact.weight = {1.0, -1.0, 0.0, 0.0};
@@ -217,6 +224,18 @@ void SelfContact::find_contacts(const Eigen::Matrix3Xd& x) {
     }
     contacts_.push_back(contact);
   }
+  // Each contact's line between its two sides, r = sum_j w_j x_j (m): its normal and depth.
+  const double kinetic = settings_.friction, fixed = settings_.static_friction_or_kinetic();
+  for (WeightedContactPoint& contact : contacts_) {
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int s = 0; s < 4; ++s)
+      if (contact.particle[s] >= 0) r += contact.weight[s] * x.col(contact.particle[s]);
+    const PairPenalty apart = pair_separation(r, contact.normal);
+    contact.normal = apart.normal;
+    contact.depth = thickness_ - apart.distance;
+    contact.static_friction = fixed;
+    contact.kinetic_friction = kinetic;
+  }
 }
 
 void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, double h,
@@ -225,97 +244,15 @@ void SelfContact::add_forces(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& 
   ++stats_.evaluations;
   if (needs_search(x)) search(x);
   find_contacts(x);
-  const double k = settings_.stiffness, c = settings_.damping;
-  normal_force_.assign(contacts_.size(), 0.0);
-  normal_.resize(contacts_.size());
-  // Penalty: every contact's push at once, so friction below sees all of them. An explicit scheme
-  // (no `active` list) takes each push bounded for its step (explicit_contact_bound.hpp).
-  const bool bounded = active == nullptr;
-  if (bounded) {
-    loads_.clear();
-    for (const Contact& contact : contacts_) loads_.add(contact.particle, contact.weight);
-  }
-  double normal_total = 0.0;
-  double spring_energy = 0.0;  // J
-  PowerSplit power;            // W
-  std::int64_t pushing = 0;
-  for (std::size_t e = 0; e < contacts_.size(); ++e) {
-    const Contact& contact = contacts_[e];
-    Eigen::Vector3d r = Eigen::Vector3d::Zero(), u = Eigen::Vector3d::Zero();
-    double inverse_effective_mass = 0.0;  // 1/kg
-    for (int s = 0; s < 4; ++s)
-      if (contact.particle[s] >= 0) {
-        const int j = contact.particle[s];
-        r += contact.weight[s] * x.col(j);
-        u += contact.weight[s] * v.col(j);
-        inverse_effective_mass += contact.weight[s] * contact.weight[s] * inverse_mass[j];
-      }
-    const PenaltyRates rates =
-        bounded ? step_bounded_penalty(k, c, inverse_effective_mass,
-                                       loads_.load(contact.particle, contact.weight), h)
-                : PenaltyRates{k, c};
-    const PairPenalty push =
-        pair_penalty(r, u, contact.fallback_normal, thickness_, rates.stiffness, rates.damping);
-    normal_[e] = push.normal;
-    const double overlap = thickness_ - push.distance;  // m
-    if (overlap > 0.0) {
-      spring_energy += 0.5 * k * overlap * overlap;
-      power += push_power(push.force, k * overlap, push.normal, u, Eigen::Vector3d::Zero());
-    }
-    if (push.force <= 0.0) continue;
-    normal_force_[e] = push.force;
-    for (int s = 0; s < 4; ++s)
-      if (contact.particle[s] >= 0)
-        force.col(contact.particle[s]) += (contact.weight[s] * push.force) * push.normal;
-    normal_total += push.force;
-    ++pushing;
-    if (active) {
-      WeightedContact w;
-      w.particle = contact.particle;
-      w.weight = contact.weight;
-      w.normal = push.normal;
-      w.stiffness = k;
-      w.damping = c;
-      w.depth = thickness_ - push.distance;
-      w.force = push.force;
-      active->push_back(w);
-    }
-  }
-  // Coulomb friction between the layers, from the forces with every push in, one contact after
-  // another (a Gauss-Seidel sweep): each sees the friction of those before it, so a particle
-  // held by several contacts is not stopped several times over (which would reverse it, and
-  // grow). Each contact's friction sums to zero over its particles, as its push does.
-  double friction_total = 0.0;
-  const double kinetic = settings_.friction, fixed = settings_.static_friction_or_kinetic();
-  if (fixed > 0.0 && h > 0.0)
-    for (std::size_t e = 0; e < contacts_.size(); ++e) {
-      if (normal_force_[e] <= 0.0) continue;
-      const Contact& contact = contacts_[e];
-      double inverse_effective_mass = 0.0;  // 1/kg
-      Eigen::Vector3d trial = Eigen::Vector3d::Zero();
-      Eigen::Vector3d relative_velocity = Eigen::Vector3d::Zero();  // m/s, of the two sides
-      for (int s = 0; s < 4; ++s) {
-        const int j = contact.particle[s];
-        if (j < 0) continue;
-        const double w = contact.weight[s];
-        inverse_effective_mass += w * w * inverse_mass[j];
-        trial += w * (v.col(j) + h * inverse_mass[j] * force.col(j));
-        relative_velocity += w * v.col(j);
-      }
-      if (inverse_effective_mass <= 0.0) continue;
-      const FrictionForce f = weighted_contact_friction(trial, normal_[e], inverse_effective_mass,
-                                                        h, normal_force_[e], fixed, kinetic);
-      for (int s = 0; s < 4; ++s)
-        if (contact.particle[s] >= 0) force.col(contact.particle[s]) += contact.weight[s] * f.force;
-      friction_total += f.magnitude;
-      power += friction_power(f.force, relative_velocity, Eigen::Vector3d::Zero());
-    }
-  stats_.contacts_last = pushing;
-  stats_.contacts_total += pushing;
-  stats_.normal_force_last = normal_total;
-  stats_.friction_force_last = friction_total;
-  stats_.spring_energy_last = spring_energy;
-  stats_.dissipated_power_last = power.dissipated;
+  pass_.run(contacts_, kSelfContactRules, settings_.stiffness, settings_.damping, h, v,
+            inverse_mass, force, active, totals_);
+  const WeightedContactTotals& total = totals_.front();
+  stats_.contacts_last = total.pushing;
+  stats_.contacts_total += total.pushing;
+  stats_.normal_force_last = total.normal_force;
+  stats_.friction_force_last = total.friction_force;
+  stats_.spring_energy_last = total.spring_energy;
+  stats_.dissipated_power_last = total.power.dissipated;
 }
 
 }  // namespace drapelab

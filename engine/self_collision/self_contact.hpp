@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/explicit_contact_bound.hpp"
+#include "core/weighted_contact_pass.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/self_collision.hpp"
 #include "drapelab/weighted_contact.hpp"
@@ -58,11 +58,6 @@ class SelfContact {
   const std::vector<std::array<std::int32_t, 2>>& edges() const { return edges_; }
 
  private:
-  struct Contact {
-    std::array<int, 4> particle{-1, -1, -1, -1};
-    std::array<double, 4> weight{};
-    Eigen::Vector3d fallback_normal = Eigen::Vector3d::UnitY();
-  };
   // A particle nearest a triangle's edge (c >= 0: particle a, edge b-c) or corner (c < 0: a, b).
   struct SharedFeature {
     int a = 0, b = 0, c = -1;
@@ -71,6 +66,8 @@ class SelfContact {
 
   bool needs_search(const Eigen::Matrix3Xd& x) const;
   void search(const Eigen::Matrix3Xd& x);
+  // The contacts at x, each with its normal and depth (pair_penalty.hpp): along the line between
+  // its two sides, or the normal found with it where the sides meet.
   void find_contacts(const Eigen::Matrix3Xd& x);
   // Whether a and b are joined by a mesh edge (two such particles are never a contact: their
   // spring holds them apart). Pairs a ring or two apart stay candidates: a soft cloth crumpled in a
@@ -100,12 +97,11 @@ class SelfContact {
   std::vector<std::array<std::int32_t, 2>> point_triangle_;  // (particle, triangle)
   std::vector<std::array<std::int32_t, 2>> edge_edge_;       // (edge, edge)
   // Narrow phase, per evaluation.
-  std::vector<Contact> contacts_;
+  std::vector<WeightedContactPoint> contacts_;
   std::vector<SharedFeature> shared_;
-  std::vector<double> normal_force_;       // N, per contact
-  ContactLoads loads_;                     // contacts per particle, for the explicit schemes' bound
-  std::vector<Eigen::Vector3d> normal_;    // per contact
-  std::vector<Eigen::Vector3d> friction_;  // N, per contact
+  WeightedContactPass pass_;
+  // One group: every self contact.
+  std::vector<WeightedContactTotals> totals_ = std::vector<WeightedContactTotals>(1);
   SelfContactStats stats_;
 };
 
