@@ -20,9 +20,11 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> Attachments::placement(std::size_t k
 }
 
 void Attachments::place(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) const {
-  // One pose per collider and call: a cape holds a few particles per shoulder, a hammock dozens.
-  std::vector<Eigen::Isometry3d> pose(colliders.size());
-  std::vector<bool> posed(colliders.size(), false);
+  // One pose per run of attachments on the same collider (a cape holds a few particles per
+  // shoulder, a hammock dozens, listed collider by collider), kept without a heap buffer so that a
+  // step allocates nothing.
+  std::size_t posed = colliders.size();  // the collider `pose` holds; none yet
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   for (std::size_t k = 0; k < list.size(); ++k) {
     const Attachment& a = list[k];
     const auto c = static_cast<std::size_t>(a.collider);
@@ -32,8 +34,11 @@ void Attachments::place(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) cons
       v.col(a.particle) = velocity;
       continue;
     }
-    if (!posed[c]) pose[c] = collider_pose(colliders[c], t), posed[c] = true;
-    const Eigen::Vector3d position = pose[c] * a.offset;
+    if (posed != c) {
+      pose = collider_pose(colliders[c], t);
+      posed = c;
+    }
+    const Eigen::Vector3d position = pose * a.offset;
     x.col(a.particle) = position;
     v.col(a.particle) = collider_point_velocity(colliders[c], t, position);
   }

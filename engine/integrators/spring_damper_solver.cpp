@@ -36,6 +36,8 @@ SpringDamperSolver::SpringDamperSolver(std::string name, std::shared_ptr<const C
   if (settings_.attachments)
     settings_.attachments->place(state_.time, state_.x, state_.v);  // ... or moves with its body
   if (hard_constraints_) projection_start_v_.resize(3, n);
+  if (settings_.attachments)
+    pins_at_start_.x.resize(3, static_cast<Eigen::Index>(settings_.attachments->list.size()));
   if (forces_->self_contact()) {
     step_start_x_.resize(3, n);
     step_start_v_.resize(3, n);
@@ -181,7 +183,7 @@ void SpringDamperSolver::single_step(double h) {
   const auto start = StepClock::now();
   const double force_seconds_before = force_phase_seconds();
   if (settings_.attachments) settings_.attachments->place(state_.time, state_.x, state_.v);
-  const PinnedStart pins = pinned_start();
+  record_pinned_start();
   // The Euler pair scans the new state as it writes it.
   std::optional<std::int64_t> scanned = scheme_->step(h);
   // The scheme moved the attached particles with their velocities at the step's start; they end
@@ -189,7 +191,7 @@ void SpringDamperSolver::single_step(double h) {
   if (settings_.attachments) settings_.attachments->place(state_.time + h, state_.x, state_.v);
   scheme_->finish_step();
   if (attachments_on_bodies_) record_attachment_loads();
-  account_step(h, pins);
+  account_step(h);
   if (hard_constraints_) {
     project_constraints(state_.time + h, h);
     scanned.reset();  // the projection moved particles after the Euler pass scanned them
@@ -247,20 +249,18 @@ void SpringDamperSolver::record_attachment_loads() {
   }
 }
 
-PinnedStart SpringDamperSolver::pinned_start() const {
-  PinnedStart start;
-  if (!settings_.attachments) return start;
+void SpringDamperSolver::record_pinned_start() {
+  if (!settings_.attachments) return;
   const std::vector<Attachment>& list = settings_.attachments->list;
-  start.x.resize(3, static_cast<Eigen::Index>(list.size()));
+  pins_at_start_.kinetic_energy = 0.0;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const int i = list[k].particle;
-    start.x.col(static_cast<Eigen::Index>(k)) = state_.x.col(i);
-    start.kinetic_energy += 0.5 * model_->mass[i] * state_.v.col(i).squaredNorm();
+    pins_at_start_.x.col(static_cast<Eigen::Index>(k)) = state_.x.col(i);
+    pins_at_start_.kinetic_energy += 0.5 * model_->mass[i] * state_.v.col(i).squaredNorm();
   }
-  return start;
 }
 
-void SpringDamperSolver::account_step(double h, const PinnedStart& pins) {
+void SpringDamperSolver::account_step(double h) {
   ledger_.add(forces_->power(), h);
   if (!settings_.attachments) return;
   // A pin moved by its collider takes whatever force holds it on its path: the collider's work
@@ -268,6 +268,7 @@ void SpringDamperSolver::account_step(double h, const PinnedStart& pins) {
   // last evaluation's), - sum f . dx.
   const std::vector<Attachment>& list = settings_.attachments->list;
   const Eigen::Matrix3Xd& force = forces_->force();
+  const PinnedStart& pins = pins_at_start_;
   double work = -pins.kinetic_energy;  // J
   for (std::size_t k = 0; k < list.size(); ++k) {
     const int i = list[k].particle;

@@ -115,10 +115,11 @@ class SpringDamperSolver final : public Solver {
   // the step's own scan of the new state, if it made one.
   void check_health(double h, std::optional<std::int64_t> scanned);
   // The energy ledger's share of one step of h (s): the power of the step's last force evaluation
-  // times h, and the work of the pins carried by moving colliders (energy_ledger.hpp).
-  void account_step(double h, const PinnedStart& pins);
-  // The pins on colliders at the step's start: their kinetic energy (J) and positions (m).
-  PinnedStart pinned_start() const;
+  // times h, and the work of the pins carried by moving colliders from pins_at_start_
+  // (energy_ledger.hpp).
+  void account_step(double h);
+  // Records the pins on colliders at the step's start into pins_at_start_.
+  void record_pinned_start();
 
   std::string name_;
   std::shared_ptr<const ClothModel> model_;
@@ -132,6 +133,7 @@ class SpringDamperSolver final : public Solver {
   // Self-collision: the state a step restarts from (m, m/s) and the start of its piece (m).
   Eigen::Matrix3Xd step_start_x_, step_start_v_, piece_start_x_;
   Eigen::Matrix3Xd projection_start_v_;  // m/s: hard constraints, the velocity before projection
+  PinnedStart pins_at_start_;            // the pins on colliders at the step's start
   std::vector<ColliderForce> attachment_loads_;  // per collider: force (N), moment (N*m)
   bool hard_constraints_ = false;                // settings_.constraints has hard or rope ones
   bool attachments_on_bodies_ = false;           // a pin is attached to a dynamic collider
