@@ -78,15 +78,15 @@ std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
   std::vector<ColliderForce> forces;
   for (const auto& total : forces_->contact_totals())
     forces.push_back({total.normal_force, total.friction_force, total.force, total.torque});
-  const std::vector<ColliderForce> none;
-  const std::vector<ColliderForce>* constraint_loads = forces_->constraint_loads();
-  for (const auto* loads : {&attachment_loads_, constraint_loads ? constraint_loads : &none}) {
-    if (forces.size() < loads->size()) forces.resize(loads->size());
-    for (std::size_t c = 0; c < loads->size(); ++c) {
-      forces[c].force += (*loads)[c].force;
-      forces[c].torque += (*loads)[c].torque;
+  const auto add = [&forces](const std::vector<ColliderForce>& loads) {
+    if (forces.size() < loads.size()) forces.resize(loads.size());
+    for (std::size_t c = 0; c < loads.size(); ++c) {
+      forces[c].force += loads[c].force;
+      forces[c].torque += loads[c].torque;
     }
-  }
+  };
+  add(attachment_loads_);
+  if (const std::vector<ColliderForce>* loads = forces_->constraint_loads()) add(*loads);
   return forces;
 }
 

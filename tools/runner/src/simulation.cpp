@@ -29,13 +29,19 @@ struct Simulation::Impl {
   void build_runs(const std::vector<ClothState>& starts) {
     std::vector<SolverRun> built;
     built.reserve(scene.solvers.size());
+    // One world for every solver from the scene's start; solvers carried on from states of their
+    // own each place the pins carried by colliders from their state. The drag is the user's.
+    const std::shared_ptr<const World> shared =
+        starts.empty() ? build_world(scene, setup.initial, setup.contacts, setup.constraints,
+                                     extra_constraints)
+                       : nullptr;
     for (std::size_t k = 0; k < scene.solvers.size(); ++k) {
       SolverRun run;
       run.spec = &scene.solvers[k];
       const ClothState& start = starts.empty() ? setup.initial : starts[k];
-      // The pins carried by colliders are placed from the start; the drag is the user's input.
       const std::shared_ptr<const World> world =
-          build_world(scene, start, setup.contacts, setup.constraints, extra_constraints);
+          shared ? shared
+                 : build_world(scene, start, setup.contacts, setup.constraints, extra_constraints);
       run.solver = make_solver(scene, *run.spec, setup.model, start, *world);
       if (k < runs.size()) {
         run.wall_seconds = runs[k].wall_seconds;
