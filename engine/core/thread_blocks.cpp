@@ -35,4 +35,11 @@ void for_each_block(std::int64_t blocks, bool parallel,
   }
 }
 
+void for_each_block_balanced(std::int64_t blocks, bool parallel,
+                             void (*body)(const void* context, std::int64_t block),
+                             const void* context) {
+#pragma omp parallel for schedule(dynamic, 1) if (parallel)
+  for (std::int64_t block = 0; block < blocks; ++block) body(context, block);
+}
+
 }  // namespace drapelab::kernels

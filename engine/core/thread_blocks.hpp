@@ -40,6 +40,20 @@ struct ThreadRun {
 ThreadRun thread_run(std::int64_t blocks, std::int64_t block_size, std::int64_t n,
                      std::int64_t max_offset);
 
+// Runs body(context, block) for every block, each thread taking the next block not yet taken: for
+// passes whose blocks differ widely in cost (a search where part of the cloth is crowded) and that
+// write only per-block results, so which thread ran a block does not change the result.
+void for_each_block_balanced(std::int64_t blocks, bool parallel,
+                             void (*body)(const void* context, std::int64_t block),
+                             const void* context);
+template <typename Body>
+void for_each_block_balanced(std::int64_t blocks, bool parallel, const Body& body) {
+  for_each_block_balanced(
+      blocks, parallel,
+      [](const void* context, std::int64_t block) { (*static_cast<const Body*>(context))(block); },
+      &body);
+}
+
 // The same for any callable body(block).
 template <typename Body>
 void for_each_block(std::int64_t blocks, bool parallel, const Body& body) {

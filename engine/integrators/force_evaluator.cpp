@@ -41,7 +41,9 @@ ForceEvaluator::ForceEvaluator(const ClothModel& model, const SpringDamperSettin
 
   // Phase 2, in its order. A new term between particles is one more entry here.
   const bool has_triangles = model_.triangles.cols() > 0;
-  if (settings_.self_collision.enabled && has_triangles) {
+  // vbd keeps the cloth off itself inside its own solve (offset contacts, vbd_scheme.cpp).
+  if (settings_.self_collision.enabled && has_triangles &&
+      settings_.integrator != Integrator::vbd) {
     auto term = std::make_unique<SelfContactTerm>(model_, settings_.self_collision);
     self_contact_ = &term->contact();
     pair_terms_.push_back(std::move(term));
@@ -199,6 +201,7 @@ bool ForceEvaluator::runs_phase(StepPhase phase) const {
 PowerSplit ForceEvaluator::power() const {
   PowerSplit power = body_and_spring_power_;
   power += pair_power_;
+  power += scheme_power_;
   for (const ColliderContactTotals& total : contact_totals_) power += total.power;
   return power;
 }

@@ -96,6 +96,13 @@ class ForceEvaluator {
   std::vector<WeightedContact>& couplings() { return couplings_; }
   // Power of the last evaluation (W): every phase's, the collider contacts' included.
   PowerSplit power() const;
+  // Power of forces a scheme evaluates inside its own solve (W), counted with the last
+  // evaluation's.
+  void set_scheme_power(const PowerSplit& power) { scheme_power_ = power; }
+  // Wall time (s) a scheme spent on a phase inside its own solve.
+  void add_phase_seconds(StepPhase phase, double seconds) {
+    stats_.seconds[static_cast<int>(phase)] += seconds;
+  }
   // The power air damping takes at velocities v (W), c sum m |v|^2.
   double air_damping_power(const Eigen::Matrix3Xd& v) const;
 
@@ -130,7 +137,7 @@ class ForceEvaluator {
   std::vector<ActiveContact> active_contacts_;
   std::vector<WeightedContact> couplings_;
   // Phase 1's and phase 2's power (W); the collider contacts' is in contact_totals_.
-  PowerSplit body_and_spring_power_, pair_power_;
+  PowerSplit body_and_spring_power_, pair_power_, scheme_power_;
 };
 
 }  // namespace drapelab

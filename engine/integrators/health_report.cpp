@@ -43,8 +43,7 @@ void SpringDamperSolver::check_health(double h, std::optional<std::int64_t> scan
   seen.colliders = settings_.contacts.get();
   seen.totals = &forces_->contact_totals();
   seen.edge_totals = forces_->edge_contact() ? &forces_->edge_contact()->totals() : nullptr;
-  seen.self_contacts =
-      forces_->self_contact() ? forces_->self_contact()->stats().contacts_last : -1;
+  seen.self_contacts = self_contact_stats() ? self_contact_stats()->contacts_last : -1;
   seen.constraints = settings_.constraints.get();
   text << unstable_step_cause(*model_, seen, i) << " Try: ";
   if (settings_.adaptive_substeps)

@@ -4,6 +4,7 @@
 #include "forces/spring_families.hpp"
 #include "integrators/force_evaluator.hpp"
 #include "integrators/schemes/scheme.hpp"
+#include "self_collision/offset_contacts.hpp"
 #include "self_collision/self_contact.hpp"
 
 namespace drapelab {
@@ -49,6 +50,12 @@ std::vector<std::string> SpringDamperSolver::force_terms() const { return forces
 
 const SelfContact* SpringDamperSolver::self_contact() const { return forces_->self_contact(); }
 
+const SelfContactStats* SpringDamperSolver::self_contact_stats() const {
+  if (forces_->self_contact()) return &forces_->self_contact()->stats();
+  if (const OffsetContacts* offset = scheme_->offset_contacts()) return &offset->stats();
+  return nullptr;
+}
+
 const std::vector<ColliderContactTotals>& SpringDamperSolver::contact_totals() const {
   return forces_->contact_totals();
 }
@@ -70,8 +77,9 @@ const VbdStats* SpringDamperSolver::vbd_stats() const { return scheme_->vbd_stat
 bool SpringDamperSolver::uses_fast_springs() const { return forces_->spring_families() != nullptr; }
 
 std::optional<double> SpringDamperSolver::self_contact_energy() const {
-  if (!forces_->self_contact()) return std::nullopt;
-  return forces_->self_contact()->stats().spring_energy_last;
+  const SelfContactStats* self = self_contact_stats();
+  if (!self) return std::nullopt;
+  return self->spring_energy_last;
 }
 
 std::vector<ColliderForce> SpringDamperSolver::collider_forces() const {
@@ -95,7 +103,9 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() 
   for (int p = 0; p < static_cast<int>(StepPhase::count); ++p) {
     const auto phase = static_cast<StepPhase>(p);
     if (phase == StepPhase::step_bound && !settings_.adaptive_substeps) continue;
-    if (is_pair_term_phase(phase) && !forces_->runs_phase(phase)) continue;
+    // vbd times its own self-contact detections under the self-contacts' phase.
+    const bool scheme_runs = phase == StepPhase::self_contacts && scheme_->offset_contacts();
+    if (is_pair_term_phase(phase) && !forces_->runs_phase(phase) && !scheme_runs) continue;
     phases.emplace_back(step_phase_name(phase), stats_.seconds[p]);
   }
   return phases;
@@ -103,8 +113,8 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::phase_seconds() 
 
 std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const {
   std::vector<std::pair<std::string, double>> all = scheme_counters();
-  if (const SelfContact* self_contact = forces_->self_contact()) {
-    const SelfContactStats& self = self_contact->stats();
+  if (const SelfContactStats* found = self_contact_stats()) {
+    const SelfContactStats& self = *found;
     all.insert(
         all.end(),
         {{"self_contacts_last", static_cast<double>(self.contacts_last)},
@@ -112,11 +122,17 @@ std::vector<std::pair<std::string, double>> SpringDamperSolver::counters() const
                                                            static_cast<double>(self.evaluations)
                                                      : 0.0},
          {"self_collision_searches", static_cast<double>(self.rebuilds)},
-         {"self_collision_candidates_last", static_cast<double>(self.candidates)},
-         {"self_collision_split_steps", static_cast<double>(stats_.split_steps)},
-         {"self_collision_split_pieces_max", static_cast<double>(stats_.split_pieces_max)},
-         {"self_collision_unresolved_fast_steps",
-          static_cast<double>(stats_.unresolved_fast_steps)}});
+         {"self_collision_candidates_last", static_cast<double>(self.candidates)}});
+    if (const OffsetContacts* offset = scheme_->offset_contacts())
+      all.insert(all.end(),
+                 {{"self_collision_truncations", static_cast<double>(self.truncations)},
+                  {"self_collision_smallest_gap_last", offset->last_totals().smallest_gap}});
+    else
+      all.insert(all.end(),
+                 {{"self_collision_split_steps", static_cast<double>(stats_.split_steps)},
+                  {"self_collision_split_pieces_max", static_cast<double>(stats_.split_pieces_max)},
+                  {"self_collision_unresolved_fast_steps",
+                   static_cast<double>(stats_.unresolved_fast_steps)}});
   }
   if (hard_constraints_)
     all.insert(all.end(), {{"constraint_position_sweeps_max",

@@ -5,30 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cloth/mesh_edges.hpp"
 #include "core/pair_penalty.hpp"
 #include "core/proximity.hpp"
 
 namespace drapelab {
 namespace {
-
-Box box_of(std::initializer_list<Eigen::Vector3d> points, double inflate) {
-  Box box{*points.begin(), *points.begin()};
-  for (const Eigen::Vector3d& p : points) {
-    box.min = box.min.cwiseMin(p);
-    box.max = box.max.cwiseMax(p);
-  }
-  box.min.array() -= inflate;
-  box.max.array() += inflate;
-  return box;
-}
-
-// The grid's cell: the boxes' mean size, so a box covers a few cells (m).
-double cell_size_for(const std::vector<Box>& boxes, double at_least) {
-  double sum = 0.0;
-  for (const Box& box : boxes) sum += (box.max - box.min).maxCoeff();
-  return std::max(at_least, boxes.empty() ? at_least : sum / static_cast<double>(boxes.size()));
-}
 
 Eigen::Vector3d unit_or_up(const Eigen::Vector3d& v) {
   const double length = v.norm();
@@ -50,72 +31,9 @@ SelfContact::SelfContact(const ClothModel& model, const SelfCollisionSettings& s
     : model_(model),
       settings_(settings),
       thickness_(settings.thickness_or(model.thickness)),
-      margin_(2.0 * thickness_) {
-  const int n = model.particle_count();
-  pass_ = WeightedContactPass(n);
-  edges_ = mesh_edges(model.triangles);
-  neighbour_start_.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (const auto& e : edges_) {
-    ++neighbour_start_[static_cast<std::size_t>(e[0]) + 1];
-    ++neighbour_start_[static_cast<std::size_t>(e[1]) + 1];
-  }
-  for (int i = 0; i < n; ++i) neighbour_start_[i + 1] += neighbour_start_[i];
-  neighbours_.resize(static_cast<std::size_t>(neighbour_start_[n]));
-  std::vector<std::int32_t> filled(neighbour_start_.begin(), neighbour_start_.end() - 1);
-  for (const auto& e : edges_) {
-    neighbours_[static_cast<std::size_t>(filled[e[0]]++)] = e[1];
-    neighbours_[static_cast<std::size_t>(filled[e[1]]++)] = e[0];
-  }
-  // Each edge's triangles and each particle's triangles.
-  edge_triangles_.assign(edges_.size(), {-1, -1});
-  corner_start_.assign(static_cast<std::size_t>(n) + 1, 0);
-  const auto& tri = model.triangles;
-  for (int t = 0; t < tri.cols(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      ++corner_start_[static_cast<std::size_t>(tri(k, t)) + 1];
-      const std::array<std::int32_t, 2> edge{std::min(tri(k, t), tri((k + 1) % 3, t)),
-                                             std::max(tri(k, t), tri((k + 1) % 3, t))};
-      auto& slots = edge_triangles_[static_cast<std::size_t>(
-          std::lower_bound(edges_.begin(), edges_.end(), edge) - edges_.begin())];
-      (slots[0] < 0 ? slots[0] : slots[1]) = t;
-    }
-  for (int i = 0; i < n; ++i) corner_start_[i + 1] += corner_start_[i];
-  corner_triangles_.resize(static_cast<std::size_t>(corner_start_[n]));
-  std::vector<std::int32_t> next(corner_start_.begin(), corner_start_.end() - 1);
-  for (int t = 0; t < tri.cols(); ++t)
-    for (int k = 0; k < 3; ++k) corner_triangles_[static_cast<std::size_t>(next[tri(k, t)]++)] = t;
-  for (int i = 0; i < n; ++i)
-    std::sort(neighbours_.begin() + neighbour_start_[i],
-              neighbours_.begin() + neighbour_start_[i + 1]);
-}
-
-bool SelfContact::nearest_edge_everywhere(const Eigen::Matrix3Xd& x, int p, int a, int b) const {
-  const auto found =
-      std::lower_bound(edges_.begin(), edges_.end(), std::array<std::int32_t, 2>{a, b});
-  const auto& tri = model_.triangles;
-  for (const std::int32_t t : edge_triangles_[static_cast<std::size_t>(found - edges_.begin())]) {
-    if (t < 0) continue;
-    const PointTriangleProximity near =
-        closest_point_on_triangle(x.col(p), x.col(tri(0, t)), x.col(tri(1, t)), x.col(tri(2, t)));
-    if (near.region == TriangleRegion::face) return false;
-  }
-  return true;
-}
-
-bool SelfContact::nearest_corner_everywhere(const Eigen::Matrix3Xd& x, int p, int q) const {
-  const auto& tri = model_.triangles;
-  for (std::int32_t k = corner_start_[q]; k < corner_start_[q + 1]; ++k) {
-    const std::int32_t t = corner_triangles_[static_cast<std::size_t>(k)];
-    const PointTriangleProximity near =
-        closest_point_on_triangle(x.col(p), x.col(tri(0, t)), x.col(tri(1, t)), x.col(tri(2, t)));
-    if (near.region != TriangleRegion::corner) return false;
-  }
-  return true;
-}
-
-bool SelfContact::adjacent(int a, int b) const {
-  return std::binary_search(neighbours_.begin() + neighbour_start_[a],
-                            neighbours_.begin() + neighbour_start_[a + 1], b);
+      margin_(2.0 * thickness_),
+      topology_(model) {
+  pass_ = WeightedContactPass(model.particle_count());
 }
 
 bool SelfContact::needs_search(const Eigen::Matrix3Xd& x) const {
@@ -149,13 +67,14 @@ void SelfContact::search(const Eigen::Matrix3Xd& x) {
     }
   }
 
-  boxes_.resize(edges_.size());
-  for (std::size_t e = 0; e < edges_.size(); ++e)
-    boxes_[e] = box_of({x.col(edges_[e][0]), x.col(edges_[e][1])}, 0.5 * reach);
+  const auto& edges = topology_.edges();
+  boxes_.resize(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    boxes_[e] = box_of({x.col(edges[e][0]), x.col(edges[e][1])}, 0.5 * reach);
   grid_.build(boxes_, cell_size_for(boxes_, reach));
   grid_.for_each_overlapping_pair(boxes_, [&](std::int32_t a, std::int32_t b) {
-    const auto& ea = edges_[a];
-    const auto& eb = edges_[b];
+    const auto& ea = edges[a];
+    const auto& eb = edges[b];
     if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return;
     const SegmentProximity near =
         closest_points_of_segments(x.col(ea[0]), x.col(ea[1]), x.col(eb[0]), x.col(eb[1]));
@@ -185,17 +104,18 @@ void SelfContact::find_contacts(const Eigen::Matrix3Xd& x) {
       contacts_.push_back(contact);
     } else if (near.region == TriangleRegion::edge) {
       const int i = corner[(near.feature + 1) % 3], j = corner[(near.feature + 2) % 3];
-      if (nearest_edge_everywhere(x, p, std::min(i, j), std::max(i, j)))
+      if (topology_.nearest_edge_everywhere(x, p, std::min(i, j), std::max(i, j)))
         shared_.push_back({p, std::min(i, j), std::max(i, j)});
     } else {
       const int q = corner[near.feature];
-      if (!adjacent(p, q) && nearest_corner_everywhere(x, p, q))
+      if (!topology_.adjacent(p, q) && topology_.nearest_corner_everywhere(x, p, q))
         shared_.push_back({std::min(p, q), std::max(p, q), -1});
     }
   }
+  const auto& edges = topology_.edges();
   for (const auto& [ea, eb] : edge_edge_) {
-    const auto& e = edges_[ea];
-    const auto& f = edges_[eb];
+    const auto& e = edges[ea];
+    const auto& f = edges[eb];
     const SegmentProximity near =
         closest_points_of_segments(x.col(e[0]), x.col(e[1]), x.col(f[0]), x.col(f[1]));
     // Nearest at an end: that end's particle-triangle test has the contact already.

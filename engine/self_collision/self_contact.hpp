@@ -21,6 +21,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/self_collision.hpp"
 #include "drapelab/weighted_contact.hpp"
+#include "self_collision/cloth_topology.hpp"
 #include "self_collision/spatial_hash.hpp"
 
 namespace drapelab {
@@ -38,6 +39,8 @@ struct SelfContactStats {
   // dampers and friction took (W, energy_ledger.hpp).
   double spring_energy_last = 0.0;
   double dissipated_power_last = 0.0;
+  // vbd's offset contacts: moves cut short at a particle's conservative bound, summed.
+  std::int64_t truncations = 0;
 };
 
 class SelfContact {
@@ -55,7 +58,7 @@ class SelfContact {
   double thickness() const { return thickness_; }  // m
   double margin() const { return margin_; }        // m
   const SelfContactStats& stats() const { return stats_; }
-  const std::vector<std::array<std::int32_t, 2>>& edges() const { return edges_; }
+  const std::vector<std::array<std::int32_t, 2>>& edges() const { return topology_.edges(); }
 
  private:
   // A particle nearest a triangle's edge (c >= 0: particle a, edge b-c) or corner (c < 0: a, b).
@@ -69,26 +72,14 @@ class SelfContact {
   // The contacts at x, each with its normal and depth (pair_penalty.hpp): along the line between
   // its two sides, or the normal found with it where the sides meet.
   void find_contacts(const Eigen::Matrix3Xd& x);
-  // Whether a and b are joined by a mesh edge (two such particles are never a contact: their
-  // spring holds them apart). Pairs a ring or two apart stay candidates: a soft cloth crumpled in a
-  // heap folds sharply enough for them to meet (excluding them let layers cross there).
-  bool adjacent(int a, int b) const;
-  // Whether p at position `point` is nearest edge a-b (a < b) on every triangle that has that edge,
-  // or nearest corner q on every triangle at q: otherwise a face (or edge) of one of them is nearer
-  // and holds the contact, and this one would push along a slanted line beside it.
-  bool nearest_edge_everywhere(const Eigen::Matrix3Xd& x, int p, int a, int b) const;
-  bool nearest_corner_everywhere(const Eigen::Matrix3Xd& x, int p, int q) const;
-
   const ClothModel& model_;
   SelfCollisionSettings settings_;
-  double thickness_ = 0.0;                          // m
-  double margin_ = 0.0;                             // m
-  std::vector<std::array<std::int32_t, 2>> edges_;  // unique mesh edges, lower index first
-  std::vector<std::int32_t> neighbour_start_;       // CSR: particle i's neighbours by an edge
-  std::vector<std::int32_t> neighbours_;
-  std::vector<std::array<std::int32_t, 2>> edge_triangles_;  // per edge, its triangles (-1: none)
-  std::vector<std::int32_t> corner_start_;                   // CSR: particle i's triangles
-  std::vector<std::int32_t> corner_triangles_;
+  double thickness_ = 0.0;  // m
+  double margin_ = 0.0;     // m
+  // Pairs joined by a mesh edge are never a contact: their spring holds them apart. Pairs a ring or
+  // two apart stay candidates: a soft cloth crumpled in a heap folds sharply enough for them to
+  // meet (excluding them let layers cross there).
+  ClothTopology topology_;
   // Broad phase.
   SpatialGrid grid_;
   std::vector<Box> boxes_;

@@ -18,6 +18,23 @@ std::uint64_t cell_coordinate(double value, double inverse_cell_size) {
 
 }  // namespace
 
+Box box_of(std::initializer_list<Eigen::Vector3d> points, double inflate) {
+  Box box{*points.begin(), *points.begin()};
+  for (const Eigen::Vector3d& p : points) {
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  box.min.array() -= inflate;
+  box.max.array() += inflate;
+  return box;
+}
+
+double cell_size_for(std::span<const Box> boxes, double at_least) {
+  double sum = 0.0;
+  for (const Box& box : boxes) sum += (box.max - box.min).maxCoeff();
+  return std::max(at_least, boxes.empty() ? at_least : sum / static_cast<double>(boxes.size()));
+}
+
 std::uint64_t cell_key(const Eigen::Vector3d& p, double inverse_cell_size) {
   return (cell_coordinate(p.x(), inverse_cell_size) << 42) |
          (cell_coordinate(p.y(), inverse_cell_size) << 21) |
@@ -70,6 +87,11 @@ void SpatialGrid::build(std::span<const Box> boxes, double cell_size) {
     cells_[at] = unsorted_cells_[e];
     items_[at] = unsorted_items_[e];
   }
+}
+
+std::array<std::uint64_t, 3> SpatialGrid::cell_of(const Eigen::Vector3d& p) const {
+  return {cell_coordinate(p.x(), inverse_cell_size_), cell_coordinate(p.y(), inverse_cell_size_),
+          cell_coordinate(p.z(), inverse_cell_size_)};
 }
 
 std::span<const std::int32_t> SpatialGrid::items_near(const Eigen::Vector3d& p) const {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <span>
 #include <vector>
 
@@ -26,6 +27,12 @@ struct Box {
   }
 };
 
+// The box around `points`, grown by `inflate` (m) on every side.
+Box box_of(std::initializer_list<Eigen::Vector3d> points, double inflate);
+// A grid cell for `boxes`: their mean size, so a box covers a few cells, and at least `at_least`
+// (m).
+double cell_size_for(std::span<const Box> boxes, double at_least);
+
 // Integer cell coordinates packed into one key. Coordinates beyond +-2^20 cells are clamped: far
 // cells then share keys, which costs only extra narrow-phase tests, never a missed pair.
 std::uint64_t cell_key(const Eigen::Vector3d& p, double inverse_cell_size);
@@ -37,15 +44,36 @@ class SpatialGrid {
   // The items entered in the bucket of the cell holding p: every item whose box overlaps that
   // cell, and perhaps others (test their boxes).
   std::span<const std::int32_t> items_near(const Eigen::Vector3d& p) const;
+  // Calls visit(item) once for every item whose box overlaps the cell holding p (and no other).
+  template <typename Visit>
+  void for_each_item_in_cell(const Eigen::Vector3d& p, Visit&& visit) const {
+    const std::uint64_t cell = cell_key(p, inverse_cell_size_);
+    const std::size_t bucket = bucket_of(cell);
+    for (std::uint32_t e = bucket_start_[bucket]; e < bucket_start_[bucket + 1]; ++e)
+      if (cells_[e] == cell) visit(items_[e]);
+  }
+  // Calls visit(item) once for every item whose box overlaps `query` (in the one cell that holds
+  // the lowest corner of their overlap). Cost: the cells the query covers and their entries.
+  template <typename Visit>
+  void for_each_item_overlapping(std::span<const Box> boxes, const Box& query, Visit&& visit) const;
   // Calls visit(a, b) once for every pair of items a != b whose boxes overlap (in the one cell
   // that holds the lowest corner of the boxes' overlap).
   template <typename Visit>
-  void for_each_overlapping_pair(std::span<const Box> boxes, Visit&& visit) const;
+  void for_each_overlapping_pair(std::span<const Box> boxes, Visit&& visit) const {
+    for_each_overlapping_pair(boxes, 0, bucket_count(), visit);
+  }
+  // The same for the pairs whose cell hashes to a bucket in [first_bucket, end_bucket): disjoint
+  // ranges of buckets visit disjoint sets of pairs, so threads can share the buckets.
+  template <typename Visit>
+  void for_each_overlapping_pair(std::span<const Box> boxes, std::size_t first_bucket,
+                                 std::size_t end_bucket, Visit&& visit) const;
 
   std::size_t entries() const { return items_.size(); }
+  std::size_t bucket_count() const { return bucket_start_.empty() ? 0 : bucket_start_.size() - 1; }
 
  private:
   std::size_t bucket_of(std::uint64_t cell) const;
+  std::array<std::uint64_t, 3> cell_of(const Eigen::Vector3d& p) const;
 
   double inverse_cell_size_ = 1.0;  // 1/m
   int bucket_shift_ = 58;           // 64 - log2(table size): the hash keeps the product's top bits
@@ -59,8 +87,9 @@ class SpatialGrid {
 };
 
 template <typename Visit>
-void SpatialGrid::for_each_overlapping_pair(std::span<const Box> boxes, Visit&& visit) const {
-  for (std::size_t bucket = 0; bucket + 1 < bucket_start_.size(); ++bucket) {
+void SpatialGrid::for_each_overlapping_pair(std::span<const Box> boxes, std::size_t first_bucket,
+                                            std::size_t end_bucket, Visit&& visit) const {
+  for (std::size_t bucket = first_bucket; bucket < end_bucket; ++bucket) {
     const std::uint32_t begin = bucket_start_[bucket], end = bucket_start_[bucket + 1];
     for (std::uint32_t i = begin; i < end; ++i)
       for (std::uint32_t j = i + 1; j < end; ++j) {
@@ -80,6 +109,28 @@ void SpatialGrid::for_each_overlapping_pair(std::span<const Box> boxes, Visit&& 
         visit(a, b);
       }
   }
+}
+
+template <typename Visit>
+void SpatialGrid::for_each_item_overlapping(std::span<const Box> boxes, const Box& query,
+                                            Visit&& visit) const {
+  const std::array<std::uint64_t, 3> low = cell_of(query.min), high = cell_of(query.max);
+  for (std::uint64_t i = low[0]; i <= high[0]; ++i)
+    for (std::uint64_t j = low[1]; j <= high[1]; ++j)
+      for (std::uint64_t k = low[2]; k <= high[2]; ++k) {
+        const std::uint64_t cell = (i << 42) | (j << 21) | k;
+        const std::size_t bucket = bucket_of(cell);
+        for (std::uint32_t e = bucket_start_[bucket]; e < bucket_start_[bucket + 1]; ++e) {
+          if (cells_[e] != cell) continue;
+          const std::int32_t item = items_[e];
+          if (!boxes[static_cast<std::size_t>(item)].overlaps(query)) continue;
+          const auto& item_low = lowest_cell_[static_cast<std::size_t>(item)];
+          const std::uint64_t lowest = (std::max(low[0], item_low[0]) << 42) |
+                                       (std::max(low[1], item_low[1]) << 21) |
+                                       std::max(low[2], item_low[2]);
+          if (lowest == cell) visit(item);
+        }
+      }
 }
 
 }  // namespace drapelab

@@ -191,7 +191,7 @@ TEST(SelfContactImplicit, AssembledAndMatrixFreeSolvesAgree) {
     EXPECT_EQ(solver.uses_fast_springs(), fast);
     solver.step(2e-3);
     ASSERT_EQ(solver.status(), SolverStatus::ok);
-    EXPECT_GT(solver.self_contact()->stats().contacts_total, 100);
+    EXPECT_GT(solver.self_contact_stats()->contacts_total, 100);
     x_out[fast ? 0 : 1] = solver.state().x;
   }
   const double moved = (x_out[0] - state.x).norm();

@@ -32,6 +32,7 @@ class ForceEvaluator;
 class IntegratorScheme;
 class FamilyImplicitSystem;
 class SelfContact;
+struct SelfContactStats;
 struct ShapeBoundWorkspace;
 
 // The pins carried by colliders at a step's start, for the work the colliders do through them.
@@ -71,6 +72,9 @@ class SpringDamperSolver final : public Solver {
   std::vector<std::string> force_terms() const;
   // Self-collision's machinery and statistics (null when off).
   const SelfContact* self_contact() const;
+  // Self-collision's counters, from the penalty self-contacts or vbd's offset contacts (null
+  // without self-collision).
+  const SelfContactStats* self_contact_stats() const;
   // What each collider did in the last force evaluation (empty without colliders).
   const std::vector<ColliderContactTotals>& contact_totals() const;
   // The implicit solve: the assembled sparse system (a cloth without spring families, or

@@ -44,6 +44,9 @@ struct VbdStats {
   double last_sweep_move = 0.0;
   double last_sweep_move_max = 0.0;  // the largest over all steps (m)
   std::int64_t contacts_last = 0;    // collider contact planes of the last step
+  // Offset self-contact detections, summed over steps (one per step, more where moves were cut
+  // short at their bounds).
+  std::int64_t self_contact_detections = 0;
 };
 
 }  // namespace drapelab

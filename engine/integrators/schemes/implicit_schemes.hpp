@@ -40,9 +40,11 @@ class VbdScheme final : public IntegratorScheme {
   Counters counters() const override;
   std::string step_advice() const override;
   const VbdStats* vbd_stats() const override;
+  const OffsetContacts* offset_contacts() const override { return self_contacts_.get(); }
 
  private:
   std::unique_ptr<VertexBlockDescent> descent_;
+  std::unique_ptr<OffsetContacts> self_contacts_;  // with self-collision
 };
 
 }  // namespace drapelab

@@ -23,6 +23,7 @@
 namespace drapelab {
 
 class FamilyImplicitSystem;
+class OffsetContacts;
 
 // What every scheme steps: the solver's model, settings, state and force evaluation.
 struct SchemeContext {
@@ -64,6 +65,8 @@ class IntegratorScheme {
   virtual const ImplicitEulerSystem* implicit_system() const { return nullptr; }
   virtual const FamilyImplicitSystem* family_implicit_system() const { return nullptr; }
   virtual const VbdStats* vbd_stats() const { return nullptr; }
+  // Self-contact the scheme handles inside its own solve (null: the force evaluation's, if any).
+  virtual const OffsetContacts* offset_contacts() const { return nullptr; }
 
  protected:
   // a = f / m for the force just evaluated (zero on pinned particles).

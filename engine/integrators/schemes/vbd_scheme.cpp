@@ -5,12 +5,16 @@
 
 #include "integrators/schemes/implicit_schemes.hpp"
 #include "integrators/vbd/vertex_block_descent.hpp"
+#include "self_collision/offset_contacts.hpp"
 
 namespace drapelab {
 
 VbdScheme::VbdScheme(const SchemeContext& context)
     : IntegratorScheme(context),
-      descent_(std::make_unique<VertexBlockDescent>(ctx_.model, ctx_.settings.vbd)) {}
+      descent_(std::make_unique<VertexBlockDescent>(ctx_.model, ctx_.settings.vbd)) {
+  if (ctx_.settings.self_collision.enabled && ctx_.model.triangles.cols() > 0)
+    self_contacts_ = std::make_unique<OffsetContacts>(ctx_.model, ctx_.settings.self_collision);
+}
 
 VbdScheme::~VbdScheme() = default;
 
@@ -34,8 +38,16 @@ std::optional<std::int64_t> VbdScheme::step(double h) {
     input.couplings = &forces.couplings();
     input.explicit_force = &force;
   }
+  input.self_contacts = self_contacts_.get();
+  const double detecting_before = self_contacts_ ? self_contacts_->detection_seconds() : 0.0;
   descent_->step(ctx_.model, input, state.x, state.v, forces.contact_totals());
   forces.add_edge_contact_totals();
+  if (self_contacts_) {
+    // The detections are the self-contacts' phase; their energy's terms are part of the sweeps.
+    forces.add_phase_seconds(StepPhase::self_contacts,
+                             self_contacts_->detection_seconds() - detecting_before);
+    forces.set_scheme_power({.dissipated = self_contacts_->last_totals().dissipated_power});
+  }
   return std::nullopt;
 }
 
@@ -50,13 +62,17 @@ const VbdStats* VbdScheme::vbd_stats() const { return &descent_->stats(); }
 Counters VbdScheme::counters() const {
   const VbdStats& s = descent_->stats();
   const VbdSettings& settings = ctx_.settings.vbd;
-  return {{"vbd_iterations", settings.iterations},
-          {"vbd_order", settings.order},
-          {"vbd_chebyshev_rho", settings.chebyshev_rho},
-          {"vbd_colors", s.colors},
-          {"vbd_last_sweep_move", s.last_sweep_move},
-          {"vbd_last_sweep_move_max", s.last_sweep_move_max},
-          {"vbd_contact_planes_last", static_cast<double>(s.contacts_last)}};
+  return {
+      {"vbd_iterations", settings.iterations},
+      {"vbd_order", settings.order},
+      {"vbd_chebyshev_rho", settings.chebyshev_rho},
+      {"vbd_colors", s.colors},
+      {"vbd_last_sweep_move", s.last_sweep_move},
+      {"vbd_last_sweep_move_max", s.last_sweep_move_max},
+      {"vbd_contact_planes_last", static_cast<double>(s.contacts_last)},
+      {"vbd_self_contact_detections_per_step",
+       s.steps > 0 ? static_cast<double>(s.self_contact_detections) / static_cast<double>(s.steps)
+                   : 0.0}};
 }
 
 std::string VbdScheme::step_advice() const {

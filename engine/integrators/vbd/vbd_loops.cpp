@@ -8,57 +8,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/vbd/vbd_block.hpp"
+
 namespace drapelab::kernels {
 namespace {
-
-// The running sums of one particle's Newton step: f (N) and the symmetric H (N/m), stored as its
-// six entries xx, yy, zz, xy, xz, yz.
-struct Block {
-  double f[3] = {0.0, 0.0, 0.0};
-  double h[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-
-  // H += a I
-  void add_identity(double a) {
-    h[0] += a;
-    h[1] += a;
-    h[2] += a;
-  }
-  // H += a u u^T
-  void add_outer(double a, const double* u) {
-    h[0] += a * u[0] * u[0];
-    h[1] += a * u[1] * u[1];
-    h[2] += a * u[2] * u[2];
-    h[3] += a * u[0] * u[1];
-    h[4] += a * u[0] * u[2];
-    h[5] += a * u[1] * u[2];
-  }
-  void add_force(double a, const double* u) {
-    f[0] += a * u[0];
-    f[1] += a * u[1];
-    f[2] += a * u[2];
-  }
-  // The move H^-1 f by Cramer's rule (H is 3 x 3 symmetric positive definite); no move when H is
-  // singular to rounding.
-  bool solve(double* move) const {
-    const double c00 = h[1] * h[2] - h[5] * h[5];
-    const double c01 = h[4] * h[5] - h[3] * h[2];
-    const double c02 = h[3] * h[5] - h[4] * h[1];
-    const double det = h[0] * c00 + h[3] * c01 + h[4] * c02;
-    if (!(det > 1e-300)) return false;
-    const double c11 = h[0] * h[2] - h[4] * h[4];
-    const double c12 = h[3] * h[4] - h[0] * h[5];
-    const double c22 = h[0] * h[1] - h[3] * h[3];
-    const double inv = 1.0 / det;
-    move[0] = (c00 * f[0] + c01 * f[1] + c02 * f[2]) * inv;
-    move[1] = (c01 * f[0] + c11 * f[1] + c12 * f[2]) * inv;
-    move[2] = (c02 * f[0] + c12 * f[1] + c22 * f[2]) * inv;
-    return true;
-  }
-};
-
-inline double dot(const double* a, const double* b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // One damped spring seen from its end i: E = ks (l - l0)^2 / 2 and the damper's dissipation
 // kd ((dx_i - dx_j) . u)^2 / (2 h) with dx the displacement over the step and u the unit spring
@@ -192,10 +145,12 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
   }
   if (p.planes.count) add_planes(p, i, xi, move_i, b);
   if (p.couplings.offsets) add_couplings(p, i, xi, b);
+  if (p.self_contacts.offsets) add_self_contacts(p, i, xi, b);
 }
 
-// Particle i's Newton step; returns how far it moved (m).
-double solve_particle(const VbdProblem& p, std::int64_t i, double* x) {
+// Particle i's Newton step; returns how far it moved (m). `truncated` counts a move cut short at
+// the particle's conservative bound.
+double solve_particle(const VbdProblem& p, std::int64_t i, double* x, std::int64_t& truncated) {
   if (p.inverse_mass[i] == 0.0) return 0.0;  // pinned
   Block b;
   particle_block(p, i, x, SpringTerms::all, b);
@@ -205,21 +160,34 @@ double solve_particle(const VbdProblem& p, std::int64_t i, double* x) {
   xi[0] += move[0];
   xi[1] += move[1];
   xi[2] += move[2];
+  if (p.self_contacts.offsets && keep_within_bound(p.self_contacts, i, xi)) ++truncated;
   return std::sqrt(dot(move, move));
 }
 
 }  // namespace
 
-double vbd_sweep(const VbdProblem& problem, double* x) {
+VbdSweepResult vbd_sweep(const VbdProblem& problem, double* x) {
   double largest = 0.0;
+  std::int64_t truncated = 0;
 #pragma omp parallel if (problem.n >= 2048)
   for (int c = 0; c < problem.colors; ++c) {
     const std::int32_t begin = problem.color_offsets[c], end = problem.color_offsets[c + 1];
-#pragma omp for schedule(static) reduction(max : largest)
+#pragma omp for schedule(static) reduction(max : largest) reduction(+ : truncated)
     for (std::int32_t k = begin; k < end; ++k)
-      largest = std::max(largest, solve_particle(problem, problem.color_particles[k], x));
+      largest =
+          std::max(largest, solve_particle(problem, problem.color_particles[k], x, truncated));
   }
-  return largest;
+  return {largest, truncated};
+}
+
+std::int64_t vbd_keep_within_bounds(const VbdProblem& problem, double* x) {
+  if (!problem.self_contacts.offsets) return 0;
+  std::int64_t truncated = 0;
+#pragma omp parallel for schedule(static) reduction(+ : truncated) if (problem.n >= 4096)
+  for (std::int64_t i = 0; i < problem.n; ++i)
+    if (problem.inverse_mass[i] != 0.0 && keep_within_bound(problem.self_contacts, i, x + 3 * i))
+      ++truncated;
+  return truncated;
 }
 
 void vbd_coarse_terms(const VbdProblem& p, const double* x, const VbdAggregates& aggregates,

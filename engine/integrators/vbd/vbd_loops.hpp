@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "core/offset_contact_arrays.hpp"
 #include "forces/continuum_loops.hpp"
 
 namespace drapelab::kernels {
@@ -70,6 +71,9 @@ struct VbdProblem {
       nullptr;  // cloth.model: continuum (its springs are then empty)
   VbdPlanes planes;
   VbdCouplings couplings;  // offsets null: none
+  // Offset self-contacts (self_collision/offset_contacts.hpp), offsets null: none. With them every
+  // move stays within its particle's conservative bound.
+  OffsetContactArrays self_contacts;
   // Colour c's particles are color_particles[color_offsets[c]] to [color_offsets[c + 1] - 1].
   const std::int32_t* color_offsets = nullptr;
   const std::int32_t* color_particles = nullptr;
@@ -77,8 +81,17 @@ struct VbdProblem {
 };
 
 // One sweep: every colour in turn, each particle's Newton step on G with the others held. Updates
-// x in place and returns the largest distance one particle moved (m).
-double vbd_sweep(const VbdProblem& problem, double* x);
+// x in place; returns the largest distance one particle moved (m) and how many moves were cut
+// short at a conservative bound.
+struct VbdSweepResult {
+  double largest_move = 0.0;
+  std::int64_t truncated = 0;
+};
+VbdSweepResult vbd_sweep(const VbdProblem& problem, double* x);
+
+// Pulls every particle outside its conservative bound back to it (after a move of many particles
+// at once: the initial guess, a coarse step, an acceleration); returns how many were outside.
+std::int64_t vbd_keep_within_bounds(const VbdProblem& problem, double* x);
 
 // Springs as a list, each once.
 struct VbdSpringList {

@@ -27,6 +27,12 @@ constexpr int kPlaneSlots = 4;
 // 24 cm for 0.43 s.
 constexpr int kCoarseEvery = 2;
 
+// Self-contact detections per step at most: the first, and one before each iteration that follows
+// an iteration in which a move was cut short at its bound (with extra iterations past the sweeps
+// asked for while moves are cut short). Past it the step ends with its moves cut short, which only
+// slows the cloth (self_collision_truncations counts them).
+constexpr int kMostDetections = 32;
+
 void store(double* to, const Eigen::Vector3d& value) {
   to[0] = value[0];
   to[1] = value[1];
@@ -256,27 +262,86 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   // w_2 = 2 / (2 - rho^2), w_k = 4 / (4 - rho^2 w_(k-1)).
   const double rho = settings_.chebyshev_rho;
   const bool accelerate = rho > 0.0;
+  OffsetContacts* self = input.self_contacts;
+  std::int64_t truncated = self ? detect_self_contacts(model, *self, problem, x) : 0;
+  std::int64_t truncated_total = truncated;
+  int detections = self ? 1 : 0;
   if (accelerate) before_last_ = x;
   double omega = 1.0, last_move = 0.0;
-  for (int k = 0; k < settings_.iterations; ++k) {
+  int k = 0;
+  // The sweeps asked for, and more while moves are still cut short at their bounds: a part of the
+  // cloth that moves fast against its neighbours (an impact, a whip) gets there a bound at a time.
+  for (; k < settings_.iterations || (truncated > 0 && detections < kMostDetections); ++k) {
+    // Moves were cut short: look again from here, where the bounds are known to hold.
+    if (self && truncated > 0 && detections < kMostDetections) {
+      self->detect(x, Eigen::Vector3d::Zero());
+      problem.self_contacts = self->arrays();
+      ++detections;
+    }
+    truncated = 0;
     if (accelerate) iteration_start_ = x;
+    if (self) sweep_start_ = x;
     // The coarse step first, so that the sweep after it settles what it moved into contact.
-    if (settings_.coarse_correction && k % kCoarseEvery == 0) coarse_step(problem, true, x);
-    if (coupled) sweep_start_ = x;
-    last_move = kernels::vbd_sweep(problem, x.data());
-    if (!accelerate) continue;
-    omega = k == 0 ? 1.0 : k == 1 ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
-    if (k > 0) x = omega * (x - before_last_) + before_last_;
-    before_last_ = iteration_start_;
+    if (settings_.coarse_correction && k % kCoarseEvery == 0) {
+      coarse_step(problem, true, x);
+      truncated += kernels::vbd_keep_within_bounds(problem, x.data());
+    }
+    if (coupled || self) sweep_start_ = x;
+    const kernels::VbdSweepResult sweep = kernels::vbd_sweep(problem, x.data());
+    last_move = sweep.largest_move;
+    truncated += sweep.truncated;
+    if (accelerate) {
+      omega = k == 0 ? 1.0 : k == 1 ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
+      if (k > 0) x = omega * (x - before_last_) + before_last_;
+      before_last_ = iteration_start_;
+      truncated += kernels::vbd_keep_within_bounds(problem, x.data());
+    }
+    truncated_total += truncated;
   }
   previous_v_ = v;
   history_step_ = input.h;
   v = (x - start_) / h;
   ++stats_.steps;
-  stats_.iterations_total += settings_.iterations;
+  stats_.iterations_total += k;
   stats_.last_sweep_move = last_move;
   stats_.last_sweep_move_max = std::max(stats_.last_sweep_move_max, last_move);
   record_contact_totals(x, h, totals);
+  if (self) {
+    self->record_end_state(x, start_, h, settings_.friction_velocity);
+    self->count_truncations(truncated_total);
+    stats_.self_contact_detections += detections;
+  }
+}
+
+std::int64_t VertexBlockDescent::detect_self_contacts(const ClothModel& model, OffsetContacts& self,
+                                                      kernels::VbdProblem& problem,
+                                                      Eigen::Matrix3Xd& x) {
+  // x(n), with the pins where the step takes them: they move with their colliders, not within a
+  // bound, so the bounds are set around where they end.
+  detection_x_ = previous_x_;
+  bool pinned = false;
+  for (int i = 0; i < model.particle_count(); ++i)
+    if (model.is_pinned(i)) {
+      detection_x_.col(i) = x.col(i);
+      pinned = true;
+    }
+  // A free cloth's common translation over the step moves no part of it towards another: the
+  // bounds follow it. Not where something holds part of the cloth back: a pin, or a collider the
+  // guess touches, which the bounds would otherwise carry the particle through.
+  bool near_collider = false;
+  for (int i = 0; i < model.particle_count() && !near_collider; ++i)
+    for (int k = 0; k < plane_count_[static_cast<std::size_t>(i)]; ++k) {
+      const std::size_t e = static_cast<std::size_t>(i) * kPlaneSlots + static_cast<std::size_t>(k);
+      const Eigen::Map<const Eigen::Vector3d> n(&plane_normal_[3 * e]);
+      const Eigen::Map<const Eigen::Vector3d> point(&plane_point_[3 * e]);
+      if ((x.col(i) - point).dot(n) < contact_.radius) near_collider = true;  // the guess touches
+    }
+  const Eigen::Vector3d shift = pinned || near_collider
+                                    ? Eigen::Vector3d::Zero()
+                                    : Eigen::Vector3d((x - detection_x_).rowwise().mean());
+  self.detect(detection_x_, shift);
+  problem.self_contacts = self.arrays();
+  return kernels::vbd_keep_within_bounds(problem, x.data());
 }
 
 void VertexBlockDescent::record_contact_totals(const Eigen::Matrix3Xd& x, double h,

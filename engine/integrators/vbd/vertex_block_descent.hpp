@@ -18,6 +18,7 @@
 #include "drapelab/weighted_contact.hpp"
 #include "forces/continuum_loops.hpp"
 #include "integrators/vbd/vbd_loops.hpp"
+#include "self_collision/offset_contacts.hpp"
 
 namespace drapelab {
 
@@ -45,6 +46,8 @@ struct VbdStepInput {
   // the step on each particle besides gravity (their friction); both may be empty.
   const std::vector<WeightedContact>* couplings = nullptr;
   const Eigen::Matrix3Xd* explicit_force = nullptr;
+  // Offset self-contacts: detected in the step, every move kept within its conservative bound.
+  OffsetContacts* self_contacts = nullptr;
 };
 
 class VertexBlockDescent {
@@ -78,6 +81,10 @@ class VertexBlockDescent {
   void coarse_step(const kernels::VbdProblem& problem, bool refactor, Eigen::Matrix3Xd& x);
   void factor_coarse_matrix();
   void build_coarse_system(const ClothModel& model);
+  // Finds the offset self-contacts at the step's start (pins at their end) and keeps the initial
+  // guess x within the bounds; returns how many particles it held back.
+  std::int64_t detect_self_contacts(const ClothModel& model, OffsetContacts& self,
+                                    kernels::VbdProblem& problem, Eigen::Matrix3Xd& x);
   void record_contact_totals(const Eigen::Matrix3Xd& x, double h,
                              std::vector<ColliderContactTotals>& totals) const;
 
@@ -122,6 +129,7 @@ class VertexBlockDescent {
   // start (read by the contacts between particles), the iteration's start and the one before
   // (Chebyshev's history); V (m/s), the start velocity.
   Eigen::Matrix3Xd start_, inertia_, sweep_start_, iteration_start_, before_last_, base_v_;
+  Eigen::Matrix3Xd detection_x_;  // m: where the step's first self-contact detection looks
   // The last step: x(n-1) (m) and v(n-1) (m/s), and its h (s; 0 before the first step).
   Eigen::Matrix3Xd previous_x_, previous_v_;
   double history_step_ = 0.0;
