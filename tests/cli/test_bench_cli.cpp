@@ -155,7 +155,7 @@ TEST_F(BenchCli, RepeatReportsTheFastestOfTheRunsAndTheirSpread) {
   const auto lines = split_lines(read_text(out / "bench.csv"));
   ASSERT_EQ(lines.size(), 1u + 5) << "a header, the 4 solvers and the reference";
   const auto header = split_csv(lines[0]);
-  ASSERT_EQ(header.size(), 19u);
+  ASSERT_EQ(header.size(), 21u);
   const std::size_t solver = column(header, "solver"), runs = column(header, "runs"),
                     spread = column(header, "wall_spread"),
                     max_stretch = column(header, "max_stretch");
@@ -167,6 +167,8 @@ TEST_F(BenchCli, RepeatReportsTheFastestOfTheRunsAndTheirSpread) {
     EXPECT_GE(std::stod(cells[spread]), 1.0) << "the slowest run over the fastest: " << lines[k];
     EXPECT_GT(std::stod(cells[max_stretch]), 0.0)
         << "the curtain stretches under its weight: " << lines[k];
+    // Every solver's frames are audited: the hanging curtain never crosses itself.
+    EXPECT_EQ(cells[column(header, "self_intersections")], "0") << lines[k];
   }
 }
 

@@ -10,45 +10,23 @@
 #include <vector>
 
 #include "drapelab/contact_model.hpp"
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene_loader.hpp"
 #include "drapelab/self_intersections.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 #include "fixtures/sheets.hpp"
 #include "layered_cloth.hpp"
+#include "scene_audit.hpp"
 #include "self_collision/self_contact.hpp"
 
 namespace drapelab {
 namespace {
 
-struct Audit {
-  runner::SimulationResult result;
-  int most_crossings = -1;  // over the recorded frames
-  int frames = 0;
-};
-
-// Runs the scene's first solver and audits every recorded frame.
-Audit run_scene(const scene::LoadResult& loaded) {
-  Audit audit;
-  if (!loaded.ok()) {
-    ADD_FAILURE() << "does not load: " << (loaded.errors.empty() ? "" : loaded.errors.front());
-    return audit;
-  }
-  const scene::Scene& scene = *loaded.scene;
-  const runner::SceneSetup setup = runner::build_scene_setup(scene);
-  runner::SimulationOptions options;
-  options.on_frame = [&](int, const ClothState&, const ClothMetrics& metrics) {
-    audit.most_crossings = std::max(audit.most_crossings, metrics.self_intersections.value_or(-1));
-    ++audit.frames;
-  };
-  audit.result = runner::simulate_solver(scene, scene.solvers.front(), setup, options);
-  return audit;
-}
+using Audit = fixtures::SceneAudit;
+using fixtures::audit_scene;
 
 // scenes/twist.yaml's first solver: ours, vbd at its own step.
 Audit twist(const std::vector<std::string>& overrides) {
-  return run_scene(scene::load_scene_file(
+  return audit_scene(scene::load_scene_file(
       std::filesystem::path(DRAPELAB_SOURCE_DIR) / "scenes" / "twist.yaml", overrides));
 }
 
@@ -147,7 +125,7 @@ solvers:
 )";
 
 TEST(IntersectionFree, ASheetCrumpledBetweenClosingPlatesNeverCrossesItself) {
-  const Audit audit = run_scene(scene::load_scene_text(kCrumple, "crumple_test.yaml", {}));
+  const Audit audit = audit_scene(scene::load_scene_text(kCrumple, "crumple_test.yaml", {}));
   EXPECT_EQ(audit.result.status, SolverStatus::ok) << audit.result.message;
   EXPECT_EQ(audit.frames, 43);
   EXPECT_EQ(audit.most_crossings, 0);

@@ -6,40 +6,17 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
-#include "drapelab/scene/scene_loader.hpp"
 #include "fixtures/drape_scenes.hpp"
+#include "scene_audit.hpp"
 
 namespace drapelab {
 namespace {
 
-struct Audit {
-  runner::SimulationResult result;
-  int most_crossings = -1;          // over the recorded frames
-  double final_penetration = -1.0;  // m, triangle_penetration of the last frame
-  double final_lowest = 0.0;        // m, the last frame's lowest particle
-};
+using Audit = fixtures::SceneAudit;
 
 Audit run_audited(const std::string& text, const std::string& name,
                   const std::vector<std::string>& overrides) {
-  Audit audit;
-  const auto loaded = scene::load_scene_text(text, name, overrides);
-  if (!loaded.ok()) {
-    ADD_FAILURE() << name
-                  << " does not load: " << (loaded.errors.empty() ? "" : loaded.errors.front());
-    return audit;
-  }
-  const scene::Scene& scene = *loaded.scene;
-  const runner::SceneSetup setup = runner::build_scene_setup(scene);
-  runner::SimulationOptions options;
-  options.on_frame = [&](int, const ClothState& state, const ClothMetrics& metrics) {
-    audit.most_crossings = std::max(audit.most_crossings, metrics.self_intersections.value_or(-1));
-    audit.final_penetration = metrics.triangle_penetration.value_or(-1.0);
-    audit.final_lowest = state.x.row(1).minCoeff();
-  };
-  audit.result = runner::simulate_solver(scene, scene.solvers.front(), setup, options);
-  return audit;
+  return fixtures::audit_scene_text(text, name, overrides);
 }
 
 // scenes/heap.yaml's sheet and settings, our solver only, 1.2 s (the heap has formed by 0.8 s).

@@ -47,6 +47,14 @@ void add_self_collision_warnings(const scene::Scene& scene, std::vector<std::str
                          ": cloth.self_collision has no effect on bullet_softbody (Bullet 3.24's "
                          "classic cloth has no self-collision that runs; docs/bullet.md, "
                          "\"Self-collision\")");
+    else if (solver.type == SolverType::spring_damper && solver.integrator != Integrator::vbd)
+      // Only vbd keeps the cloth from crossing itself by construction (offset contact with
+      // conservative bounds); the others push layers apart with penalty forces in split steps.
+      warnings.push_back("solver " + solver.name + ": self-collision under " +
+                         integrator_name(solver.integrator) +
+                         " is penalty forces in split steps, which layers pressed hard enough (a "
+                         "twist, a crumple) still cross; integrator: vbd keeps the cloth from "
+                         "crossing itself (docs/contact.md, \"Self-collision\")");
 }
 
 // A solver expected to run for over ten minutes, with the faster choice when there is one.

@@ -55,9 +55,11 @@ constexpr int kClassicHalvings = 3;        // 240 Hz, then 480, 960, 1920 Hz
 
 struct Measured {
   runner::SimulationResult result;
-  double max_penetration = 0.0;  // m, over every recorded frame
-  double max_stretch = 0.0;      // over every recorded frame
-  Eigen::Matrix3Xd last_x;       // m, the positions at the last recorded frame
+  double max_penetration = 0.0;                    // m, over every recorded frame
+  double max_stretch = 0.0;                        // over every recorded frame
+  std::optional<int> most_self_intersections;      // over every recorded frame
+  std::optional<double> max_triangle_penetration;  // m, over every recorded frame
+  Eigen::Matrix3Xd last_x;                         // m, the positions at the last recorded frame
 };
 
 Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
@@ -70,6 +72,12 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
     m.max_stretch = std::max(m.max_stretch, metrics.max_stretch);
     if (metrics.max_penetration)
       m.max_penetration = std::max(m.max_penetration, *metrics.max_penetration);
+    if (metrics.self_intersections)
+      m.most_self_intersections =
+          std::max(m.most_self_intersections.value_or(0), *metrics.self_intersections);
+    if (metrics.triangle_penetration)
+      m.max_triangle_penetration =
+          std::max(m.max_triangle_penetration.value_or(0.0), *metrics.triangle_penetration);
     m.last_x = state.x;  // the final frame's, once the run has ended
   };
   m.result = runner::simulate_solver(scene, spec, setup, options);
@@ -142,6 +150,8 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
   }
   row.max_stretch = r.fastest.max_stretch;
   row.max_penetration = r.fastest.max_penetration;
+  row.self_intersections = r.fastest.most_self_intersections;
+  row.triangle_penetration = r.fastest.max_triangle_penetration;
   row.second_half_wall_per_simulated =
       result.second_half_wall_seconds_per_simulated_second(scene.frame_period());
   row.runs = r.count;

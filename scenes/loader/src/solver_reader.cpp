@@ -53,7 +53,6 @@ class SolverReader {
       const std::string host = default_choice(key("solvers[].host"));
       spec.bullet_host = solver.choice(key("solvers[].host")).value_or(host) == "bullet";
       read_adaptive_substeps(solver, path, spec);
-      note_self_collision_guarantee(spec);
     } else
       read_bullet_options(solver, spec);
     const double frame_period = scene_.frame_period();
@@ -256,18 +255,6 @@ class SolverReader {
     vbd_run.integrator = Integrator::vbd;
     vbd_run.dt = kVbdDefaultStep;
     return estimated_wall_seconds(model, vbd_run, scene_.duration);
-  }
-
-  // Only vbd keeps the cloth from crossing itself by construction (offset contacts with
-  // conservative bounds); the other integrators push layers apart with penalty forces in a step
-  // split so that no particle passes a layer in one piece, which a hard enough squeeze defeats.
-  void note_self_collision_guarantee(const SolverSpec& spec) {
-    if (!scene_.cloth.self_collision.enabled || spec.integrator == Integrator::vbd) return;
-    notes_.push_back("solver '" + spec.name + "': self-collision under " +
-                     integrator_name(spec.integrator) +
-                     " is penalty forces with split steps: layers pressed hard enough (a twist, a "
-                     "crumple) can still cross; integrator: vbd keeps the cloth from crossing "
-                     "itself (docs/contact.md, \"Self-collision\")");
   }
 
   bool whole_steps_per_frame(MapReader& solver, const std::string& path, SolverSpec& spec) {

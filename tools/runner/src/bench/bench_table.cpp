@@ -22,6 +22,14 @@ std::string rms_cell(const BenchRow& row, const char* format) {
   return row.rms_to_reference ? number(*row.rms_to_reference, format) : "";
 }
 
+// A count or a number where it was measured, or an empty cell.
+std::string optional_cell(const std::optional<int>& value) {
+  return value ? std::to_string(*value) : "";
+}
+std::string optional_cell(const std::optional<double>& value, const char* format) {
+  return value ? number(*value, format) : "";
+}
+
 }  // namespace
 
 std::string format_row(const BenchRow& row) {
@@ -46,21 +54,23 @@ std::string markdown(const BenchTable& table) {
   md << "Machine: " << table.machine << "\n\n"
      << "| scene | particles | solver | setting | dt (s) | status | wall s / sim s | ms / step | "
         "max stretch | "
-        "max penetration (m) | rms to reference (m) | cost / ours | wall s / sim s, 2nd half | "
+        "max penetration (m) | self-intersections (max) | triangle penetration (m) | "
+        "rms to reference (m) | cost / ours | wall s / sim s, 2nd half | "
         "cost / ours, 2nd half | "
         "runs | slowest / "
         "fastest |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow& r : table.rows) {
     md << "| " << r.scene << " | " << r.size << " x " << r.size << " | " << r.solver << " | "
        << r.setting << " | ";
     if (!measured(r)) {
-      md << " | " << r.status << " | | | | | | | | | | |\n";
+      md << " | " << r.status << " | | | | | | | | | | | | |\n";
       continue;
     }
     md << number(r.dt) << " | " << r.status << " | " << number(r.wall_per_simulated) << " | "
        << number(r.ms_per_step) << " | " << number(r.max_stretch, "%.3g") << " | "
-       << number(r.max_penetration, "%.3g") << " | " << rms_cell(r, "%.3g") << " | "
+       << number(r.max_penetration, "%.3g") << " | " << optional_cell(r.self_intersections) << " | "
+       << optional_cell(r.triangle_penetration, "%.3g") << " | " << rms_cell(r, "%.3g") << " | "
        << number(r.cost_ratio, "%.3g") << " | " << number(r.second_half_wall_per_simulated) << " | "
        << number(r.second_half_cost_ratio, "%.3g") << " | " << r.runs << " | "
        << number(r.wall_spread, "%.3g") << " |\n";
@@ -75,7 +85,7 @@ void write_bench_files(const std::filesystem::path& folder, const BenchTable& ta
          "second,"
          "ms_per_step,max_stretch,max_penetration,rms_to_reference,cost_ratio_to_ours,"
          "second_half_wall_seconds_per_simulated_second,second_half_cost_ratio_to_ours,runs,wall_"
-         "spread\n";
+         "spread,self_intersections,triangle_penetration\n";
   for (const BenchRow& r : table.rows) {
     csv << r.scene << "," << r.size << "," << r.particles << "," << r.springs << "," << r.solver
         << "," << r.type << ",\"" << r.setting << "\"," << (measured(r) ? number(r.dt, "%.9g") : "")
@@ -86,9 +96,10 @@ void write_bench_files(const std::filesystem::path& folder, const BenchTable& ta
           << rms_cell(r, "%.6g") << "," << number(r.cost_ratio, "%.6g") << ","
           << number(r.second_half_wall_per_simulated, "%.6g") << ","
           << number(r.second_half_cost_ratio, "%.6g") << "," << r.runs << ","
-          << number(r.wall_spread, "%.6g");
+          << number(r.wall_spread, "%.6g") << "," << optional_cell(r.self_intersections) << ","
+          << optional_cell(r.triangle_penetration, "%.6g");
     else
-      csv << ",,,,,,,,,";
+      csv << ",,,,,,,,,,,";
     csv << "\n";
   }
   run_folder::write_file_atomically(folder / "bench.csv", csv.str());

@@ -30,6 +30,10 @@ struct BenchRow {
   // once the sheet has landed and Bullet's classic cloth has built most of its distance cache.
   double second_half_wall_per_simulated = 0.0;
   double second_half_cost_ratio = 0.0;
+  // The most self-intersections (crossing edge-triangle pairs) of one frame, and the deepest
+  // triangle penetration of a collider (m), over every frame; nothing where not measured.
+  std::optional<int> self_intersections;
+  std::optional<double> triangle_penetration;
   int runs = 0;              // runs of this setting (--repeat); the row is the fastest
   double wall_spread = 1.0;  // the slowest run's wall time over the fastest's
 };
