@@ -36,8 +36,7 @@ double mean_rest_edge(const ClothModel& model, const std::vector<std::array<std:
 }  // namespace
 
 OffsetContacts::OffsetContacts(const ClothModel& model, const SelfCollisionSettings& settings)
-    : model_(model),
-      settings_(settings),
+    : settings_(settings),
       barrier_{settings.thickness_or(model.thickness), settings.stiffness},
       topology_(model) {
   // The reach: far enough that a flat sheet's bound is set by its own neighbours, and at least
@@ -119,10 +118,9 @@ void OffsetContacts::find_edge_edge(const Eigen::Matrix3Xd& x) {
   }
   grid_.build(boxes_, cell_size_for(boxes_, offset));
   const std::int64_t blocks = (count + kDetectionBlock - 1) / kDetectionBlock;
-  const std::size_t first_edge_block = block_found_.size();
-  block_found_.resize(first_edge_block + static_cast<std::size_t>(blocks));
+  block_edge_found_.resize(static_cast<std::size_t>(blocks));
   kernels::for_each_block_balanced(blocks, count >= kParallelDetection, [&](std::int64_t block) {
-    std::vector<Found>& found = block_found_[first_edge_block + static_cast<std::size_t>(block)];
+    std::vector<Found>& found = block_edge_found_[static_cast<std::size_t>(block)];
     found.clear();
     const std::int64_t end = std::min(count, (block + 1) * kDetectionBlock);
     for (std::int64_t ea = block * kDetectionBlock; ea < end; ++ea) {
@@ -154,7 +152,6 @@ void OffsetContacts::find_edge_edge(const Eigen::Matrix3Xd& x) {
 void OffsetContacts::detect(const Eigen::Matrix3Xd& x, const Eigen::Vector3d& shift) {
   const auto started = std::chrono::steady_clock::now();
   std::fill(nearest_.begin(), nearest_.end(), reach_);
-  block_found_.clear();
   find_point_triangle(x);
   find_edge_edge(x);
   store_contacts();
@@ -191,6 +188,8 @@ void OffsetContacts::store_contacts() {
     normal_force_.push_back(-barrier_.slope(f.distance));
   };
   for (const std::vector<Found>& block : block_found_)
+    for (const Found& f : block) add(f);
+  for (const std::vector<Found>& block : block_edge_found_)
     for (const Found& f : block) add(f);
   for (const Found& f : shared_) add(f);
   // Each particle's rows: count, then place.

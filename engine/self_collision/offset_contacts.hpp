@@ -74,16 +74,18 @@ class OffsetContacts {
   void find_edge_edge(const Eigen::Matrix3Xd& x);
   void store_contacts();
 
-  const ClothModel& model_;
   SelfCollisionSettings settings_;
   OffsetBarrier barrier_;
   double reach_ = 0.0;  // m: how far a detection looks for the nearest primitive
   ClothTopology topology_;
   SpatialGrid grid_;
   std::vector<Box> boxes_;
-  std::vector<double> edge_reach_;                // m per edge: how far its edge-pair search looks
-  std::vector<std::vector<Found>> block_found_;   // per block: faces and edge pairs, in order
-  std::vector<std::vector<Found>> block_shared_;  // per block: edges and corners, to deduplicate
+  std::vector<double> edge_reach_;  // m per edge: how far its edge-pair search looks
+  // Per block, kept from one detection to the next (each block clears its own): the faces found,
+  // the edge pairs found, and the edges and corners to deduplicate.
+  std::vector<std::vector<Found>> block_found_;
+  std::vector<std::vector<Found>> block_edge_found_;
+  std::vector<std::vector<Found>> block_shared_;
   std::vector<Found> shared_;
   // Per particle: the nearest untouched primitive (m), the bound (m) and its centre (m).
   std::vector<double> nearest_;

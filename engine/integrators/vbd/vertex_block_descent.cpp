@@ -28,9 +28,9 @@ constexpr int kPlaneSlots = 4;
 constexpr int kCoarseEvery = 2;
 
 // Self-contact detections per step at most: the first, and one before each iteration that follows
-// an iteration in which a move was cut short at its bound (with extra iterations past the sweeps
-// asked for while moves are cut short). Past it the step ends with its moves cut short, which only
-// slows the cloth (self_collision_truncations counts them).
+// an iteration in which too many moves were cut short at their bounds (below), with extra
+// iterations past the sweeps asked for while that lasts. Past it the step ends with its moves cut
+// short, which only slows the cloth (self_collision_truncations counts them).
 constexpr int kMostDetections = 32;
 
 // Moves cut short that call for another detection: more than one particle in a thousand. A few
@@ -278,8 +278,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   // The sweeps asked for, and more while moves are still cut short at their bounds: a part of the
   // cloth that moves fast against its neighbours (an impact, a whip) gets there a bound at a time.
   const std::int64_t tolerated = cut_moves_tolerated(n);
-  for (; k < settings_.iterations || (truncated > tolerated && detections < kMostDetections);
-       ++k) {
+  for (; k < settings_.iterations || (truncated > tolerated && detections < kMostDetections); ++k) {
     // Moves were cut short: look again from here, where the bounds are known to hold.
     if (self && truncated > tolerated && detections < kMostDetections) {
       self->detect(x, Eigen::Vector3d::Zero());
