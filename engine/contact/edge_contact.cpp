@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "cloth/mesh_edges.hpp"
+#include "core/feature_push.hpp"
 #include "core/proximity.hpp"
 
 namespace drapelab {
@@ -23,7 +24,10 @@ ColliderFeatures box_features(const Eigen::Vector3d& half) {
   for (int corner = 0; corner < 8; ++corner) {
     const Eigen::Vector3d sign((corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0,
                                (corner & 4) ? 1.0 : -1.0);
-    features.corners.push_back({sign.cwiseProduct(half), sign.normalized()});
+    const ColliderFeatures::Faces corner_faces{Eigen::Vector3d(sign.x(), 0.0, 0.0),
+                                               Eigen::Vector3d(0.0, sign.y(), 0.0),
+                                               Eigen::Vector3d(0.0, 0.0, sign.z())};
+    features.corners.push_back({sign.cwiseProduct(half), sign.normalized(), corner_faces});
     // The edges from this corner towards +x, +y, +z, each found once (from its lower end).
     for (int axis = 0; axis < 3; ++axis) {
       if (sign[axis] > 0.0) continue;
@@ -31,8 +35,11 @@ ColliderFeatures box_features(const Eigen::Vector3d& half) {
       other[axis] = 1.0;
       Eigen::Vector3d outward = sign;
       outward[axis] = 0.0;
-      features.edges.push_back(
-          {sign.cwiseProduct(half), other.cwiseProduct(half), outward.normalized()});
+      const Eigen::Vector3d& first = corner_faces[(axis + 1) % 3];
+      features.edges.push_back({sign.cwiseProduct(half),
+                                other.cwiseProduct(half),
+                                outward.normalized(),
+                                {first, corner_faces[(axis + 2) % 3], first}});
     }
   }
   return features;
@@ -60,12 +67,18 @@ ColliderFeatures cylinder_features(const Eigen::Vector3d& axis, double radius, d
       const double to = 2.0 * std::numbers::pi * (k + 1) / count;
       const double middle = 0.5 * (from + to);
       const Eigen::Vector3d radial = std::cos(middle) * u + std::sin(middle) * w;
+      const Eigen::Vector3d cap = side * a;
       features.edges.push_back({rim_center + radius * (std::cos(from) * u + std::sin(from) * w),
                                 rim_center + radius * (std::cos(to) * u + std::sin(to) * w),
-                                (radial + side * a).normalized()});
+                                (radial + cap).normalized(),
+                                {cap, radial, cap}});
     }
   }
   return features;
+}
+
+ColliderFeatures::Faces posed(const Eigen::Isometry3d& pose, const ColliderFeatures::Faces& faces) {
+  return {pose.linear() * faces[0], pose.linear() * faces[1], pose.linear() * faces[2]};
 }
 
 Eigen::AlignedBox3d segment_box(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -141,21 +154,90 @@ double EdgeContact::stored_energy(const ContactModel& contacts, double t,
   return energy;
 }
 
+Eigen::AlignedBox3d EdgeContact::pose_features(std::size_t c, const Eigen::Isometry3d& pose,
+                                               double reach) {
+  const ColliderFeatures& local = features_[c];
+  posed_edges_.clear();
+  Eigen::AlignedBox3d box;
+  for (const auto& e : local.edges) {
+    posed_edges_.push_back(
+        {pose * e.from, pose * e.to, pose.linear() * e.outward, posed(pose, e.faces)});
+    box.extend(posed_edges_.back().from);
+    box.extend(posed_edges_.back().to);
+  }
+  posed_corners_.clear();
+  for (const auto& k : local.corners) {
+    posed_corners_.push_back({pose * k.at, pose.linear() * k.outward, posed(pose, k.faces)});
+    box.extend(posed_corners_.back().at);
+  }
+  box.min().array() -= reach;
+  box.max().array() += reach;
+  return box;
+}
+
+void EdgeContact::find_near(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x,
+                            double reach_distance, std::vector<FeatureContact>& near) {
+  near.clear();
+  if (!active_) return;
+  const double reach2 = reach_distance * reach_distance;
+  for (std::size_t c = 0; c < features_.size(); ++c) {
+    const ColliderFeatures& local = features_[c];
+    if (local.empty()) continue;
+    const Collider& collider = contacts.collider(c);
+    const Eigen::Isometry3d pose = contacts.pose(c, t);
+    const Eigen::Isometry3d to_local = pose.inverse();
+    const Eigen::AlignedBox3d reach = pose_features(c, pose, reach_distance);
+    const auto add = [&](std::array<std::int32_t, 3> particle, const ColliderFeatures::Edge& e,
+                         const Eigen::Vector3d& at) {
+      near.push_back({particle, e.from, e.to, e.outward, e.faces,
+                      contacts.surface_velocity(c, t, at), collider.static_friction,
+                      collider.friction, static_cast<int>(c)});
+    };
+    // Every collider edge within the reach of a cloth edge, wherever their closest points lie
+    // now: the sweeps pick the nearest as the cloth slides along the collider.
+    for (const auto& edge : edges_) {
+      const int a = edge[0], b = edge[1];
+      if (!segment_box(x.col(a), x.col(b)).intersects(reach)) continue;
+      local.candidate_edges(to_local * x.col(a), to_local * x.col(b), reach_distance,
+                            [&](std::size_t index) {
+                              const auto& e = posed_edges_[index];
+                              const SegmentProximity pair =
+                                  closest_points_of_segments(x.col(a), x.col(b), e.from, e.to);
+                              if ((pair.on_first - pair.on_second).squaredNorm() < reach2)
+                                add({a, b, -1}, e, pair.on_second);
+                            });
+    }
+    for (Eigen::Index tri = 0; tri < model_.triangles.cols(); ++tri) {
+      const int i = model_.triangles(0, tri), j = model_.triangles(1, tri),
+                k = model_.triangles(2, tri);
+      Eigen::AlignedBox3d span = segment_box(x.col(i), x.col(j));
+      span.extend(x.col(k));
+      if (posed_corners_.empty() || !span.intersects(reach)) continue;
+      for (const auto& corner : posed_corners_) {
+        if (span.exteriorDistance(corner.at) >= reach_distance) continue;
+        const PointTriangleProximity point =
+            closest_point_on_triangle(corner.at, x.col(i), x.col(j), x.col(k));
+        if ((point.closest - corner.at).squaredNorm() < reach2)
+          add({i, j, k}, {corner.at, corner.at, corner.outward, corner.faces}, corner.at);
+      }
+    }
+  }
+}
+
 void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x) {
   found_.clear();
   const double h2 = thickness_ * thickness_;
-  // Where a cloth point at `cloth` touches a collider feature at `feature` with outward `outward`:
-  // the push direction and depth, or nothing when farther than the thickness.
+  // Where a cloth point at `cloth` touches a collider feature at `feature`: the push direction and
+  // depth by feature_push's law, or nothing.
   auto touch = [&](const Eigen::Vector3d& cloth, const Eigen::Vector3d& feature,
-                   const Eigen::Vector3d& outward, WeightedContactPoint& into) {
+                   const Eigen::Vector3d& outward, const ColliderFeatures::Faces& faces,
+                   WeightedContactPoint& into) {
     const Eigen::Vector3d r = cloth - feature;
-    const double d2 = r.squaredNorm();
-    if (d2 >= h2) return false;
-    const double d = std::sqrt(d2);
-    const bool in_front = d > 0.0 && r.dot(outward) >= 0.0;
-    into.normal = in_front ? Eigen::Vector3d(r / d) : outward;
-    into.depth = in_front ? thickness_ - d : thickness_ + d;
-    return true;
+    if (r.squaredNorm() >= h2) return false;
+    const double normals[9] = {faces[0].x(), faces[0].y(), faces[0].z(), faces[1].x(), faces[1].y(),
+                               faces[1].z(), faces[2].x(), faces[2].y(), faces[2].z()};
+    return feature_push::push(r.data(), outward.data(), normals, thickness_, into.normal.data(),
+                              into.depth);
   };
   for (std::size_t c = 0; c < features_.size(); ++c) {
     const ColliderFeatures& local = features_[c];
@@ -170,20 +252,7 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
     };
     const Eigen::Isometry3d pose = contacts.pose(c, t);
     const Eigen::Isometry3d to_local = pose.inverse();
-    posed_edges_.clear();
-    Eigen::AlignedBox3d reach;
-    for (const auto& e : local.edges) {
-      posed_edges_.push_back({pose * e.from, pose * e.to, pose.linear() * e.outward});
-      reach.extend(posed_edges_.back().from);
-      reach.extend(posed_edges_.back().to);
-    }
-    posed_corners_.clear();
-    for (const auto& k : local.corners) {
-      posed_corners_.push_back({pose * k.at, pose.linear() * k.outward});
-      reach.extend(posed_corners_.back().at);
-    }
-    reach.min().array() -= thickness_;
-    reach.max().array() += thickness_;
+    const Eigen::AlignedBox3d reach = pose_features(c, pose, thickness_);
     // Collider edges against cloth edges: the nearest collider edge, if it is nearest to the
     // inside of the cloth edge (at an end, the particle contact has it).
     for (const auto& edge : edges_) {
@@ -196,11 +265,14 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
             const auto& e = posed_edges_[index];
             const SegmentProximity near =
                 closest_points_of_segments(x.col(a), x.col(b), e.from, e.to);
-            if (!(near.s > 0.0 && near.s < 1.0)) return;
+            // Nearest at a cloth edge's end: the particle contact has it; at a collider edge's
+            // end: the corner (or the next chord) has it, and the edge's two faces alone do not
+            // say which side of the collider the point is on.
+            if (!(near.s > 0.0 && near.s < 1.0 && near.t > 0.0 && near.t < 1.0)) return;
             const double d2 = (near.on_first - near.on_second).squaredNorm();
             if (d2 >= best_distance2) return;
             WeightedContactPoint candidate;
-            if (!touch(near.on_first, near.on_second, e.outward, candidate)) return;
+            if (!touch(near.on_first, near.on_second, e.outward, e.faces, candidate)) return;
             candidate.particle = {a, b, -1, -1};
             candidate.weight = {1.0 - near.s, near.s, 0.0, 0.0};
             candidate.surface_velocity = contacts.surface_velocity(c, t, near.on_second);
@@ -228,7 +300,7 @@ void EdgeContact::find_contacts(const ContactModel& contacts, double t, const Ei
         const double d2 = (near.closest - corner.at).squaredNorm();
         if (d2 >= best_distance2) continue;
         WeightedContactPoint candidate;
-        if (!touch(near.closest, corner.at, corner.outward, candidate)) continue;
+        if (!touch(near.closest, corner.at, corner.outward, corner.faces, candidate)) continue;
         candidate.particle = {i, j, k, -1};
         candidate.weight = {near.weights[0], near.weights[1], near.weights[2], 0.0};
         candidate.surface_velocity = contacts.surface_velocity(c, t, corner.at);

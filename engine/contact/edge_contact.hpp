@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -32,13 +33,18 @@ namespace drapelab {
 
 // A collider's sharp features in its own frame (m).
 struct ColliderFeatures {
+  // The outward normals of the faces that meet at a feature (unit; an edge's two with the first
+  // repeated), for core/feature_push.hpp.
+  using Faces = std::array<Eigen::Vector3d, 3>;
   struct Edge {
     Eigen::Vector3d from, to;  // m
     Eigen::Vector3d outward;   // unit: the mean of the normals of the faces that meet there
+    Faces faces;
   };
   struct Corner {
     Eigen::Vector3d at;       // m
     Eigen::Vector3d outward;  // unit
+    Faces faces;
   };
   std::vector<Edge> edges;
   std::vector<Corner> corners;
@@ -75,6 +81,20 @@ struct EdgeContactTotals {
   PowerSplit power;                                  // W (ColliderContactTotals)
 };
 
+// A collider feature near a cloth edge or triangle, and where it lies: for a solver that measures
+// the contact afresh as the cloth moves (vbd).
+struct FeatureContact {
+  std::array<std::int32_t, 3> particle{-1, -1, -1};    // a cloth edge (a, b, -1) or triangle
+  Eigen::Vector3d from = Eigen::Vector3d::Zero();      // m: the collider edge's ends, or its
+  Eigen::Vector3d to = Eigen::Vector3d::Zero();        //    corner twice
+  Eigen::Vector3d outward = Eigen::Vector3d::UnitY();  // unit
+  ColliderFeatures::Faces faces{};                     // unit normals
+  Eigen::Vector3d surface_velocity = Eigen::Vector3d::Zero();  // m/s, at the feature
+  double static_friction = 0.0;                                // Coulomb coefficients
+  double kinetic_friction = 0.0;
+  int collider = 0;
+};
+
 class EdgeContact {
  public:
   EdgeContact(const ClothModel& model, const ContactModel& contacts);
@@ -91,10 +111,19 @@ class EdgeContact {
   // The energy (J) the contacts at positions x and time t store in their penalty springs: 1/2 k d^2
   // over every contact, d its depth (m). Finds the contacts afresh; totals() is left as it was.
   double stored_energy(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x);
+  // Every pair of a cloth edge and a collider edge, and of a cloth triangle and a collider corner,
+  // within `reach` (m) of each other at x with the colliders posed at time t, into `near`
+  // (cleared first); a cloth primitive's pairs with one collider come one after another.
+  // totals() is left as it was.
+  void find_near(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x, double reach,
+                 std::vector<FeatureContact>& near);
 
  private:
   // The contacts at (x, t), into found_.
   void find_contacts(const ContactModel& contacts, double t, const Eigen::Matrix3Xd& x);
+  // Collider c's features at `pose`, into posed_edges_ and posed_corners_; returns their bounding
+  // box grown by `reach` (m).
+  Eigen::AlignedBox3d pose_features(std::size_t c, const Eigen::Isometry3d& pose, double reach);
   // Their penalty and friction forces (add_forces after the search), through the pass the self
   // contacts take too (weighted_contact_pass.hpp), and what they did to each collider.
   void push_and_rub(const ContactModel& contacts, double h, const Eigen::Matrix3Xd& x,

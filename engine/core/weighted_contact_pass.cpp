@@ -75,6 +75,8 @@ void WeightedContactPass::run(const std::vector<WeightedContactPoint>& contacts,
       w.damping = damping;
       w.depth = contact.depth;
       w.force = fn;
+      // A moving collider surface moves the contact's far end: the depth grows at n . its velocity.
+      if (rules.against_surface) w.end_rate = contact.normal.dot(contact.surface_velocity);
       active->push_back(w);
     }
   }

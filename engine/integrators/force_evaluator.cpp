@@ -48,7 +48,9 @@ ForceEvaluator::ForceEvaluator(const ClothModel& model, const SpringDamperSettin
     self_contact_ = &term->contact();
     pair_terms_.push_back(std::move(term));
   }
-  if (settings_.contacts && settings_.collider_edges && has_triangles) {
+  // vbd measures the collider edges inside its own solve too (vbd_scheme.cpp).
+  if (settings_.contacts && settings_.collider_edges && has_triangles &&
+      settings_.integrator != Integrator::vbd) {
     auto term = std::make_unique<EdgeContactTerm>(model_, *settings_.contacts);
     if (term->active()) {
       edge_contact_ = &term->contact();

@@ -10,6 +10,7 @@
 namespace drapelab {
 
 class VertexBlockDescent;
+class EdgeContact;
 
 // Backward Euler linearised at the step's start (implicit_euler.hpp): the assembled sparse system
 // on a cloth without spring families, the matrix-free one on them.
@@ -44,6 +45,7 @@ class VbdScheme final : public IntegratorScheme {
 
  private:
   std::unique_ptr<VertexBlockDescent> descent_;
+  std::unique_ptr<EdgeContact> features_;          // the colliders' sharp features; null: none
   std::unique_ptr<OffsetContacts> self_contacts_;  // with self-collision
 };
 

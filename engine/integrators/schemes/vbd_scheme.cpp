@@ -1,8 +1,11 @@
-// Vertex block descent as a scheme. The contacts between particles are found at the step's start:
-// their pushes enter the descent as energies of the particles' motion, their friction as an
-// explicit force of the step.
+// Vertex block descent as a scheme. The colliders' edges and corners near the cloth's edges and
+// triangles, and the cloth's contacts with itself, are found in the step and measured inside the
+// descent. The soft constraints are found at the step's start: their pulls enter the descent as
+// energies of the particles' motion; the other forces between particles (air) are an explicit
+// force of the step.
 #include <sstream>
 
+#include "contact/edge_contact.hpp"
 #include "integrators/schemes/implicit_schemes.hpp"
 #include "integrators/vbd/vertex_block_descent.hpp"
 #include "self_collision/offset_contacts.hpp"
@@ -14,6 +17,10 @@ VbdScheme::VbdScheme(const SchemeContext& context)
       descent_(std::make_unique<VertexBlockDescent>(ctx_.model, ctx_.settings.vbd)) {
   if (ctx_.settings.self_collision.enabled && ctx_.model.triangles.cols() > 0)
     self_contacts_ = std::make_unique<OffsetContacts>(ctx_.model, ctx_.settings.self_collision);
+  if (ctx_.settings.contacts && ctx_.settings.collider_edges && ctx_.model.triangles.cols() > 0) {
+    features_ = std::make_unique<EdgeContact>(ctx_.model, *ctx_.settings.contacts);
+    if (!features_->active()) features_.reset();
+  }
 }
 
 VbdScheme::~VbdScheme() = default;
@@ -32,16 +39,21 @@ std::optional<std::int64_t> VbdScheme::step(double h) {
     Eigen::Matrix3Xd& force = forces.force();
     force.setZero();
     forces.add_pair_forces(state.x, state.v, state.time, h);
-    for (const WeightedContact& c : forces.couplings())  // leaves the friction only
+    for (const WeightedContact& c : forces.couplings())  // leaves the explicit terms only
       for (int s = 0; s < 4; ++s)
         if (c.particle[s] >= 0) force.col(c.particle[s]) -= (c.weight[s] * c.force) * c.normal;
     input.couplings = &forces.couplings();
     input.explicit_force = &force;
   }
   input.self_contacts = self_contacts_.get();
+  input.features = features_.get();
   const double detecting_before = self_contacts_ ? self_contacts_->detection_seconds() : 0.0;
+  const double searching_before = descent_->stats().feature_search_seconds;
+  // The descent records what the collider planes and edges did at the step's end (the edges'
+  // totals of the evaluation above are those of the step's start).
   descent_->step(ctx_.model, input, state.x, state.v, forces.contact_totals());
-  forces.add_edge_contact_totals();
+  forces.add_phase_seconds(StepPhase::collider_edges,
+                           descent_->stats().feature_search_seconds - searching_before);
   if (self_contacts_) {
     // The detections are the self-contacts' phase; their energy's terms are part of the sweeps.
     forces.add_phase_seconds(StepPhase::self_contacts,

@@ -2,6 +2,7 @@
 // block, and the per-particle terms that live in their own sources. No Eigen (see vbd_loops.hpp).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "integrators/vbd/vbd_loops.hpp"
@@ -57,9 +58,44 @@ inline double dot(const double* a, const double* b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+// Coulomb friction on a contact point that slipped `rel` (m, over the step, relative to the other
+// side) under the normal load fn (N, lagged) along the unit n, seen from a particle that
+// moves the point by w times its own move: the point's force is scaled by w, its block by w^2.
+inline void add_friction(double fn, const double* n, const double* rel, double kinetic,
+                         double fixed, double slip_scale, double w, Block& b) {
+  const double along = dot(rel, n);
+  const double slip[3] = {rel[0] - along * n[0], rel[1] - along * n[1], rel[2] - along * n[2]};
+  const double slip_length = std::sqrt(dot(slip, slip));  // m over the step
+  if (slip_length < slip_scale) {
+    // Sticking: a tangential spring of mu_s fn / slip_scale, at most mu_s fn at the boundary.
+    const double k_stick = fixed * fn / slip_scale;
+    b.add_force(-w * k_stick, slip);
+    b.add_identity(w * w * k_stick);
+    b.add_outer(-w * w * k_stick, n);
+  } else {
+    // Sliding: mu_k fn against the slip, whose energy mu_k fn |s| has no curvature along the
+    // slip. The block takes mu_k fn / |s| over the whole tangent plane T instead, the curvature of
+    // the quadratic that touches mu_k fn |s| at this slip and lies above it everywhere
+    // (|s| <= |s0| / 2 + |s|^2 / (2 |s0|)): the step then goes at most to where the slip stops,
+    // never past it. With the exact Hessian a particle sliding across a collider edge overshot
+    // the turn of its slip, and friction flipped it back and forth by a centimetre a sweep.
+    const double k_slide = kinetic * fn / slip_length;
+    b.add_force(-w * k_slide, slip);
+    b.add_identity(w * w * k_slide);
+    b.add_outer(-w * w * k_slide, n);
+  }
+}
+
 // Particle i's offset self-contacts (vbd_contact_loops.cpp): the barrier, its damper and friction,
-// the other particles read at the sweep's start.
-void add_self_contacts(const VbdProblem& p, std::int64_t i, const double* xi, Block& b);
+// the other particles read from x as contact_partner (vbd_loops.hpp) says.
+void add_self_contacts(const VbdProblem& p, std::int64_t i, const double* xi, const double* x,
+                       Block& b);
+
+// Particle i's collider feature contacts (vbd_contact_loops.cpp): the penalty spring-damper of the
+// collider planes along each contact's current direction, and friction, weighted by the
+// particle's share of the cloth point.
+void add_feature_contacts(const VbdProblem& p, std::int64_t i, const double* xi, const double* x,
+                          Block& b);
 
 // Pulls particle i back inside its conservative bound; true when it was outside.
 bool keep_within_bound(const OffsetContactArrays& contacts, std::int64_t i, double* xi);

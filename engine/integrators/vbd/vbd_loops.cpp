@@ -54,7 +54,7 @@ void add_springs(const VbdProblem& p, std::int64_t i, const double* x, SpringTer
 }
 
 // Collider contact planes: E = k depth^2 / 2 with depth = radius - (x - p) . n, the damper
-// c (du . n)^2 / (2 h), and friction whose lagged normal force is this iterate's fn.
+// c closing^2 / (2 h) (contact_closing), and friction under the load lagged at the step's start.
 void add_planes(const VbdProblem& p, std::int64_t i, const double* xi, const double* move_i,
                 Block& b) {
   const VbdPlanes& q = p.planes;
@@ -63,41 +63,26 @@ void add_planes(const VbdProblem& p, std::int64_t i, const double* xi, const dou
     const std::int64_t e = i * q.slots + k;
     const double* n = q.normal + 3 * e;
     const double* point = q.point + 3 * e;
+    const double* surface = q.surface_move + 3 * e;
+    const double rel[3] = {move_i[0] - surface[0], move_i[1] - surface[1], move_i[2] - surface[2]};
+    // Friction wherever the plane bore a load at the step's start: a fixed energy of the step.
+    if (q.load[e] > 0.0)
+      add_friction(q.load[e], n, rel, q.kinetic[e], q.fixed[e], slip_scale, 1.0, b);
     const double offset[3] = {xi[0] - point[0], xi[1] - point[1], xi[2] - point[2]};
     const double depth = q.radius - dot(offset, n);  // m
     if (depth <= 0.0) continue;
-    const double* surface = q.surface_move + 3 * e;
-    const double rel[3] = {move_i[0] - surface[0], move_i[1] - surface[1], move_i[2] - surface[2]};
-    const double along = dot(rel, n);                                 // m
-    const double fn = q.stiffness * depth - q.damping * along / p.h;  // N
+    const double fn =
+        q.stiffness * depth + q.damping * contact_closing(depth, dot(rel, n)) / p.h;  // N
     if (fn <= 0.0) continue;
     b.add_force(fn, n);
     b.add_outer(q.stiffness + q.damping / p.h, n);
-    const double slip[3] = {rel[0] - along * n[0], rel[1] - along * n[1], rel[2] - along * n[2]};
-    const double slip_length = std::sqrt(dot(slip, slip));  // m over the step
-    if (slip_length < slip_scale) {
-      // Sticking: a tangential spring of mu_s fn / slip_scale, at most mu_s fn at the boundary.
-      const double k_stick = q.fixed[e] * fn / slip_scale;
-      b.add_force(-k_stick, slip);
-      b.add_identity(k_stick);
-      b.add_outer(-k_stick, n);
-    } else {
-      // Sliding: mu_k fn against the slip. Its Hessian mu_k fn / |s| (T - s s^T / |s|^2) is the
-      // tangent plane's projector T less the slip direction: positive semidefinite.
-      const double k_slide = q.kinetic[e] * fn / slip_length;
-      b.add_force(-k_slide, slip);
-      b.add_identity(k_slide);
-      b.add_outer(-k_slide, n);
-      const double inv = 1.0 / slip_length;
-      const double dir[3] = {slip[0] * inv, slip[1] * inv, slip[2] * inv};
-      b.add_outer(-k_slide, dir);
-    }
   }
 }
 
-// Contacts between particles, linearised at the step's start; the other particles are read at the
-// sweep's start (Jacobi), since a contact may join two particles of one colour.
-void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, Block& b) {
+// Contacts between particles, linearised at the step's start; the other particles are read as
+// contact_partner says.
+void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, const double* x,
+                   Block& b) {
   const VbdCouplings& c = p.couplings;
   for (std::int32_t e = c.offsets[i]; e < c.offsets[i + 1]; ++e) {
     const std::int64_t contact = c.contact[e];
@@ -106,7 +91,7 @@ void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, Block&
     for (int s = 0; s < 4; ++s) {
       const std::int64_t j = c.particle[4 * contact + s];
       if (j < 0) continue;
-      const double* xj = j == i ? xi : p.sweep_start + 3 * j;
+      const double* xj = contact_partner(p, i, xi, x, j);
       const double* sj = p.start + 3 * j;
       const double d[3] = {xj[0] - sj[0], xj[1] - sj[1], xj[2] - sj[2]};
       along += c.weight[4 * contact + s] * dot(d, n);
@@ -144,8 +129,9 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
                              terms == SpringTerms::all ? b.h : unused);
   }
   if (p.planes.count) add_planes(p, i, xi, move_i, b);
-  if (p.couplings.offsets) add_couplings(p, i, xi, b);
-  if (p.self_contacts.offsets) add_self_contacts(p, i, xi, b);
+  if (p.features.offsets) add_feature_contacts(p, i, xi, x, b);
+  if (p.couplings.offsets) add_couplings(p, i, xi, x, b);
+  if (p.self_contacts.offsets) add_self_contacts(p, i, xi, x, b);
 }
 
 // Particle i's Newton step; returns how far it moved (m). `truncated` counts a move cut short at

@@ -6,8 +6,10 @@
 // number of threads.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
+#include "core/feature_push.hpp"
 #include "core/offset_contact_arrays.hpp"
 #include "forces/continuum_loops.hpp"
 
@@ -34,12 +36,16 @@ struct VbdPlanes {
   const double* surface_move = nullptr;  // m, 3 per entry: the surface's motion over the step
   const double* kinetic = nullptr;       // Coulomb coefficients per entry
   const double* fixed = nullptr;         // static coefficient per entry
-  double radius = 0.0;                   // m: the cloth's thickness
-  double stiffness = 0.0;                // N/m
-  double damping = 0.0;                  // N*s/m
+  // N per entry: friction's load, lagged at the step's start. A load that followed the iterate
+  // would make friction no force of any energy, and the sweeps of a light particle on a stiff
+  // contact would swing between sticking hard and slipping free (energy gained at rest).
+  const double* load = nullptr;
+  double radius = 0.0;     // m: the cloth's thickness
+  double stiffness = 0.0;  // N/m
+  double damping = 0.0;    // N*s/m
 };
 
-// Contacts between particles (self-collision, collider edges on cloth edges), linearised at the
+// Contacts between particles (soft constraints), linearised at the
 // step's start: the contact's depth is depth - n . sum_j w_j (x_j - x_j(n)). Particle i's entries
 // are rows offsets[i] to offsets[i + 1] - 1 of (contact, slot) pairs.
 struct VbdCouplings {
@@ -56,6 +62,107 @@ struct VbdCouplings {
   const double* end_rate = nullptr;         // m/s per contact: its far end's rate along n
 };
 
+// Collider edges against cloth edges and collider corners against cloth triangles
+// (contact/edge_contact.hpp), found at the step's start within a margin and measured afresh from
+// the positions wherever a particle's block is built, against the features where the collider is
+// at the step's end. A contact is one cloth edge or triangle and one collider, with its candidate
+// features (contact c's are features feature_offsets[c] to feature_offsets[c + 1] - 1): the
+// nearest one that holds the cloth's closest point inside the cloth edge or triangle pushes, so a
+// cloth edge that slides along a cylinder's rim passes from chord to chord. Particle i's entries
+// are rows offsets[i] to offsets[i + 1] - 1 of (contact, slot) pairs.
+struct VbdFeatures {
+  const std::int32_t* offsets = nullptr;  // null: none
+  const std::int32_t* contact = nullptr;
+  const std::int32_t* slot = nullptr;
+  const std::int32_t* particle = nullptr;  // 3 per contact: a cloth edge (a, b, -1) or triangle
+  const std::int32_t* feature_offsets = nullptr;  // contacts + 1
+  const double* surface_move = nullptr;  // m, 3 per contact: the collider's motion over the step
+  const double* kinetic = nullptr;       // Coulomb coefficients per contact
+  const double* fixed = nullptr;         // static coefficient per contact
+  const double* load = nullptr;          // N per contact: friction's, lagged (as VbdPlanes's)
+  const double* from = nullptr;          // m, 3 per feature: a collider edge's ends, or its
+  const double* to = nullptr;            //    corner twice
+  const double* outward = nullptr;       // unit, 3 per feature
+  const double* faces = nullptr;         // unit, 9 per feature (core/feature_push.hpp)
+  double radius = 0.0;                   // m: the cloth's thickness
+  double stiffness = 0.0;                // N/m
+  double damping = 0.0;                  // N*s/m
+};
+
+// One feature contact at a state: the cloth point's weights on its particles, the push's unit
+// direction n, its depth (m, > 0 within the thickness) and the cloth point's move since the step's
+// start (m, 3).
+struct FeatureGeometry {
+  double w[3] = {0.0, 0.0, 0.0};
+  double n[3] = {0.0, 0.0, 0.0};
+  double depth = 0.0;
+  double move[3] = {0.0, 0.0, 0.0};
+};
+
+// Contact c's geometry with its particle j at position(j) and at start + 3 j at the step's start,
+// the push by core/feature_push.hpp's law from the nearest candidate feature (it pushes while
+// depth > 0). False where no candidate holds the cloth's closest point inside its edge or triangle
+// (the particle contact holds it there; for a box's edge, inside the edge too: its corner holds
+// its ends).
+template <typename Position>
+bool feature_geometry(const VbdFeatures& f, std::int64_t c, const Position& position,
+                      const double* start, FeatureGeometry& g) {
+  g = FeatureGeometry{};
+  const std::int32_t* particle = f.particle + 3 * c;
+  const int corners = particle[2] < 0 ? 2 : 3;
+  const double* p[3] = {position(particle[0]), position(particle[1]),
+                        corners == 3 ? position(particle[2]) : nullptr};
+  double best = -1.0;  // m^2: the nearest candidate's squared distance
+  double r[3] = {0.0, 0.0, 0.0};
+  std::int32_t nearest = -1;
+  for (std::int32_t e = f.feature_offsets[c]; e < f.feature_offsets[c + 1]; ++e) {
+    const double* a = f.from + 3 * e;
+    const double* b = f.to + 3 * e;
+    double w[3] = {0.0, 0.0, 0.0}, on_feature[3] = {a[0], a[1], a[2]};
+    if (corners == 2) {
+      double s = 0.0, t = 0.0;
+      offset_contact::segment_pair_parameters(p[0], p[1], a, b, s, t);
+      if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) continue;
+      w[0] = 1.0 - s;
+      w[1] = s;
+      for (int d = 0; d < 3; ++d) on_feature[d] += t * (b[d] - a[d]);
+    } else {
+      offset_contact::triangle_weights(a, p[0], p[1], p[2], w);
+      if (!(w[0] > 0.0 && w[1] > 0.0 && w[2] > 0.0)) continue;
+    }
+    double gap[3] = {-on_feature[0], -on_feature[1], -on_feature[2]};
+    for (int s = 0; s < corners; ++s)
+      for (int d = 0; d < 3; ++d) gap[d] += w[s] * p[s][d];
+    const double distance2 = offset_contact::dot(gap, gap);
+    if (nearest >= 0 && distance2 >= best) continue;
+    nearest = e;
+    best = distance2;
+    for (int d = 0; d < 3; ++d) {
+      r[d] = gap[d];
+      g.w[d] = w[d];
+    }
+  }
+  if (nearest < 0) return false;
+  for (int s = 0; s < corners; ++s) {
+    const double* from = start + 3 * static_cast<std::int64_t>(particle[s]);
+    for (int d = 0; d < 3; ++d) g.move[d] += g.w[s] * (p[s][d] - from[d]);
+  }
+  feature_push::push(r, f.outward + 3 * nearest, f.faces + 9 * nearest, f.radius, g.n, g.depth);
+  return true;
+}
+
+// How much deeper (m) a collider contact of depth `depth` (m, > 0) is than at the step's start,
+// counting only what lies within the thickness, when its point moved `along` (m) along the push
+// since then (relative to the surface): the damper c closing / h acts on this. A particle arriving
+// from outside the thickness meets a damper that grows from zero with its depth, as its spring
+// does; a damper on the whole approach would switch on at full force at the thickness, and the
+// step's energy, discontinuous there, would send a particle's Newton steps back and forth
+// across it.
+inline double contact_closing(double depth, double along) {
+  const double start_depth = depth + along;  // m
+  return depth - (start_depth > 0.0 ? start_depth : 0.0);
+}
+
 struct VbdProblem {
   std::int64_t n = 0;
   double h = 0.0;                        // s
@@ -70,15 +177,29 @@ struct VbdProblem {
   const ContinuumArrays* continuum =
       nullptr;  // cloth.model: continuum (its springs are then empty)
   VbdPlanes planes;
+  VbdFeatures features;
   VbdCouplings couplings;  // offsets null: none
   // Offset self-contacts (self_collision/offset_contacts.hpp), offsets null: none. With them every
   // move stays within its particle's conservative bound.
   OffsetContactArrays self_contacts;
-  // Colour c's particles are color_particles[color_offsets[c]] to [color_offsets[c + 1] - 1].
+  // Colour c's particles are color_particles[color_offsets[c]] to [color_offsets[c + 1] - 1];
+  // particle i's colour is color_of[i].
   const std::int32_t* color_offsets = nullptr;
   const std::int32_t* color_particles = nullptr;
+  const std::int32_t* color_of = nullptr;
   int colors = 0;
 };
+
+// Where particle i's terms read particle j of a contact: x itself when j is of another colour
+// (Gauss-Seidel: j is not written while i's colour is swept), the sweep's start when j shares i's
+// colour (Jacobi: j may be written by another thread meanwhile). Reading a contact's other
+// particles at the sweep's start even when they had moved lets two particles of a stiff contact
+// both take the whole correction; their sum then overshoots and the contact rings.
+inline const double* contact_partner(const VbdProblem& p, std::int64_t i, const double* xi,
+                                     const double* x, std::int64_t j) {
+  if (j == i) return xi;
+  return (p.color_of[j] == p.color_of[i] ? p.sweep_start : x) + 3 * j;
+}
 
 // One sweep: every colour in turn, each particle's Newton step on G with the others held. Updates
 // x in place; returns the largest distance one particle moved (m) and how many moves were cut

@@ -1,11 +1,13 @@
 // Vertex block descent's step driver (vertex_block_descent.hpp): the particles' spring lists and
 // contact slots, built once; per step the collider contact planes, the contacts between particles,
 // the inertial target, the initial guess, the sweeps and coarse steps with Chebyshev acceleration,
-// the new velocities and what each collider's contact did. The particle graph is in
-// particle_graph.cpp, the coarse step in coarse_step.cpp.
+// the new velocities. The particle graph is in particle_graph.cpp, the coarse step in
+// coarse_step.cpp, the step's contacts in vbd_contacts.cpp and what each collider's contact did
+// in vbd_contact_totals.cpp.
 #include "integrators/vbd/vertex_block_descent.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <numeric>
@@ -16,10 +18,6 @@
 
 namespace drapelab {
 namespace {
-
-// Collider planes kept per particle: a particle touches at most a corner's three faces in the
-// scenes drapelab runs; a fourth slot leaves room for a second collider.
-constexpr int kPlaneSlots = 4;
 
 // Sweeps per coarse step: every second sweep. On the 65 x 65 sphere drape at 1/60 s, a coarse
 // step before every sweep brought the sheet 6.9 cm from the reference for 1.0 s of wall time per
@@ -38,12 +36,6 @@ constexpr int kMostDetections = 32;
 // 65 x 65 heap, 0.5 s, any cut move called 4.65 detections a step and cost 5.2 s, more than one in
 // a thousand 2.48 and 3.5 s, with the same heap (kinetic energy 0.0135 and 0.0130 J at the end).
 std::int64_t cut_moves_tolerated(int n) { return n / 1000; }
-
-void store(double* to, const Eigen::Vector3d& value) {
-  to[0] = value[0];
-  to[1] = value[1];
-  to[2] = value[2];
-}
 
 }  // namespace
 
@@ -80,7 +72,10 @@ VertexBlockDescent::VertexBlockDescent(const ClothModel& model, VbdSettings sett
     }
   const auto colors = color_particles(model);
   color_offsets_.assign(1, 0);
+  color_of_.assign(static_cast<std::size_t>(n), 0);
   for (const auto& members : colors) {
+    for (const std::int32_t i : members)
+      color_of_[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(color_offsets_.size() - 1);
     color_particles_.insert(color_particles_.end(), members.begin(), members.end());
     color_offsets_.push_back(static_cast<std::int32_t>(color_particles_.size()));
   }
@@ -93,101 +88,13 @@ VertexBlockDescent::VertexBlockDescent(const ClothModel& model, VbdSettings sett
   plane_surface_move_.resize(3 * slots);
   plane_kinetic_.resize(slots);
   plane_fixed_.resize(slots);
+  plane_load_.resize(slots);
   start_.resize(3, n);
   inertia_.resize(3, n);
   sweep_start_.resize(3, n);
   previous_v_.resize(3, n);
   previous_x_.resize(3, n);
   base_v_.resize(3, n);
-}
-
-void VertexBlockDescent::find_planes(const ClothModel& model, const VbdStepInput& input,
-                                     double velocity_step, const Eigen::Matrix3Xd& x,
-                                     const Eigen::Matrix3Xd& v) {
-  std::fill(plane_count_.begin(), plane_count_.end(), 0);
-  if (!input.contacts || input.contacts->empty()) return;
-  const ContactModel& contacts = *input.contacts;
-  const double radius = contacts.query().radius();  // m
-  // The query sphere reaches a margin beyond the thickness: twice the fastest particle's travel
-  // over the step, and at least the thickness, so a particle that can reach a surface during the
-  // step has its plane.
-  const double fastest = v.colwise().norm().maxCoeff();  // m/s
-  const double reach = radius + std::max(radius, 2.0 * fastest * input.h);
-  const ParticleContactQuery query(reach);
-  const double end_time = input.t + input.h;
-  const int n = model.particle_count();
-  const std::int64_t blocks = (n + kernels::kPhaseBlock - 1) / kernels::kPhaseBlock;
-  for (std::size_t c = 0; c < contacts.size(); ++c) {
-    const Eigen::Isometry3d pose = contacts.shape_pose(c, end_time);
-    const Eigen::AlignedBox3d bounds = collider_bounds(contacts.fcl_collider(c), pose, reach);
-    const Collider& collider = contacts.collider(c);
-    kernels::for_each_block(blocks, n >= kernels::kParallelParticles, [&](std::int64_t block) {
-      const int begin = static_cast<int>(block * kernels::kPhaseBlock);
-      const int end = static_cast<int>(std::min<std::int64_t>(n, begin + kernels::kPhaseBlock));
-      for (int i = begin; i < end; ++i) {
-        std::int32_t& count = plane_count_[static_cast<std::size_t>(i)];
-        if (model.is_pinned(i) || count >= kPlaneSlots || !bounds.contains(x.col(i))) continue;
-        const auto touch = query.contact(contacts.fcl_collider(c), pose, x.col(i));
-        if (!touch) continue;
-        const std::size_t e = static_cast<std::size_t>(i) * kPlaneSlots + count++;
-        // The surface point under the particle: the query sphere reaches `depth` past it.
-        const Eigen::Vector3d point = x.col(i) - (reach - touch->depth) * touch->normal;
-        store(&plane_point_[3 * e], point);
-        store(&plane_normal_[3 * e], touch->normal);
-        store(&plane_surface_move_[3 * e],
-              velocity_step * contacts.surface_velocity(c, end_time, point));
-        plane_collider_[e] = static_cast<std::int32_t>(c);
-        plane_kinetic_[e] = collider.friction;
-        plane_fixed_[e] = std::max(collider.friction, collider.static_friction);
-      }
-    });
-  }
-}
-
-void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContact>& couplings,
-                                         const Eigen::Matrix3Xd& x, double h) {
-  const std::size_t count = couplings.size();
-  coupling_particle_.resize(4 * count);
-  coupling_weight_.resize(4 * count);
-  coupling_normal_.resize(3 * count);
-  coupling_depth_.resize(count);
-  coupling_stiffness_.resize(count);
-  coupling_damping_.resize(count);
-  coupling_end_rate_.resize(count);
-  coupling_two_sided_.resize(count);
-  coupling_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (std::size_t c = 0; c < count; ++c) {
-    const WeightedContact& w = couplings[c];
-    for (int s = 0; s < 4; ++s) {
-      coupling_particle_[4 * c + s] = w.particle[s];
-      coupling_weight_[4 * c + s] = w.weight[s];
-      if (w.particle[s] >= 0) ++coupling_offsets_[static_cast<std::size_t>(w.particle[s]) + 1];
-    }
-    store(&coupling_normal_[3 * c], w.normal);
-    // The depth is linearised at x(n); the sweeps measure displacements from start_ (X).
-    double shift = 0.0;  // m: n . sum_j w_j (X_j - x_j(n))
-    for (int s = 0; s < 4; ++s)
-      if (w.particle[s] >= 0)
-        shift += w.weight[s] * w.normal.dot(start_.col(w.particle[s]) - x.col(w.particle[s]));
-    // The far end's own motion over the step deepens it (a moving collider point).
-    coupling_depth_[c] = w.depth - shift + h * w.end_rate;
-    coupling_end_rate_[c] = w.end_rate;
-    coupling_stiffness_[c] = w.stiffness;
-    coupling_damping_[c] = w.damping;
-    coupling_two_sided_[c] = w.two_sided ? 1 : 0;
-  }
-  for (int i = 0; i < n; ++i) coupling_offsets_[i + 1] += coupling_offsets_[i];
-  coupling_contact_.resize(static_cast<std::size_t>(coupling_offsets_.back()));
-  coupling_slot_.resize(coupling_contact_.size());
-  std::vector<std::int32_t> fill(coupling_offsets_.begin(), coupling_offsets_.end() - 1);
-  for (std::size_t c = 0; c < count; ++c)
-    for (int s = 0; s < 4; ++s) {
-      const int i = couplings[c].particle[s];
-      if (i < 0) continue;
-      const std::size_t at = static_cast<std::size_t>(fill[static_cast<std::size_t>(i)]++);
-      coupling_contact_[at] = static_cast<std::int32_t>(c);
-      coupling_slot_[at] = s;
-    }
 }
 
 void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input,
@@ -208,6 +115,8 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
     base_v_ = v;
   }
   find_planes(model, input, h, x, v);
+  const bool featured = input.features && input.contacts && !input.contacts->empty();
+  if (featured) find_features(n, input, h, x, v);
   const bool coupled = input.couplings && !input.couplings->empty();
   if (coupled) index_couplings(n, *input.couplings, x, input.h);
   // y = X + b V + b^2 (g + f_explicit / m)
@@ -250,9 +159,12 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
                       plane_surface_move_.data(),
                       plane_kinetic_.data(),
                       plane_fixed_.data(),
+                      plane_load_.data(),
                       input.contacts->query().radius(),
                       k.stiffness,
                       k.damping};
+    if (featured)
+      problem.features = feature_view(input.contacts->query().radius(), k.stiffness, k.damping);
   }
   if (coupled)
     problem.couplings = {
@@ -262,6 +174,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
         coupling_two_sided_.data(), coupling_end_rate_.data()};
   problem.color_offsets = color_offsets_.data();
   problem.color_particles = color_particles_.data();
+  problem.color_of = color_of_.data();
   problem.colors = static_cast<int>(color_offsets_.size()) - 1;
 
   // Chebyshev semi-iteration: x(k) = w_k (sweep(x(k-1)) - x(k-2)) + x(k-2), with w_1 = 1,
@@ -287,13 +200,15 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
     }
     truncated = 0;
     if (accelerate) iteration_start_ = x;
-    if (self) sweep_start_ = x;
+    // The contacts' partners of a particle's own colour are read at sweep_start_ (the coarse
+    // step's terms too, which must see x).
+    if (coupled || self || featured) sweep_start_ = x;
     // The coarse step first, so that the sweep after it settles what it moved into contact.
     if (settings_.coarse_correction && k % kCoarseEvery == 0) {
       coarse_step(problem, true, x);
       truncated += kernels::vbd_keep_within_bounds(problem, x.data());
+      if (coupled || self || featured) sweep_start_ = x;
     }
-    if (coupled || self) sweep_start_ = x;
     const kernels::VbdSweepResult sweep = kernels::vbd_sweep(problem, x.data());
     last_move = sweep.largest_move;
     truncated += sweep.truncated;
@@ -313,6 +228,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   stats_.last_sweep_move = last_move;
   stats_.last_sweep_move_max = std::max(stats_.last_sweep_move_max, last_move);
   record_contact_totals(x, h, totals);
+  if (featured) record_feature_totals(x, h, totals);
   if (self) {
     self->record_end_state(x, start_, h, settings_.friction_velocity);
     self->count_truncations(truncated_total);
@@ -349,48 +265,6 @@ std::int64_t VertexBlockDescent::detect_self_contacts(const ClothModel& model, O
   self.detect(detection_x_, shift);
   problem.self_contacts = self.arrays();
   return kernels::vbd_keep_within_bounds(problem, x.data());
-}
-
-void VertexBlockDescent::record_contact_totals(const Eigen::Matrix3Xd& x, double h,
-                                               std::vector<ColliderContactTotals>& totals) const {
-  if (totals.empty()) return;
-  for (ColliderContactTotals& t : totals) t = ColliderContactTotals{};
-  // The plane's spring-damper at the end state, and the friction the end state's slip implies.
-  for (std::size_t i = 0; i < plane_count_.size(); ++i)
-    for (int k = 0; k < plane_count_[i]; ++k) {
-      const std::size_t e = i * kPlaneSlots + static_cast<std::size_t>(k);
-      const Eigen::Map<const Eigen::Vector3d> n(&plane_normal_[3 * e]);
-      const Eigen::Map<const Eigen::Vector3d> point(&plane_point_[3 * e]);
-      const double depth = contact_.radius - (x.col(static_cast<Eigen::Index>(i)) - point).dot(n);
-      if (depth <= 0.0) continue;
-      const Eigen::Map<const Eigen::Vector3d> surface(&plane_surface_move_[3 * e]);
-      const Eigen::Vector3d rel =
-          x.col(static_cast<Eigen::Index>(i)) - start_.col(static_cast<Eigen::Index>(i)) - surface;
-      const double fn =
-          std::max(0.0, contact_.stiffness * depth - contact_.damping * rel.dot(n) / h);
-      ColliderContactTotals& t = totals[static_cast<std::size_t>(plane_collider_[e])];
-      // The step's mean velocities relative to the surface and of the surface (m/s).
-      const Eigen::Vector3d relative_velocity = rel / h, surface_velocity = surface / h;
-      t.power += push_power(fn, contact_.stiffness * depth, n, relative_velocity, surface_velocity);
-      if (fn <= 0.0) continue;
-      ++t.contact_count;
-      t.normal_force += fn;
-      const Eigen::Vector3d slide = rel - rel.dot(n) * n;  // m over the step
-      const double slip = slide.norm();
-      const double scale = settings_.friction_velocity * h;
-      const double friction =
-          slip < scale ? plane_fixed_[e] * fn * slip / scale : plane_kinetic_[e] * fn;  // N
-      t.friction_force += friction;
-      t.max_depth = std::max(t.max_depth, depth);
-      Eigen::Vector3d on_cloth = fn * n;  // N
-      if (slip > 0.0) {
-        const Eigen::Vector3d rub = -(friction / slip) * slide;  // N
-        on_cloth += rub;
-        t.power += friction_power(rub, relative_velocity, surface_velocity);
-      }
-      t.force -= on_cloth;
-      t.torque -= Eigen::Vector3d(x.col(static_cast<Eigen::Index>(i))).cross(on_cloth);
-    }
 }
 
 }  // namespace drapelab

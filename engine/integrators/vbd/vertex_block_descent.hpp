@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "contact/edge_contact.hpp"
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/contact_model.hpp"
 #include "drapelab/vertex_block_descent.hpp"
@@ -48,6 +49,9 @@ struct VbdStepInput {
   const Eigen::Matrix3Xd* explicit_force = nullptr;
   // Offset self-contacts: detected in the step, every move kept within its conservative bound.
   OffsetContacts* self_contacts = nullptr;
+  // The colliders' edges and corners against the cloth's edges and triangles: found at the step's
+  // start, measured in the sweeps. Null: none.
+  EdgeContact* features = nullptr;
 };
 
 class VertexBlockDescent {
@@ -63,11 +67,26 @@ class VertexBlockDescent {
   const VbdStats& stats() const { return stats_; }
 
  private:
+  // Collider planes kept per particle: a particle touches at most a corner's three faces in the
+  // scenes drapelab runs; a fourth slot leaves room for a second collider.
+  static constexpr int kPlaneSlots = 4;
+
   // Collider contacts for the step: every collider whose surface at the step's end lies within
   // the cloth's thickness plus a margin of a particle's start, as a plane (vbd_loops.hpp).
   // `velocity_step` (s): the step that turns the surface's velocity into its motion in the sweeps.
   void find_planes(const ClothModel& model, const VbdStepInput& input, double velocity_step,
                    const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
+  // The collider edges and corners near the cloth's edges and triangles for the step, within the
+  // same reach as the planes, into the feature arrays.
+  void find_features(int n, const VbdStepInput& input, double velocity_step,
+                     const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
+  // How far from a particle's start a collider's surface is taken into the step (m): the
+  // thickness plus twice the fastest particle's travel over the step, and at least twice the
+  // thickness, so a particle that can reach a surface during the step has it.
+  static double contact_reach(const VbdStepInput& input, const Eigen::Matrix3Xd& v);
+  // The feature arrays as the sweeps read them, with the contact's thickness (m), stiffness (N/m)
+  // and damping (N*s/m).
+  kernels::VbdFeatures feature_view(double radius, double stiffness, double damping) const;
   // The per-particle rows of the contacts between particles.
   // `x`: the positions x(n) the contacts were found at.
   // `h` (s): the step, over which a coupling's far end moves by h end_rate.
@@ -85,7 +104,11 @@ class VertexBlockDescent {
   // guess x within the bounds; returns how many particles it held back.
   std::int64_t detect_self_contacts(const ClothModel& model, OffsetContacts& self,
                                     kernels::VbdProblem& problem, Eigen::Matrix3Xd& x);
+  // What the collider planes and the couplings against colliders did over the step, at its end
+  // state x (h: the step's b, s).
   void record_contact_totals(const Eigen::Matrix3Xd& x, double h,
+                             std::vector<ColliderContactTotals>& totals) const;
+  void record_feature_totals(const Eigen::Matrix3Xd& x, double h,
                              std::vector<ColliderContactTotals>& totals) const;
 
   VbdSettings settings_;
@@ -100,6 +123,7 @@ class VertexBlockDescent {
   std::vector<std::int32_t> spring_offsets_, spring_other_;
   std::vector<double> spring_rest_, spring_ks_, spring_kd_;
   std::vector<std::int32_t> color_offsets_, color_particles_;
+  std::vector<std::int32_t> color_of_;  // per particle
   // The coarse step: the aggregates, the springs that cross between them, the matrix (its pattern
   // fixed when the solver is built, with the value slots of every block) and its solve.
   std::vector<std::int32_t> aggregate_of_, aggregate_offsets_, aggregate_members_;
@@ -118,12 +142,25 @@ class VertexBlockDescent {
   // Contact planes, kPlaneSlots per particle.
   std::vector<std::int32_t> plane_count_, plane_collider_;
   std::vector<double> plane_point_, plane_normal_, plane_surface_move_, plane_kinetic_,
-      plane_fixed_;
+      plane_fixed_, plane_load_;
   // Contacts between particles.
   std::vector<std::int32_t> coupling_offsets_, coupling_contact_, coupling_slot_,
       coupling_particle_;
   std::vector<double> coupling_weight_, coupling_normal_, coupling_depth_, coupling_stiffness_,
       coupling_damping_, coupling_end_rate_;
+  // The feature contacts of the current step, as kernels::VbdFeatures reads them.
+  std::vector<FeatureContact> near_features_;
+  struct FeatureArrays {
+    std::vector<std::int32_t> rows, row_contact, row_slot;   // per particle
+    std::vector<std::int32_t> particle, range, collider;     // per contact
+    std::vector<double> surface_move, kinetic, fixed, load;  // per contact
+    std::vector<double> from, to, outward, faces;            // per feature
+    void clear() {
+      for (auto* list : {&particle, &range, &collider}) list->clear();
+      for (auto* list : {&surface_move, &kinetic, &fixed, &load, &from, &to, &outward, &faces})
+        list->clear();
+    }
+  } features_;
   std::vector<std::uint8_t> coupling_two_sided_;
   // Per step (m, 3 x N): the start X (x(n), or BDF2's blend), the inertial target, the sweep's
   // start (read by the contacts between particles), the iteration's start and the one before
