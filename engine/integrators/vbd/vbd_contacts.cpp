@@ -16,6 +16,27 @@ void store(double* to, const Eigen::Vector3d& value) {
   to[2] = value[2];
 }
 
+// Each particle's rows of (contact, slot) pairs, for contacts of `slots` particles each listed in
+// `particle` (-1: unused): particle i's are rows[i] to rows[i + 1] - 1.
+void index_rows(int n, const std::vector<std::int32_t>& particle, int slots,
+                std::vector<std::int32_t>& rows, std::vector<std::int32_t>& row_contact,
+                std::vector<std::int32_t>& row_slot) {
+  rows.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (const std::int32_t i : particle)
+    if (i >= 0) ++rows[static_cast<std::size_t>(i) + 1];
+  for (int i = 0; i < n; ++i) rows[i + 1] += rows[i];
+  row_contact.resize(static_cast<std::size_t>(rows.back()));
+  row_slot.resize(row_contact.size());
+  std::vector<std::int32_t> fill(rows.begin(), rows.end() - 1);
+  for (std::size_t k = 0; k < particle.size(); ++k) {
+    const std::int32_t i = particle[k];
+    if (i < 0) continue;
+    const std::size_t at = static_cast<std::size_t>(fill[static_cast<std::size_t>(i)]++);
+    row_contact[at] = static_cast<std::int32_t>(k / static_cast<std::size_t>(slots));
+    row_slot[at] = static_cast<std::int32_t>(k % static_cast<std::size_t>(slots));
+  }
+}
+
 }  // namespace
 
 void VertexBlockDescent::find_planes(const ClothModel& model, const VbdStepInput& input,
@@ -99,22 +120,7 @@ void VertexBlockDescent::find_features(int n, const VbdStepInput& input, double 
   }
   a.range.push_back(static_cast<std::int32_t>(count));
   const std::size_t contacts = a.collider.size();
-  // Each particle's rows: count, then place.
-  a.rows.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (const std::int32_t i : a.particle)
-    if (i >= 0) ++a.rows[static_cast<std::size_t>(i) + 1];
-  for (int i = 0; i < n; ++i) a.rows[i + 1] += a.rows[i];
-  a.row_contact.resize(static_cast<std::size_t>(a.rows.back()));
-  a.row_slot.resize(a.row_contact.size());
-  std::vector<std::int32_t> fill(a.rows.begin(), a.rows.end() - 1);
-  for (std::size_t c = 0; c < contacts; ++c)
-    for (int s = 0; s < 3; ++s) {
-      const int i = a.particle[3 * c + static_cast<std::size_t>(s)];
-      if (i < 0) continue;
-      const std::size_t at = static_cast<std::size_t>(fill[static_cast<std::size_t>(i)]++);
-      a.row_contact[at] = static_cast<std::int32_t>(c);
-      a.row_slot[at] = s;
-    }
+  index_rows(n, a.particle, 3, a.rows, a.row_contact, a.row_slot);
   // Friction's lagged load: the spring's push where the step starts.
   a.load.assign(contacts, 0.0);
   const kernels::VbdFeatures at_start = feature_view(input.contacts->query().radius(), 0.0, 0.0);
@@ -159,13 +165,11 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
   coupling_damping_.resize(count);
   coupling_end_rate_.resize(count);
   coupling_two_sided_.resize(count);
-  coupling_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
   for (std::size_t c = 0; c < count; ++c) {
     const WeightedContact& w = couplings[c];
     for (int s = 0; s < 4; ++s) {
       coupling_particle_[4 * c + s] = w.particle[s];
       coupling_weight_[4 * c + s] = w.weight[s];
-      if (w.particle[s] >= 0) ++coupling_offsets_[static_cast<std::size_t>(w.particle[s]) + 1];
     }
     store(&coupling_normal_[3 * c], w.normal);
     // The depth is linearised at x(n); the sweeps measure displacements from start_ (X).
@@ -180,18 +184,7 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
     coupling_damping_[c] = w.damping;
     coupling_two_sided_[c] = w.two_sided ? 1 : 0;
   }
-  for (int i = 0; i < n; ++i) coupling_offsets_[i + 1] += coupling_offsets_[i];
-  coupling_contact_.resize(static_cast<std::size_t>(coupling_offsets_.back()));
-  coupling_slot_.resize(coupling_contact_.size());
-  std::vector<std::int32_t> fill(coupling_offsets_.begin(), coupling_offsets_.end() - 1);
-  for (std::size_t c = 0; c < count; ++c)
-    for (int s = 0; s < 4; ++s) {
-      const int i = couplings[c].particle[s];
-      if (i < 0) continue;
-      const std::size_t at = static_cast<std::size_t>(fill[static_cast<std::size_t>(i)]++);
-      coupling_contact_[at] = static_cast<std::int32_t>(c);
-      coupling_slot_[at] = s;
-    }
+  index_rows(n, coupling_particle_, 4, coupling_offsets_, coupling_contact_, coupling_slot_);
 }
 
 }  // namespace drapelab
