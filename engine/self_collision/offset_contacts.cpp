@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/contact_rows.hpp"
 #include "core/proximity.hpp"
 #include "core/thread_blocks.hpp"
 
@@ -192,23 +193,7 @@ void OffsetContacts::store_contacts() {
   for (const std::vector<Found>& block : block_edge_found_)
     for (const Found& f : block) add(f);
   for (const Found& f : shared_) add(f);
-  // Each particle's rows: count, then place.
-  const std::size_t n = nearest_.size();
-  std::fill(row_offsets_.begin(), row_offsets_.end(), 0);
-  for (const std::int32_t p : particle_)
-    if (p >= 0) ++row_offsets_[static_cast<std::size_t>(p) + 1];
-  for (std::size_t i = 0; i < n; ++i) row_offsets_[i + 1] += row_offsets_[i];
-  row_contact_.resize(static_cast<std::size_t>(row_offsets_[n]));
-  row_slot_.resize(row_contact_.size());
-  std::vector<std::int32_t>& next = fill_;
-  next.assign(row_offsets_.begin(), row_offsets_.end() - 1);
-  for (std::size_t k = 0; k < particle_.size(); ++k) {
-    const std::int32_t p = particle_[k];
-    if (p < 0) continue;
-    const std::size_t at = static_cast<std::size_t>(next[static_cast<std::size_t>(p)]++);
-    row_contact_[at] = static_cast<std::int32_t>(k / 4);
-    row_slot_[at] = static_cast<std::int32_t>(k % 4);
-  }
+  index_contact_rows(nearest_.size(), particle_, 4, row_offsets_, row_contact_, row_slot_, fill_);
 }
 
 OffsetContactArrays OffsetContacts::arrays() const {

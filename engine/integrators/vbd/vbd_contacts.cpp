@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/contact_rows.hpp"
 #include "integrators/particle_loops.hpp"
 #include "integrators/vbd/vertex_block_descent.hpp"
 
@@ -14,27 +15,6 @@ void store(double* to, const Eigen::Vector3d& value) {
   to[0] = value[0];
   to[1] = value[1];
   to[2] = value[2];
-}
-
-// Each particle's rows of (contact, slot) pairs, for contacts of `slots` particles each listed in
-// `particle` (-1: unused): particle i's are rows[i] to rows[i + 1] - 1.
-void index_rows(int n, const std::vector<std::int32_t>& particle, int slots,
-                std::vector<std::int32_t>& rows, std::vector<std::int32_t>& row_contact,
-                std::vector<std::int32_t>& row_slot) {
-  rows.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (const std::int32_t i : particle)
-    if (i >= 0) ++rows[static_cast<std::size_t>(i) + 1];
-  for (int i = 0; i < n; ++i) rows[i + 1] += rows[i];
-  row_contact.resize(static_cast<std::size_t>(rows.back()));
-  row_slot.resize(row_contact.size());
-  std::vector<std::int32_t> fill(rows.begin(), rows.end() - 1);
-  for (std::size_t k = 0; k < particle.size(); ++k) {
-    const std::int32_t i = particle[k];
-    if (i < 0) continue;
-    const std::size_t at = static_cast<std::size_t>(fill[static_cast<std::size_t>(i)]++);
-    row_contact[at] = static_cast<std::int32_t>(k / static_cast<std::size_t>(slots));
-    row_slot[at] = static_cast<std::int32_t>(k % static_cast<std::size_t>(slots));
-  }
 }
 
 }  // namespace
@@ -120,7 +100,8 @@ void VertexBlockDescent::find_features(int n, const VbdStepInput& input, double 
   }
   a.range.push_back(static_cast<std::int32_t>(count));
   const std::size_t contacts = a.collider.size();
-  index_rows(n, a.particle, 3, a.rows, a.row_contact, a.row_slot);
+  index_contact_rows(static_cast<std::size_t>(n), a.particle, 3, a.rows, a.row_contact, a.row_slot,
+                     row_scratch_);
   // Friction's lagged load: the spring's push where the step starts.
   a.load.assign(contacts, 0.0);
   const kernels::VbdFeatures at_start = feature_view(input.contacts->query().radius(), 0.0, 0.0);
@@ -184,7 +165,8 @@ void VertexBlockDescent::index_couplings(int n, const std::vector<WeightedContac
     coupling_damping_[c] = w.damping;
     coupling_two_sided_[c] = w.two_sided ? 1 : 0;
   }
-  index_rows(n, coupling_particle_, 4, coupling_offsets_, coupling_contact_, coupling_slot_);
+  index_contact_rows(static_cast<std::size_t>(n), coupling_particle_, 4, coupling_offsets_,
+                     coupling_contact_, coupling_slot_, row_scratch_);
 }
 
 }  // namespace drapelab

@@ -144,6 +144,7 @@ class VertexBlockDescent {
   std::vector<double> plane_point_, plane_normal_, plane_surface_move_, plane_kinetic_,
       plane_fixed_, plane_load_;
   // Contacts between particles.
+  std::vector<std::int32_t> row_scratch_;  // index_contact_rows's
   std::vector<std::int32_t> coupling_offsets_, coupling_contact_, coupling_slot_,
       coupling_particle_;
   std::vector<double> coupling_weight_, coupling_normal_, coupling_depth_, coupling_stiffness_,
