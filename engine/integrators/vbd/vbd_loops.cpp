@@ -134,6 +134,69 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
   if (p.self_contacts.offsets) add_self_contacts(p, i, xi, x, b);
 }
 
+// The fraction of a Newton move (m) from xi at which the particle's block energy is least, when
+// the move crosses into collider planes it starts outside of. A plane's energy is zero up to its
+// onset and a spring k depth^2 / 2 past it, so the block of a particle outside the thickness holds
+// none of it, and its move goes all the way to where inertia and the springs alone would take it,
+// through the plane. Along the move, the block's energy is the quadratic the move minimises
+// (its minimum at t = 1) plus each crossed plane's spring from where the move crosses its onset:
+// a convex function of t whose least value lies between the first crossing and 1. Without it such a
+// particle sat up to 8 mm deep after a sweep and dragged its neighbours down: a 65 x 65 sheet
+// landing flat on a table at 0.94 m/s ended the step 2.1 mm into the 5 mm thickness, where one
+// particle alone comes to rest 8 um in; with it, 0.14 mm. A second Newton step from inside the
+// plane did as well there, but it turns the move, and a sheet on a sphere then gained energy
+// (6e-5 J, against 8e-7 J with this). The features (edges and corners) take no part: measured each
+// sweep afresh, their direction turns along the move, and on the table drape taking them in (with
+// the second step) left the penetration as it was and raised the skirt's stretch to 2.2 %.
+constexpr int kMaxPlaneSlots = 8;  // at least vbd's planes per particle (vertex_block_descent.hpp)
+
+double onset_fraction(const VbdPlanes& q, std::int64_t i, const double* xi, const double* move,
+                      const Block& b) {
+  // Along the move, the quadratic's slope is a (t - 1) with a = move . H move (N m).
+  const double hm[3] = {b.h[0] * move[0] + b.h[3] * move[1] + b.h[4] * move[2],
+                        b.h[3] * move[0] + b.h[1] * move[1] + b.h[5] * move[2],
+                        b.h[4] * move[0] + b.h[5] * move[1] + b.h[2] * move[2]};
+  const double a = dot(move, hm);
+  if (!(a > 0.0)) return 1.0;
+  // Each crossed plane: depth d0 + s t (m), d0 <= 0 < d0 + s; its slope k s (d0 + s t) past the
+  // onset t0 = -d0 / s. Planes in slot order; kPlaneSlots is small, so the crossings are sorted
+  // by a pass each.
+  double onset[kMaxPlaneSlots], rate[kMaxPlaneSlots], depth0[kMaxPlaneSlots];
+  int crossed = 0;
+  for (int k = 0; k < std::min(q.count[i], kMaxPlaneSlots); ++k) {
+    const std::int64_t e = i * q.slots + k;
+    const double* n = q.normal + 3 * e;
+    const double* point = q.point + 3 * e;
+    const double offset[3] = {xi[0] - point[0], xi[1] - point[1], xi[2] - point[2]};
+    const double d0 = q.radius - dot(offset, n);  // m
+    const double s = -dot(move, n);               // m per unit of t
+    if (d0 > 0.0 || d0 + s <= 0.0) continue;      // inside already, or not reached
+    onset[crossed] = -d0 / s;
+    rate[crossed] = s;
+    depth0[crossed] = d0;
+    ++crossed;
+  }
+  if (crossed == 0) return 1.0;
+  // Past the onsets passed so far, the slope is a (t - 1) + sum k s (d0 + s t) = A t - B; its
+  // root, if it comes before the next onset, is the least energy.
+  double slope_t = a, slope_0 = a;  // A and B
+  bool used[kMaxPlaneSlots] = {};
+  for (int passed = 0; passed < crossed; ++passed) {
+    int next = -1;
+    for (int c = 0; c < crossed; ++c)
+      if (!used[c] && (next < 0 || onset[c] < onset[next])) next = c;
+    used[next] = true;
+    slope_t += q.stiffness * rate[next] * rate[next];
+    slope_0 -= q.stiffness * rate[next] * depth0[next];
+    double following = 1.0;
+    for (int c = 0; c < crossed; ++c)
+      if (!used[c]) following = std::min(following, onset[c]);
+    const double t = slope_0 / slope_t;
+    if (t <= following) return std::max(t, onset[next]);
+  }
+  return 1.0;
+}
+
 // Particle i's Newton step; returns how far it moved (m). `truncated` counts a move cut short at
 // the particle's conservative bound.
 double solve_particle(const VbdProblem& p, std::int64_t i, double* x, std::int64_t& truncated) {
@@ -143,6 +206,10 @@ double solve_particle(const VbdProblem& p, std::int64_t i, double* x, std::int64
   double move[3];
   if (!b.solve(move)) return 0.0;
   double* xi = x + 3 * i;
+  if (p.planes.count && p.planes.count[i] > 0) {
+    const double t = onset_fraction(p.planes, i, xi, move, b);
+    for (double& m : move) m *= t;
+  }
   xi[0] += move[0];
   xi[1] += move[1];
   xi[2] += move[2];
