@@ -117,7 +117,11 @@ void OffsetContacts::find_edge_edge(const Eigen::Matrix3Xd& x) {
     edge_reach_[e] = std::max(offset, std::max(nearest_[static_cast<std::size_t>(edges[e][0])],
                                                nearest_[static_cast<std::size_t>(edges[e][1])]));
   }
-  grid_.build(boxes_, cell_size_for(boxes_, offset));
+  // Cells as large as a query (an edge's box and the reach on each side), so that a query covers
+  // at most two cells along each axis: scanning the entries of the cells a query covers was most
+  // of the detection's time. On the 65 x 65 heap (vbd, 0.5 s) cells of the mean edge's box alone
+  // took 1.68 to 1.80 s of self-contact, these 1.36 to 1.45 s.
+  grid_.build(boxes_, cell_size_for(boxes_, offset) + 2.0 * reach_);
   const std::int64_t blocks = (count + kDetectionBlock - 1) / kDetectionBlock;
   block_edge_found_.resize(static_cast<std::size_t>(blocks));
   kernels::for_each_block_balanced(blocks, count >= kParallelDetection, [&](std::int64_t block) {
@@ -132,19 +136,24 @@ void OffsetContacts::find_edge_edge(const Eigen::Matrix3Xd& x) {
       query.max.array() += reach;
       grid_.for_each_item_overlapping(boxes_, query, [&](std::int32_t eb) {
         if (eb == ea) return;
+        // Each pair once, from the edge that looks farther (the lower index of two that look as
+        // far): its reach is the pair's, and the other edge's search skips it before any
+        // closest-point work, which was most of the detection's time.
+        const double other_reach = edge_reach_[static_cast<std::size_t>(eb)];
+        if (other_reach > reach || (other_reach == reach && eb < ea)) return;
         const auto& f = edges[static_cast<std::size_t>(eb)];
         if (e[0] == f[0] || e[0] == f[1] || e[1] == f[0] || e[1] == f[1]) return;
-        const SegmentProximity near =
-            closest_points_of_segments(x.col(e[0]), x.col(e[1]), x.col(f[0]), x.col(f[1]));
+        // The lower edge first, whichever edge searches: the same bits either way.
+        const auto& low = ea < eb ? e : f;
+        const auto& high = ea < eb ? f : e;
+        const SegmentProximity near = closest_points_of_segments(x.col(low[0]), x.col(low[1]),
+                                                                 x.col(high[0]), x.col(high[1]));
         const double d = (near.on_first - near.on_second).norm();
         if (d >= reach) return;
         for (const int p : {e[0], e[1], f[0], f[1]}) lower_to(nearest_[p], d);
-        // Each pair once, from its lower edge (both look at least the offset far). Nearest at an
-        // end: that end's particle-triangle test holds the contact.
-        if (eb < ea || d >= offset ||
-            !(near.s > 0.0 && near.s < 1.0 && near.t > 0.0 && near.t < 1.0))
-          return;
-        found.push_back({SelfContactKind::edge_edge, {e[0], e[1], f[0], f[1]}, d});
+        // Nearest at an end: that end's particle-triangle test holds the contact.
+        if (d >= offset || !(near.s > 0.0 && near.s < 1.0 && near.t > 0.0 && near.t < 1.0)) return;
+        found.push_back({SelfContactKind::edge_edge, {low[0], low[1], high[0], high[1]}, d});
       });
     }
   });
