@@ -73,8 +73,8 @@ void OffsetContacts::find_point_triangle(const Eigen::Matrix3Xd& x) {
     for (std::int64_t pi = block * kDetectionBlock; pi < end; ++pi) {
       const int p = static_cast<int>(pi);
       const Eigen::Vector3d point = x.col(p);
-      grid_.for_each_item_in_cell(point, [&](std::int32_t t) {
-        if (topology_.is_corner(p, t) || !boxes_[t].contains(point)) return;
+      grid_.for_each_item_containing(point, [&](std::int32_t t) {
+        if (topology_.is_corner(p, t)) return;
         const int corner[3] = {tri(0, t), tri(1, t), tri(2, t)};
         const PointTriangleProximity near =
             closest_point_on_triangle(point, x.col(corner[0]), x.col(corner[1]), x.col(corner[2]));
@@ -134,7 +134,7 @@ void OffsetContacts::find_edge_edge(const Eigen::Matrix3Xd& x) {
       Box query = boxes_[static_cast<std::size_t>(ea)];
       query.min.array() -= reach;
       query.max.array() += reach;
-      grid_.for_each_item_overlapping(boxes_, query, [&](std::int32_t eb) {
+      grid_.for_each_item_overlapping(query, [&](std::int32_t eb) {
         if (eb == ea) return;
         // Each pair once, from the edge that looks farther (the lower index of two that look as
         // far): its reach is the pair's, and the other edge's search skips it before any

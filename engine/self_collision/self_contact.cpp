@@ -72,7 +72,7 @@ void SelfContact::search(const Eigen::Matrix3Xd& x) {
   for (std::size_t e = 0; e < edges.size(); ++e)
     boxes_[e] = box_of({x.col(edges[e][0]), x.col(edges[e][1])}, 0.5 * reach);
   grid_.build(boxes_, cell_size_for(boxes_, reach));
-  grid_.for_each_overlapping_pair(boxes_, [&](std::int32_t a, std::int32_t b) {
+  grid_.for_each_overlapping_pair([&](std::int32_t a, std::int32_t b) {
     const auto& ea = edges[a];
     const auto& eb = edges[b];
     if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return;

@@ -79,6 +79,7 @@ void SpatialGrid::build(std::span<const Box> boxes, double cell_size) {
   for (std::size_t b = 0; b < table; ++b) bucket_start_[b + 1] += bucket_start_[b];
   cells_.resize(unsorted_cells_.size());
   items_.resize(unsorted_cells_.size());
+  entry_boxes_.resize(unsorted_cells_.size());
   // Counting sort; entries keep their box order within a bucket.
   std::vector<std::uint32_t>& next = fill_position_;
   next.assign(bucket_start_.begin(), bucket_start_.end() - 1);
@@ -86,6 +87,7 @@ void SpatialGrid::build(std::span<const Box> boxes, double cell_size) {
     const std::uint32_t at = next[bucket_of(unsorted_cells_[e])]++;
     cells_[at] = unsorted_cells_[e];
     items_[at] = unsorted_items_[e];
+    entry_boxes_[at] = boxes[static_cast<std::size_t>(unsorted_items_[e])];
   }
 }
 
