@@ -160,19 +160,19 @@ TEST(Vbd, V8ClothDroppedOnASphereRestsSymmetricallyAtTheThickness) {
 }
 
 // A 65 x 65 sheet of 0.3 kg, its particles half a millimetre off flat at random, landing on a floor
-// at 0.94 m/s (dropped 4.5 cm onto its 5 mm thickness), at vbd's default step and sweeps: at the impact, and after it, no particle goes
-// deeper into the thickness than a tenth of it. Backward Euler stops a particle of m = 7.1e-5 kg
-// on a contact of k = 1000 N/m within m v / (k h) = 8 um of the onset; the limit leaves room for
-// the springs and the sweeps. A particle whose Newton move crosses a plane's onset stops where its
-// block energy is least along the move (onset_fraction, vbd_loops.cpp): without that, the move
-// went through and the sheet ended the impact step 2.1 mm deep.
+// at 0.94 m/s (dropped 4.5 cm onto its 5 mm thickness), at vbd's default step and sweeps: at the
+// impact, and after it, no particle goes deeper into the thickness than a tenth of it. Backward
+// Euler stops a particle of m = 7.1e-5 kg on a contact of k = 1000 N/m within m v / (k h) = 8 um of
+// the onset; the limit leaves room for the springs and the sweeps. A particle whose Newton move
+// crosses a plane's onset stops where its block energy is least along the move (onset_fraction,
+// vbd_loops.cpp): without that, the move went through and the sheet ended the impact step 2.1 mm
+// deep.
 TEST(Vbd, ASheetLandingFlatStopsAtTheThickness) {
   const GridClothSpec spec = fixtures::soft_sheet(65, 1.2, {0.0, 0.05, 0.0}, 0.3);
   const ClothModel model = build_grid_cloth(spec);
   const ClothState start = initial_grid_state(model, spec, 0.0005, 2);  // m, seed
   const double h = 1.0 / 120.0;                                         // s
-  VbdRun r =
-      make_run(spec, vbd_settings(10), {fixtures::floor_collider()}, {1000.0, 0.2}, &start);
+  VbdRun r = make_run(spec, vbd_settings(10), {fixtures::floor_collider()}, {1000.0, 0.2}, &start);
   double deepest = 0.0;  // m into the thickness, over every step
   const int steps = static_cast<int>(std::lround(0.25 / h));
   for (int k = 0; k < steps; ++k) {
