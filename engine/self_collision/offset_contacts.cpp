@@ -137,8 +137,8 @@ void OffsetContacts::find_edge_edge(const Eigen::Matrix3Xd& x) {
       grid_.for_each_item_overlapping(query, [&](std::int32_t eb) {
         if (eb == ea) return;
         // Each pair once, from the edge that looks farther (the lower index of two that look as
-        // far): its reach is the pair's, and the other edge's search skips it before any
-        // closest-point work, which was most of the detection's time.
+        // far): its reach is the pair's, and the other edge's search skips it before the
+        // closest points.
         const double other_reach = edge_reach_[static_cast<std::size_t>(eb)];
         if (other_reach > reach || (other_reach == reach && eb < ea)) return;
         const auto& f = edges[static_cast<std::size_t>(eb)];
