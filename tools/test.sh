@@ -77,12 +77,8 @@ if [[ "$mode" != "--no-sanitizers" ]]; then
   # contacts, their detections, bounds and barrier, under the sanitizers.
   skipped+='|IntersectionFreeCi[.]TheTwistedStripNeverCrossesItself'
   # vbd at sharp edges (47 s of CPU for the two box runs there) in Release only; the crumple
-  # between two box plates keeps vbd's feature and offset contacts under the sanitizers. The cylinder rim's case
-  # sits at its tolerance: vbd's sheets creep on a rim by 0.96 to 1.15 times it (docs/contact.md,
-  # "Under vbd"), and clang's build of the same run rose 1.2 times. It stays in Release, where it
-  # passes at 0.96, until the creep is fixed.
+  # between two box plates keeps vbd's feature and offset contacts under the sanitizers.
   skipped+='|SharpEdgeEnergy[.]Vbd(AtItsDefaultStepGainsNoEnergyOnABoxEdge|WithAHeavierSheet)'
-  skipped+='|SharpEdgeEnergy[.]VbdWithSelfCollisionGainsNoEnergyOnACylinderRim'
   # Over a minute of CPU each under the sanitizers, so Release only: the energy ledger of every
   # integrator (their steps run under the sanitizers in the attachment and spring suites), V9's
   # slide (the friction paths run in the sharp-edge and cylinder-cap cases), both V8 sphere drapes

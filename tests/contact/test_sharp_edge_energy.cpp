@@ -89,9 +89,7 @@ TEST_P(EveryExplicitIntegrator, AtItsAutomaticStepGainsNoEnergyAtSharpEdges) {
 // sweeps. Before friction took its load from the step's start, the contact's damper grew from
 // zero inside the thickness and the sweeps read a contact's other particles where they had just
 // moved, the 21 x 21 sheet gained 0.17 J on the box, 0.23 J with self-collision, and 0.11 J on
-// the cylinder with self-collision. Not held here: the cylinder without self-collision still
-// gains 1.02 times the tolerance (0.0040 J), and a 29 x 29 or 41 x 41 sheet on the box with
-// self-collision 0.025 to 0.033 J at impact (docs/contact.md, "Under vbd").
+// the cylinder with self-collision.
 TEST(SharpEdgeEnergy, VbdAtItsDefaultStepGainsNoEnergyOnABoxEdge) {
   for (const char* self :
        {"cloth.self_collision.enabled=false", "cloth.self_collision.enabled=true"})
@@ -109,10 +107,15 @@ TEST(SharpEdgeEnergy, VbdWithAHeavierSheetGainsNoEnergyOnABoxEdge) {
   EXPECT_GT(run.result.final_metrics.centroid.y(), 0.2) << "it slid or jumped off";
 }
 
-TEST(SharpEdgeEnergy, VbdWithSelfCollisionGainsNoEnergyOnACylinderRim) {
-  expect_no_energy_gained(drop("sheet_on_cylinder", 21,
-                               {"solvers.0.integrator=vbd", "cloth.self_collision.enabled=true"}),
-                          "cylinder, 21 x 21, vbd with self-collision");
+// A sheet settling over a cylinder's rim: with 10 sweeps a step and no more, the residual forces
+// of the unconverged steps did 0.0042 J of work (1.07 times the tolerance), with self-collision
+// 0.0038 J; the sweeps now go on while a passive step gains energy (docs/contact.md, "Under
+// vbd").
+TEST(SharpEdgeEnergy, VbdGainsNoEnergyOnACylinderRim) {
+  for (const char* self :
+       {"cloth.self_collision.enabled=false", "cloth.self_collision.enabled=true"})
+    expect_no_energy_gained(drop("sheet_on_cylinder", 21, {"solvers.0.integrator=vbd", self}),
+                            std::string("cylinder, 21 x 21, vbd, ") + self);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharpEdgeEnergy, EveryExplicitIntegrator,

@@ -47,6 +47,9 @@ struct VbdStats {
   // Offset self-contact detections, summed over steps (one per step, more where moves were cut
   // short at their bounds).
   std::int64_t self_contact_detections = 0;
+  // Sweeps past the ones asked for because a passive step's end held more energy than its start,
+  // summed over steps.
+  std::int64_t energy_sweeps = 0;
   // The search for the colliders' edges and corners near the cloth's, summed over steps (s).
   double feature_search_seconds = 0.0;
 };

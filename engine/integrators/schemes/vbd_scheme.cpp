@@ -84,7 +84,9 @@ Counters VbdScheme::counters() const {
       {"vbd_contact_planes_last", static_cast<double>(s.contacts_last)},
       {"vbd_self_contact_detections_per_step",
        s.steps > 0 ? static_cast<double>(s.self_contact_detections) / static_cast<double>(s.steps)
-                   : 0.0}};
+                   : 0.0},
+      {"vbd_energy_sweeps_per_step",
+       s.steps > 0 ? static_cast<double>(s.energy_sweeps) / static_cast<double>(s.steps) : 0.0}};
 }
 
 std::string VbdScheme::step_advice() const {

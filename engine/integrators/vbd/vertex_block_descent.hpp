@@ -104,6 +104,18 @@ class VertexBlockDescent {
   // guess x within the bounds; returns how many particles it held back.
   std::int64_t detect_self_contacts(const ClothModel& model, OffsetContacts& self,
                                     kernels::VbdProblem& problem, Eigen::Matrix3Xd& x);
+  // The cloth's kinetic and stored energy at (x, v) (J): gravity's, the springs' or the
+  // continuum's, and what the step's collider planes and features and `self` (may be null) store.
+  double mechanical_energy(const kernels::VbdProblem& problem, const Eigen::Vector3d& gravity,
+                           const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
+                           const OffsetContacts* self) const;
+  // Whether nothing but the cloth's own forces, gravity and static colliders acts in this step
+  // (found planes and features): then backward Euler's step ends with no more energy than it
+  // started with. Not for BDF2, whose energy may swing within a step.
+  bool passive_step(const ClothModel& model, const VbdStepInput& input) const;
+  // How much a passive step may gain (J): far below the energy audit's 1 % of m g L over a run,
+  // and above the rounding of `energy`, the start's.
+  double energy_slack(const Eigen::Vector3d& gravity, double energy) const;
   // What the collider planes and the couplings against colliders did over the step, at its end
   // state x (h: the step's b, s).
   void record_contact_totals(const Eigen::Matrix3Xd& x, double h,
@@ -167,6 +179,8 @@ class VertexBlockDescent {
   // start (read by the contacts between particles), the iteration's start and the one before
   // (Chebyshev's history); V (m/s), the start velocity.
   Eigen::Matrix3Xd start_, inertia_, sweep_start_, iteration_start_, before_last_, base_v_;
+  Eigen::Matrix3Xd end_v_;        // m/s: the velocities of the iterate, for its energy
+  double weight_height_ = 0.0;    // kg*m: the cloth's mass times its rest extent
   Eigen::Matrix3Xd detection_x_;  // m: where the step's first self-contact detection looks
   // The last step: x(n-1) (m) and v(n-1) (m/s), and its h (s; 0 before the first step).
   Eigen::Matrix3Xd previous_x_, previous_v_;
