@@ -43,22 +43,6 @@ double FamilyScratch::damper_power() const {
   return total;
 }
 
-void set_thread_count(int threads) {
-#ifdef _OPENMP
-  omp_set_num_threads(threads < 1 ? 1 : threads);
-#else
-  (void)threads;
-#endif
-}
-
-int thread_count() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
 namespace {
 
 // The force on the first particle of every spring slot in [begin, end) of one family (N), into the

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "drapelab/loop_threads.hpp"
 #include "drapelab/stability.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/force_evaluator.hpp"
@@ -90,6 +91,9 @@ const Eigen::Matrix3Xd& SpringDamperSolver::evaluate_forces(const Eigen::Matrix3
 
 void SpringDamperSolver::step(double h) {
   if (status_ != SolverStatus::ok) return;
+  // The results do not depend on the threads, so they follow the machine's load step by step.
+  machine_load_.sample();
+  kernels::share_machine(machine_load_);
   if (forces_->self_contact())
     step_without_tunnelling(h);
   else

@@ -244,7 +244,8 @@ void add_bench_options(CLI::App& verb, BenchArguments& arguments) {
   verb.add_option("--duration", arguments.duration,
                   "Simulated seconds per run (default 0.5; 0.1 with --quick)");
   verb.add_option("--threads", arguments.threads,
-                  "Threads for our solver's loops (default: every core)");
+                  "Threads for our solver's loops, fixed (default: every core the machine's other "
+                  "processes leave free, step by step)");
   verb.add_option(
       "--repeat", arguments.repeat,
       "Runs of every solver in every cell, interleaved; the fastest is reported (default 1)");
@@ -264,9 +265,6 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
   const double duration =
       arguments.duration > 0.0 ? arguments.duration : (arguments.quick ? 0.1 : 0.5);
   const fs::path out = arguments.out.empty() ? fs::path("out/bench") : fs::path(arguments.out);
-  const int threads = arguments.threads > 0
-                          ? arguments.threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int repeat = arguments.repeat;
   if (repeat < 1 || repeat > 100) {
     std::cerr << "error: --repeat: " << repeat << " runs is outside 1..100\n";
@@ -277,11 +275,12 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       std::cerr << "error: --sizes: " << n << " particles per side is outside 2..2000\n";
       return kExitBadInput;
     }
-  kernels::set_thread_count(threads);
+  // Without --threads our loops take every core the other processes leave them, step by step.
+  if (arguments.threads > 0) kernels::set_thread_count(arguments.threads);
 
   BenchTable table;
   table.machine = cpu_name() + ", " + std::to_string(std::thread::hardware_concurrency()) +
-                  " cores, " + std::to_string(kernels::thread_count()) +
+                  " cores, at most " + std::to_string(kernels::thread_count()) +
                   " threads for our solver's loops";
   for (const std::string& file : scenes)
     for (int n : sizes) {

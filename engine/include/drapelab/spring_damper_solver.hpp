@@ -20,6 +20,7 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/implicit_euler.hpp"
+#include "drapelab/machine_load.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/spring_damper_settings.hpp"
 #include "drapelab/step_stats.hpp"
@@ -143,6 +144,8 @@ class SpringDamperSolver final : public Solver {
   bool attachments_on_bodies_ = false;           // a pin is attached to a dynamic collider
   EnergyLedger ledger_;                          // energy_ledger.hpp
   SolverStatus status_ = SolverStatus::ok;
+  // The other processes' use of the cores, which sets the loops' threads before each step.
+  MachineLoad machine_load_;
   std::string message_;
 };
 
