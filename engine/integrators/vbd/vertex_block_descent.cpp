@@ -99,6 +99,7 @@ VertexBlockDescent::VertexBlockDescent(const ClothModel& model, VbdSettings sett
   sweep_start_.resize(3, n);
   previous_v_.resize(3, n);
   previous_x_.resize(3, n);
+  end_v_.resize(3, n);
   const Eigen::Vector3d extent =
       model.rest_positions.rowwise().maxCoeff() - model.rest_positions.rowwise().minCoeff();
   weight_height_ = model.mass.sum() * extent.norm();
