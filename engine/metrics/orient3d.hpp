@@ -1,6 +1,6 @@
 // The orient3d predicate, exact for every finite double input: a floating-point evaluation whose
 // sign is trusted when Shewchuk's static error bound proves it, and an exact evaluation with GMP
-// rationals when it cannot (docs/metrics.md, "Self-intersections").
+// integers when it cannot (docs/metrics.md, "Self-intersections").
 #pragma once
 
 #include <Eigen/Core>
@@ -19,7 +19,7 @@ int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Ve
 std::optional<int> orient3d_filtered(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                      const Eigen::Vector3d& c, const Eigen::Vector3d& d);
 
-// The exact stage alone: every coordinate converted exactly to a rational, no rounding anywhere.
+// The exact stage alone: every coordinate scaled exactly to a whole number, no rounding anywhere.
 int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    const Eigen::Vector3d& d);
 

@@ -113,6 +113,26 @@ TEST(Orient3d, TheExactStageDecidesWhatTheFilterCannot) {
   EXPECT_EQ(just_below.sum() - 1.0, 0.0);
 }
 
+// The exact stage scales every coordinate to a whole number by the least power of two among them:
+// it must hold for exponents far apart, for products that overflow a double, and for subnormals.
+TEST(Orient3d, TheExactStageHoldsForAnyExponent) {
+  // Tiny: the permanent (about 1e-903) is below what the filter trusts.
+  const double t = std::ldexp(1.0, -301);
+  const Vector3d origin(0, 0, 0);
+  EXPECT_FALSE(orient3d_filtered(origin, {t, 0, 0}, {0, t, 0}, {0, 0, t}).has_value());
+  EXPECT_EQ(orient3d(origin, {t, 0, 0}, {0, t, 0}, {0, 0, t}), -1);
+  EXPECT_EQ(orient3d(origin, {t, 0, 0}, {0, t, 0}, {0, 0, -t}), 1);
+  EXPECT_EQ(orient3d(origin, {t, 0, 0}, {0, t, 0}, {5.0, 7.0, 0.0}), 0);
+  // Huge and tiny together in the plane z = 0, seen from a subnormal height above and below:
+  // 1e300 squared overflows, so only the exact stage can answer.
+  const Vector3d a(1e300, 0, 0), b(0, 1e-300, 0), c(-1e-300, -1e300, 0);
+  const double subnormal = 1e-310;
+  EXPECT_FALSE(orient3d_filtered(a, b, c, {0, 0, subnormal}).has_value());
+  EXPECT_EQ(orient3d(a, b, c, {0, 0, subnormal}), -1);
+  EXPECT_EQ(orient3d(a, b, c, {0, 0, -subnormal}), 1);
+  EXPECT_EQ(orient3d(a, b, c, {3e-310, 1e200, 0}), 0);
+}
+
 // ---- the crossing test --------------------------------------------------------------------
 
 TEST(SegmentCrossesTriangle, NeedsStrictCrossingThroughTheInside) {
