@@ -148,7 +148,6 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
 // (6e-5 J, against 8e-7 J with this). The features (edges and corners) take no part: measured each
 // sweep afresh, their direction turns along the move, and on the table drape taking them in (with
 // the second step) left the penetration as it was and raised the skirt's stretch to 2.2 %.
-constexpr int kMaxPlaneSlots = 8;  // at least vbd's planes per particle (vertex_block_descent.hpp)
 
 double onset_fraction(const VbdPlanes& q, std::int64_t i, const double* xi, const double* move,
                       const Block& b) {
@@ -159,11 +158,11 @@ double onset_fraction(const VbdPlanes& q, std::int64_t i, const double* xi, cons
   const double a = dot(move, hm);
   if (!(a > 0.0)) return 1.0;
   // Each crossed plane: depth d0 + s t (m), d0 <= 0 < d0 + s; its slope k s (d0 + s t) past the
-  // onset t0 = -d0 / s. Planes in slot order; kPlaneSlots is small, so the crossings are sorted
+  // onset t0 = -d0 / s. Planes in slot order; kVbdPlaneSlots is small, so the crossings are sorted
   // by a pass each.
-  double onset[kMaxPlaneSlots], rate[kMaxPlaneSlots], depth0[kMaxPlaneSlots];
+  double onset[kVbdPlaneSlots], rate[kVbdPlaneSlots], depth0[kVbdPlaneSlots];
   int crossed = 0;
-  for (int k = 0; k < std::min(q.count[i], kMaxPlaneSlots); ++k) {
+  for (int k = 0; k < std::min(q.count[i], kVbdPlaneSlots); ++k) {
     const std::int64_t e = i * q.slots + k;
     const double* n = q.normal + 3 * e;
     const double* point = q.point + 3 * e;
@@ -180,7 +179,7 @@ double onset_fraction(const VbdPlanes& q, std::int64_t i, const double* xi, cons
   // Past the onsets passed so far, the slope is a (t - 1) + sum k s (d0 + s t) = A t - B; its
   // root, if it comes before the next onset, is the least energy.
   double slope_t = a, slope_0 = a;  // A and B
-  bool used[kMaxPlaneSlots] = {};
+  bool used[kVbdPlaneSlots] = {};
   for (int passed = 0; passed < crossed; ++passed) {
     int next = -1;
     for (int c = 0; c < crossed; ++c)

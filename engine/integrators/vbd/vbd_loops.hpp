@@ -28,8 +28,12 @@ struct VbdSprings {
 // Collider contacts as planes fixed for the step, at most `slots` per particle: particle i's k-th
 // plane is entry i * slots + k, valid for k < count[i]. The plane is where the collider's surface
 // is at the step's end; the particle keeps `radius` off it.
+// Collider planes kept per particle: a particle touches at most a corner's three faces in the
+// scenes drapelab runs; a fourth slot leaves room for a second collider.
+inline constexpr int kVbdPlaneSlots = 4;
+
 struct VbdPlanes {
-  int slots = 0;
+  int slots = 0;  // kVbdPlaneSlots
   const std::int32_t* count = nullptr;
   const double* point = nullptr;         // m, 3 per entry: a point of the surface
   const double* normal = nullptr;        // unit, 3 per entry: out of the collider

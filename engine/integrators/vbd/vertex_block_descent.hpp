@@ -67,9 +67,7 @@ class VertexBlockDescent {
   const VbdStats& stats() const { return stats_; }
 
  private:
-  // Collider planes kept per particle: a particle touches at most a corner's three faces in the
-  // scenes drapelab runs; a fourth slot leaves room for a second collider.
-  static constexpr int kPlaneSlots = 4;
+  static constexpr int kPlaneSlots = kernels::kVbdPlaneSlots;
 
   // Collider contacts for the step: every collider whose surface at the step's end lies within
   // the cloth's thickness plus a margin of a particle's start, as a plane (vbd_loops.hpp).
