@@ -7,8 +7,8 @@
 
 namespace drapelab::kernels {
 
-// The threads the loops use (OpenMP), fixed: share_machine no longer changes them. Without it the
-// loops may use every core, as many as share_machine leaves them. Always 1 without OpenMP.
+// The threads the loops use (OpenMP), fixed: share_machine then leaves them as they are. Without it
+// the loops may use every core, as many as share_machine leaves them. Always 1 without OpenMP.
 void set_thread_count(int threads);
 // The most threads the loops use: set_thread_count's, or every core.
 int thread_count();
