@@ -50,6 +50,11 @@ struct VbdStats {
   // Sweeps past the ones asked for because a passive step's end held more energy than its start,
   // summed over steps.
   std::int64_t energy_sweeps = 0;
+  // Factorisations of the coarse step's matrix, summed over steps: one a step, and more where the
+  // last one no longer preconditioned the coarse system well.
+  std::int64_t coarse_factorizations = 0;
+  // Unknowns per aggregate of the coarse step: 6 (a translation and a turn) or 3 (a translation).
+  int coarse_unknowns = 0;
   // The search for the colliders' edges and corners near the cloth's, summed over steps (s).
   double feature_search_seconds = 0.0;
 };

@@ -86,7 +86,11 @@ Counters VbdScheme::counters() const {
        s.steps > 0 ? static_cast<double>(s.self_contact_detections) / static_cast<double>(s.steps)
                    : 0.0},
       {"vbd_energy_sweeps_per_step",
-       s.steps > 0 ? static_cast<double>(s.energy_sweeps) / static_cast<double>(s.steps) : 0.0}};
+       s.steps > 0 ? static_cast<double>(s.energy_sweeps) / static_cast<double>(s.steps) : 0.0},
+      {"vbd_coarse_unknowns_per_aggregate", s.coarse_unknowns},
+      {"vbd_coarse_factorizations_per_step",
+       s.steps > 0 ? static_cast<double>(s.coarse_factorizations) / static_cast<double>(s.steps)
+                   : 0.0}};
 }
 
 std::string VbdScheme::step_advice() const {

@@ -1,6 +1,6 @@
 // Vertex block descent's particle graph, built once per cloth: each particle's neighbours, the
 // colours that let a sweep solve every particle of one colour at once, and the aggregates of the
-// coarse step (vertex_block_descent.hpp).
+// coarse step, and the springs per particle (vertex_block_descent.hpp).
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -64,6 +64,33 @@ std::vector<std::int32_t> aggregate_particles(const ClothModel& model, int size)
     ++next;
   }
   return aggregate;
+}
+
+SpringRows spring_rows(const SpringSet& springs, int particle_count) {
+  SpringRows rows;
+  // Count each particle's springs, then place each spring at both its ends.
+  rows.offsets.assign(static_cast<std::size_t>(particle_count) + 1, 0);
+  for (std::size_t e = 0; e < springs.size(); ++e) {
+    ++rows.offsets[static_cast<std::size_t>(springs.v0[e]) + 1];
+    ++rows.offsets[static_cast<std::size_t>(springs.v1[e]) + 1];
+  }
+  for (int i = 0; i < particle_count; ++i) rows.offsets[i + 1] += rows.offsets[i];
+  const std::size_t entries = static_cast<std::size_t>(rows.offsets.back());
+  rows.other.resize(entries);
+  rows.rest_length.resize(entries);
+  rows.ks.resize(entries);
+  rows.kd.resize(entries);
+  std::vector<std::int32_t> fill(rows.offsets.begin(), rows.offsets.end() - 1);
+  for (std::size_t e = 0; e < springs.size(); ++e)
+    for (int end = 0; end < 2; ++end) {
+      const std::int32_t at = end == 0 ? springs.v0[e] : springs.v1[e];
+      const std::size_t slot = static_cast<std::size_t>(fill[static_cast<std::size_t>(at)]++);
+      rows.other[slot] = end == 0 ? springs.v1[e] : springs.v0[e];
+      rows.rest_length[slot] = springs.rest_length[e];
+      rows.ks[slot] = springs.ks[e];
+      rows.kd[slot] = springs.kd[e];
+    }
+  return rows;
 }
 
 }  // namespace drapelab

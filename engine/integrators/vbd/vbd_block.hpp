@@ -2,6 +2,7 @@
 // block, and the per-particle terms that live in their own sources. No Eigen (see vbd_loops.hpp).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -58,6 +59,33 @@ inline double dot(const double* a, const double* b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+// One damped spring seen from its end i: E = ks (l - l0)^2 / 2 and the damper's dissipation
+// kd ((dx_i - dx_j) . u)^2 / (2 h) with dx the displacement over the step and u the unit spring
+// from j to i. Adds the force on i to f and, when `hessian`, the block d2/dx_i2, which is also
+// minus the block d2/dx_i dx_j. False when the ends coincide (no direction: nothing is added).
+[[gnu::always_inline]] inline bool add_spring(const double* xi, const double* si, const double* xj,
+                                              const double* sj, double rest_length, double ks,
+                                              double kd, double h, bool hessian, Block& b) {
+  double u[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+  const double length = std::sqrt(dot(u, u));
+  if (!(length > 0.0)) return false;
+  const double inv_length = 1.0 / length;
+  u[0] *= inv_length;
+  u[1] *= inv_length;
+  u[2] *= inv_length;
+  const double rel[3] = {(xi[0] - si[0]) - (xj[0] - sj[0]), (xi[1] - si[1]) - (xj[1] - sj[1]),
+                         (xi[2] - si[2]) - (xj[2] - sj[2])};
+  const double stretch_velocity = dot(rel, u) / h;  // m/s, > 0 lengthening
+  b.add_force(-(ks * (length - rest_length) + kd * stretch_velocity), u);
+  if (!hessian) return true;
+  // ks u u^T along the spring; across it ks (1 - l0 / l), kept only while the spring is longer
+  // than at rest (compressed, that term is negative and a Newton step could go uphill).
+  const double across = ks * std::max(0.0, 1.0 - rest_length * inv_length);
+  b.add_identity(across);
+  b.add_outer(ks - across + kd / h, u);
+  return true;
+}
+
 // Coulomb friction on a contact point that slipped `rel` (m, over the step, relative to the other
 // side) under the normal load fn (N, lagged) along the unit n, seen from a particle that
 // moves the point by w times its own move: the point's force is scaled by w, its block by w^2.
@@ -85,6 +113,15 @@ inline void add_friction(double fn, const double* n, const double* rel, double k
     b.add_outer(-w * w * k_slide, n);
   }
 }
+
+// Which of particle i's springs a block takes: all with their Hessians, their forces only, or
+// none.
+enum class SpringTerms { all, forces_only, none };
+
+// Particle i's force f = -dG/dx_i and block H = d2G/dx_i2 at x (vbd_loops.cpp), with the springs'
+// terms as `terms` says.
+void particle_block(const VbdProblem& p, std::int64_t i, const double* x, SpringTerms terms,
+                    Block& b);
 
 // Particle i's offset self-contacts (vbd_contact_loops.cpp): the barrier, its damper and friction,
 // the other particles read from x as contact_partner (vbd_loops.hpp) says.

@@ -22,11 +22,11 @@ double VertexBlockDescent::mechanical_energy(const kernels::VbdProblem& problem,
   // Each spring sits in both its ends' rows: half its energy from each.
   double springs = 0.0;
   for (Eigen::Index i = 0; i < n; ++i)
-    for (std::int32_t s = spring_offsets_[static_cast<std::size_t>(i)];
-         s < spring_offsets_[static_cast<std::size_t>(i) + 1]; ++s)
-      springs += spring_energy(x.col(i), x.col(spring_other_[static_cast<std::size_t>(s)]),
-                               spring_ks_[static_cast<std::size_t>(s)],
-                               spring_rest_[static_cast<std::size_t>(s)]);
+    for (std::int32_t s = springs_.offsets[static_cast<std::size_t>(i)];
+         s < springs_.offsets[static_cast<std::size_t>(i) + 1]; ++s)
+      springs += spring_energy(x.col(i), x.col(springs_.other[static_cast<std::size_t>(s)]),
+                               springs_.ks[static_cast<std::size_t>(s)],
+                               springs_.rest_length[static_cast<std::size_t>(s)]);
   potential += 0.5 * springs;
   if (continuum_)
     potential += kernels::continuum_energy_sum(*continuum_, x.data(), nullptr, nullptr);

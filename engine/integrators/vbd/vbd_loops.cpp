@@ -13,36 +13,6 @@
 namespace drapelab::kernels {
 namespace {
 
-// One damped spring seen from its end i: E = ks (l - l0)^2 / 2 and the damper's dissipation
-// kd ((dx_i - dx_j) . u)^2 / (2 h) with dx the displacement over the step and u the unit spring
-// from j to i. Adds the force on i to f and, when `hessian`, the block d2/dx_i2, which is also
-// minus the block d2/dx_i dx_j. False when the ends coincide (no direction: nothing is added).
-[[gnu::always_inline]] inline bool add_spring(const double* xi, const double* si, const double* xj,
-                                              const double* sj, double rest_length, double ks,
-                                              double kd, double h, bool hessian, Block& b) {
-  double u[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
-  const double length = std::sqrt(dot(u, u));
-  if (!(length > 0.0)) return false;
-  const double inv_length = 1.0 / length;
-  u[0] *= inv_length;
-  u[1] *= inv_length;
-  u[2] *= inv_length;
-  const double rel[3] = {(xi[0] - si[0]) - (xj[0] - sj[0]), (xi[1] - si[1]) - (xj[1] - sj[1]),
-                         (xi[2] - si[2]) - (xj[2] - sj[2])};
-  const double stretch_velocity = dot(rel, u) / h;  // m/s, > 0 lengthening
-  b.add_force(-(ks * (length - rest_length) + kd * stretch_velocity), u);
-  if (!hessian) return true;
-  // ks u u^T along the spring; across it ks (1 - l0 / l), kept only while the spring is longer
-  // than at rest (compressed, that term is negative and a Newton step could go uphill).
-  const double across = ks * std::max(0.0, 1.0 - rest_length * inv_length);
-  b.add_identity(across);
-  b.add_outer(ks - across + kd / h, u);
-  return true;
-}
-
-// Which of particle i's springs a block takes, and whether with their Hessians.
-enum class SpringTerms { all, forces_only };
-
 void add_springs(const VbdProblem& p, std::int64_t i, const double* x, SpringTerms terms,
                  Block& b) {
   const VbdSprings& s = p.springs;
@@ -106,8 +76,8 @@ void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, const 
   }
 }
 
-// Particle i's force f = -dG/dx_i and block H = d2G/dx_i2, with the springs' Hessians only when
-// `terms` says so.
+}  // namespace
+
 void particle_block(const VbdProblem& p, std::int64_t i, const double* x, SpringTerms terms,
                     Block& b) {
   const double* xi = x + 3 * i;
@@ -119,7 +89,7 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
   const double drag = p.air_damping * p.mass[i] / p.h;  // N/m
   for (int d = 0; d < 3; ++d) b.f[d] = -inertia * (xi[d] - yi[d]) - drag * move_i[d];
   b.add_identity(inertia + drag);
-  add_springs(p, i, x, terms, b);
+  if (terms != SpringTerms::none) add_springs(p, i, x, terms, b);
   if (p.continuum) {
     // The coarse step models the stiffness between aggregates with the cloth's springs; it takes
     // only the elements' forces here (an element inside an aggregate does not deform when the
@@ -133,6 +103,8 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
   if (p.couplings.offsets) add_couplings(p, i, xi, x, b);
   if (p.self_contacts.offsets) add_self_contacts(p, i, xi, x, b);
 }
+
+namespace {
 
 // The fraction of a Newton move (m) from xi at which the particle's block energy is least, when
 // the move crosses into collider planes it starts outside of. A plane's energy is zero up to its
@@ -240,36 +212,6 @@ std::int64_t vbd_keep_within_bounds(const VbdProblem& problem, double* x) {
     if (problem.inverse_mass[i] != 0.0 && keep_within_bound(problem.self_contacts, i, x + 3 * i))
       ++truncated;
   return truncated;
-}
-
-void vbd_coarse_terms(const VbdProblem& p, const double* x, const VbdAggregates& aggregates,
-                      const VbdSpringList& crossing, double* force, double* diagonal,
-                      double* spring_blocks) {
-  // Each particle's whole force, and its block without the springs, summed over its aggregate's
-  // members in order by the one thread that takes the aggregate (the bits do not depend on the
-  // thread count).
-#pragma omp parallel for schedule(static) if (p.n >= 2048)
-  for (std::int64_t a = 0; a < aggregates.count; ++a) {
-    Block total;
-    for (std::int32_t k = aggregates.offsets[a]; k < aggregates.offsets[a + 1]; ++k) {
-      Block b;
-      particle_block(p, aggregates.members[k], x, SpringTerms::forces_only, b);
-      for (int d = 0; d < 3; ++d) total.f[d] += b.f[d];
-      for (int d = 0; d < 6; ++d) total.h[d] += b.h[d];
-    }
-    std::copy(total.f, total.f + 3, force + 3 * a);
-    std::copy(total.h, total.h + 6, diagonal + 6 * a);
-  }
-  // The springs between aggregates (and to pins): a spring inside one aggregate does not stretch
-  // when the aggregate translates.
-#pragma omp parallel for schedule(static) if (crossing.count >= 2048)
-  for (std::int64_t e = 0; e < crossing.count; ++e) {
-    const std::int64_t i = crossing.v0[e], j = crossing.v1[e];
-    Block b;
-    add_spring(x + 3 * i, p.start + 3 * i, x + 3 * j, p.start + 3 * j, crossing.rest_length[e],
-               crossing.ks[e], crossing.kd[e], p.h, true, b);
-    std::copy(b.h, b.h + 6, spring_blocks + 6 * e);
-  }
 }
 
 }  // namespace drapelab::kernels

@@ -228,21 +228,45 @@ struct VbdSpringList {
   const double* kd = nullptr;           // N*s/m
 };
 
-// Aggregates of free particles: aggregate a's members are members[offsets[a]] to
-// members[offsets[a + 1] - 1].
+// The coarse space of the coarse step: aggregates of free particles, each moving as a rigid
+// patch (a translation and a small rotation about its mass centre). Aggregate a's members are
+// members[offsets[a]] to members[offsets[a + 1] - 1]; of[i] is particle i's aggregate (-1 when
+// pinned).
 struct VbdAggregates {
   std::int64_t count = 0;
   const std::int32_t* offsets = nullptr;
   const std::int32_t* members = nullptr;
+  const std::int32_t* of = nullptr;
+  // The springs the coarse step models the cloth's stiffness with, per particle: the cloth's own,
+  // also for a continuum cloth, whose forces come from its elements instead (`spring_forces`
+  // false).
+  VbdSprings springs;
+  bool spring_forces = true;
+  // Pairs of aggregates joined by a spring: pair p joins aggregates[2 p] and aggregates[2 p + 1],
+  // and its springs are entries offsets[p] to offsets[p + 1] - 1 of `joining`, each with its v0 in
+  // the first aggregate.
+  std::int64_t pair_count = 0;
+  const std::int32_t* pair_aggregates = nullptr;
+  const std::int32_t* pair_offsets = nullptr;
+  VbdSpringList joining;
 };
 
-// The terms of the coarse correction, a Newton step on G over the translations of the aggregates:
-// each aggregate's summed force (N, 3 per aggregate) and summed block of everything but the springs
-// (N/m, the 6 entries xx, yy, zz, xy, xz, yz per aggregate), and the block (6 entries) of each
-// spring of `crossing`, the springs whose ends lie in different aggregates or at a pin. A crossing
-// spring's block B joins the aggregates' as K_aa += B, K_bb += B, K_ab = K_ba -= B.
+// The coarse step's system at x, a Newton step on G over each aggregate's translation t and
+// rotation w (particle i of aggregate a moves by t + w x r_i, r_i = x_i - c_a):
+// - per aggregate: its mass centre c_a (m, 3), its radius max |r_i| (m), its force and torque
+//   about c_a (N and N*m, 6) and its 6 x 6 block (36, row-major) P_i^T H_ii P_i summed over its
+//   members, with H_ii holding every term but the springs inside the aggregate, whose stiffness
+//   against a rotation is their tension's alone;
+// - per pair of aggregates a, b: the block -P_a^T B P_b (36, row-major) summed over the springs
+//   joining them, B each one's block.
+struct VbdCoarseTerms {
+  double* centre = nullptr;
+  double* radius = nullptr;
+  double* force = nullptr;
+  double* block = nullptr;
+  double* pair_block = nullptr;
+};
 void vbd_coarse_terms(const VbdProblem& problem, const double* x, const VbdAggregates& aggregates,
-                      const VbdSpringList& crossing, double* force, double* diagonal,
-                      double* spring_blocks);
+                      const VbdCoarseTerms& terms);
 
 }  // namespace drapelab::kernels

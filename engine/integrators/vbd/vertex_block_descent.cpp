@@ -46,35 +46,14 @@ std::int64_t cut_moves_tolerated(int n) { return n / 1000; }
 
 VertexBlockDescent::VertexBlockDescent(const ClothModel& model, VbdSettings settings)
     : settings_(settings) {
-  build_coarse_system(model);
   const int n = model.particle_count();
   // A continuum cloth's sweeps take its elements instead of its springs; the springs, built from
   // the same fabric properties, stay the coarse step's model of the stiffness between aggregates.
   const SpringSet no_springs;
   const SpringSet& springs = model.uses_continuum() ? no_springs : model.springs;
   if (model.uses_continuum()) continuum_ = continuum_arrays(*model.continuum);
-  // Springs per particle, as compressed rows: count, then place each spring at both its ends.
-  spring_offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (std::size_t e = 0; e < springs.size(); ++e) {
-    ++spring_offsets_[static_cast<std::size_t>(springs.v0[e]) + 1];
-    ++spring_offsets_[static_cast<std::size_t>(springs.v1[e]) + 1];
-  }
-  for (int i = 0; i < n; ++i) spring_offsets_[i + 1] += spring_offsets_[i];
-  const std::size_t entries = static_cast<std::size_t>(spring_offsets_.back());
-  spring_other_.resize(entries);
-  spring_rest_.resize(entries);
-  spring_ks_.resize(entries);
-  spring_kd_.resize(entries);
-  std::vector<std::int32_t> fill(spring_offsets_.begin(), spring_offsets_.end() - 1);
-  for (std::size_t e = 0; e < springs.size(); ++e)
-    for (int end = 0; end < 2; ++end) {
-      const std::int32_t at = end == 0 ? springs.v0[e] : springs.v1[e];
-      const std::size_t slot = static_cast<std::size_t>(fill[static_cast<std::size_t>(at)]++);
-      spring_other_[slot] = end == 0 ? springs.v1[e] : springs.v0[e];
-      spring_rest_[slot] = springs.rest_length[e];
-      spring_ks_[slot] = springs.ks[e];
-      spring_kd_[slot] = springs.kd[e];
-    }
+  springs_ = spring_rows(springs, n);
+  build_coarse_system(model);
   const auto colors = color_particles(model);
   color_offsets_.assign(1, 0);
   color_of_.assign(static_cast<std::size_t>(n), 0);
@@ -154,8 +133,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
   problem.start = start_.data();
   problem.inertia = inertia_.data();
   problem.sweep_start = sweep_start_.data();
-  problem.springs = {spring_offsets_.data(), spring_other_.data(), spring_rest_.data(),
-                     spring_ks_.data(), spring_kd_.data()};
+  problem.springs = springs_.view();
   if (continuum_) problem.continuum = &*continuum_;
   stats_.contacts_last = std::accumulate(plane_count_.begin(), plane_count_.end(), std::int64_t{0});
   if (input.contacts && !input.contacts->empty()) {
@@ -214,7 +192,7 @@ void VertexBlockDescent::step(const ClothModel& model, const VbdStepInput& input
     if (coupled || self || featured) sweep_start_ = x;
     // The coarse step first, so that the sweep after it settles what it moved into contact.
     if (settings_.coarse_correction && k % kCoarseEvery == 0) {
-      coarse_step(problem, true, x);
+      coarse_step(problem, k == 0, x);
       truncated += kernels::vbd_keep_within_bounds(problem, x.data());
       if (coupled || self || featured) sweep_start_ = x;
     }

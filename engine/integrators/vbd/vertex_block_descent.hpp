@@ -36,6 +36,17 @@ std::vector<std::vector<std::int32_t>> color_particles(const ClothModel& model);
 // lowest free particle not yet taken: each particle's aggregate, -1 for a pinned particle.
 std::vector<std::int32_t> aggregate_particles(const ClothModel& model, int size);
 
+// Springs per particle as compressed rows (kernels::VbdSprings): particle i's are entries
+// offsets[i] to offsets[i + 1] - 1, each spring in both its ends' rows.
+struct SpringRows {
+  std::vector<std::int32_t> offsets, other;
+  std::vector<double> rest_length, ks, kd;  // m, N/m, N*s/m
+  kernels::VbdSprings view() const {
+    return {offsets.data(), other.data(), rest_length.data(), ks.data(), kd.data()};
+  }
+};
+SpringRows spring_rows(const SpringSet& springs, int particle_count);
+
 // What one step needs besides the state.
 struct VbdStepInput {
   double t = 0.0;                                     // s, at the step's start
@@ -90,13 +101,17 @@ class VertexBlockDescent {
   // `h` (s): the step, over which a coupling's far end moves by h end_rate.
   void index_couplings(int n, const std::vector<WeightedContact>& couplings,
                        const Eigen::Matrix3Xd& x, double h);
-  // A Newton step on G over the aggregates' translations, solved exactly (sparse Cholesky): the
+  // A Newton step on G over the aggregates' rigid motions, solved exactly (sparse Cholesky): the
   // sweeps move each particle against its neighbours, so a motion of a whole region of the cloth
-  // against stiff springs (a fall, a skirt swinging off a collider) spreads one colour at a time.
-  // `refactor`: assemble and factor the matrix at this iterate (the step's first iteration); the
-  // later iterations of the step reuse it with their own forces (a chord Newton step).
+  // against stiff springs (a fall, a skirt swinging or folding off a collider) spreads one colour
+  // at a time. `refactor`: assemble and factor the matrix at this iterate (the step's first coarse
+  // step); the step's later coarse steps reuse it with their own forces (a chord Newton step).
   void coarse_step(const kernels::VbdProblem& problem, bool refactor, Eigen::Matrix3Xd& x);
-  void factor_coarse_matrix();
+  // The coarse matrix's values at the kernel's terms.
+  void assemble_coarse_matrix();
+  // The coarse step into coarse_move_ by conjugate gradients preconditioned with the last
+  // factorisation; false when they do not converge.
+  bool solve_with_last_factor();
   void build_coarse_system(const ClothModel& model);
   // Finds the offset self-contacts at the step's start (pins at their end) and keeps the initial
   // guess x within the bounds; returns how many particles it held back.
@@ -129,26 +144,32 @@ class VertexBlockDescent {
     double stiffness = 0.0;  // N/m
     double damping = 0.0;    // N*s/m
   } contact_;
-  // Springs per particle (compressed rows) and the colouring.
-  std::vector<std::int32_t> spring_offsets_, spring_other_;
-  std::vector<double> spring_rest_, spring_ks_, spring_kd_;
+  // Springs per particle and the colouring.
+  SpringRows springs_;
   std::vector<std::int32_t> color_offsets_, color_particles_;
   std::vector<std::int32_t> color_of_;  // per particle
-  // The coarse step: the aggregates, the springs that cross between them, the matrix (its pattern
-  // fixed when the solver is built, with the value slots of every block) and its solve.
+  // The coarse step: the aggregates, the pairs of them that springs join, the matrix (its pattern
+  // fixed when the solver is built, with the value slots of every block) and its solve. A
+  // continuum cloth's springs, which its sweeps do not take, are the coarse step's model of it.
   std::vector<std::int32_t> aggregate_of_, aggregate_offsets_, aggregate_members_;
-  std::vector<std::int32_t> crossing_v0_, crossing_v1_;
-  std::vector<double> crossing_rest_, crossing_ks_, crossing_kd_;
+  std::vector<std::int32_t> pair_aggregates_, pair_offsets_, joining_v0_, joining_v1_;
+  std::vector<double> joining_rest_, joining_ks_, joining_kd_;
+  SpringRows coarse_springs_;  // a continuum cloth's
   kernels::VbdAggregates aggregates_;
-  kernels::VbdSpringList crossing_;
   std::optional<kernels::ContinuumArrays> continuum_;  // cloth.model: continuum
-  std::vector<std::int32_t> diagonal_slots_;           // 9 per aggregate
-  std::vector<std::int32_t> crossing_slots_;  // 36 per crossing spring: (a,a), (b,b), (a,b), (b,a)
-  std::vector<double> coarse_force_, coarse_diagonal_, crossing_blocks_;
+  // Unknowns per aggregate: 6 (a translation and a turn) or 3 (a translation: a large cloth's).
+  static constexpr int kRigidUnknowns = 6;
+  int coarse_dofs_ = 3;
+  std::vector<std::int32_t> diagonal_slots_;  // coarse_dofs_^2 per aggregate
+  std::vector<std::int32_t> pair_slots_;      // 2 coarse_dofs_^2 per pair: (a, b), then (b, a)
+  // The kernel's terms (kernels::VbdCoarseTerms): per aggregate, mass centre (3), radius, force and
+  // torque (6), block (36); per pair, block (36).
+  std::vector<double> coarse_centre_, coarse_radius_, coarse_force_, coarse_block_, pair_block_;
+  Eigen::VectorXd coarse_rhs_, coarse_move_;  // the aggregates' forces, and the step
   Eigen::SparseMatrix<double> coarse_matrix_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarse_solver_;
   bool coarse_factored_ = false;
-  double coarse_reach_ = 0.0;  // m: the longest move of an aggregate in one coarse step
+  double coarse_reach_ = 0.0;  // m: the longest move of a particle in one coarse step
   // Contact planes, kPlaneSlots per particle.
   std::vector<std::int32_t> plane_count_, plane_collider_;
   std::vector<double> plane_point_, plane_normal_, plane_surface_move_, plane_kinetic_,
