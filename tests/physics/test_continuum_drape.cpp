@@ -2,8 +2,8 @@
 // coefficient converges as the disc is refined (a 20-ring and a 40-ring disc agree within 0.03;
 // the springs' change is reported beside it), and the silk preset drapes below DC 0.5, as real silk
 // does (0.2 to 0.4 measured). Our solver only, implicit Euler at 1/240 s, which brings this light
-// cloth to rest by 0.6 s (vbd at 1/120 s does not settle it: its skirt keeps drifting, see
-// docs/physics.md), self-collision off (the folds touch; it would split every step).
+// cloth to rest by 0.6 s (vbd's rest is test_vbd_rest.cpp's), self-collision off (the folds touch;
+// it would split every step).
 // Label `drape`, outside the sanitizer run. The refinement runs on 20 and 40 rings take about two
 // minutes of CPU each and carry the label `slow` too (tools/test.sh --all); their CI-sized twins
 // (ContinuumDrapeCi.*) assert the same physics on coarser discs in about 15 s each.
