@@ -13,9 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/drape_runs.hpp"
 #include "fixtures/measured.hpp"
 
 namespace drapelab {
@@ -23,10 +22,7 @@ namespace {
 
 std::string number(double value) { return fixtures::measured(value, 4); }
 
-struct Drape {
-  double coefficient = -1.0;
-  int nodes = -1;
-};
+using Drape = fixtures::DrapeEnd;
 
 // scenes/cusick.yaml, our solver alone by implicit Euler, for `duration` s, with `overrides` after
 // these.
@@ -37,20 +33,9 @@ Drape cusick(int rings, const std::vector<std::string>& overrides, double durati
       "solvers=[{name: ours, type: spring_damper, integrator: implicit_euler, dt: "
       "0.004166666666666667}]"};
   all.insert(all.end(), overrides.begin(), overrides.end());
-  const auto loaded =
-      scene::load_scene_file(std::string(DRAPELAB_SOURCE_DIR) + "/scenes/cusick.yaml", all);
-  if (!loaded.ok()) {
-    ADD_FAILURE() << "cusick.yaml does not load: "
-                  << (loaded.errors.empty() ? "" : loaded.errors.front());
-    return {};
-  }
-  const scene::Scene& scene = *loaded.scene;
-  const runner::SceneSetup setup = runner::build_scene_setup(scene);
-  const runner::SimulationResult result =
-      runner::simulate_solver(scene, scene.solvers.front(), setup);
-  EXPECT_EQ(result.status, SolverStatus::ok) << result.message;
-  return {result.final_metrics.drape_coefficient.value_or(-1.0),
-          result.final_metrics.drape_nodes.value_or(-1)};
+  return fixtures::drape_at_end(
+      scene::load_scene_file(std::string(DRAPELAB_SOURCE_DIR) + "/scenes/cusick.yaml", all),
+      "cusick.yaml");
 }
 
 // Full size: the first two take about two minutes of CPU each and carry the label `slow` too

@@ -14,39 +14,19 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/drape_runs.hpp"
 #include "fixtures/drape_scenes.hpp"
 
 namespace drapelab {
 namespace {
 
-struct DrapeResult {
-  double coefficient = -1.0;
-  int nodes = -1;
-  double kinetic_energy = -1.0;  // J, at the end
-};
+using DrapeResult = fixtures::DrapeEnd;
 
 DrapeResult run_cusick(const std::vector<std::string>& overrides) {
-  const auto loaded =
-      scene::load_scene_text(fixtures::cusick_v10_scene(), "cusick_v10.yaml", overrides);
-  if (!loaded.ok()) {
-    ADD_FAILURE() << "the V10 scene does not load: "
-                  << (loaded.errors.empty() ? "" : loaded.errors.front());
-    return {};
-  }
-  const scene::Scene& scene = *loaded.scene;
-  const runner::SceneSetup setup = runner::build_scene_setup(scene);
-  const runner::SimulationResult result =
-      runner::simulate_solver(scene, scene.solvers.front(), setup);
-  EXPECT_EQ(result.status, SolverStatus::ok) << result.message;
-  EXPECT_TRUE(result.final_metrics.drape_coefficient.has_value());
-  DrapeResult out;
-  out.coefficient = result.final_metrics.drape_coefficient.value_or(-1.0);
-  out.nodes = result.final_metrics.drape_nodes.value_or(-1);
-  out.kinetic_energy = result.final_metrics.kinetic_energy;
-  return out;
+  return fixtures::drape_at_end(
+      scene::load_scene_text(fixtures::cusick_v10_scene(), "cusick_v10.yaml", overrides),
+      "the V10 scene");
 }
 
 std::string bend(double ks) { return "cloth.springs.bend.ks=" + std::to_string(ks); }

@@ -18,9 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
 #include "drapelab/scene/scene_loader.hpp"
+#include "fixtures/drape_runs.hpp"
 #include "fixtures/measured.hpp"
 
 namespace drapelab {
@@ -28,36 +27,20 @@ namespace {
 
 std::string number(double value) { return fixtures::measured(value, 4); }
 
-struct Rest {
-  double kinetic_energy = -1.0;  // J, at the end
-  double coefficient = -1.0;     // the drape coefficient at the end
-  int nodes = -1;
-};
+using Rest = fixtures::DrapeEnd;
 
-// scenes/cusick.yaml with `rings` rings, our solver alone by vbd at its default sweeps, `steps`
-// steps per frame of 1/60 s (2: vbd's default step), for `duration` s.
-Rest cusick_under_vbd(int rings, int steps_per_frame, double duration) {
-  const double dt = 1.0 / (60.0 * steps_per_frame);  // s
+// scenes/cusick.yaml with `rings` rings, our solver alone by vbd at its default sweeps, with
+// `steps_per_sixtieth` steps per 1/60 s (2: vbd's default step of 1/120 s), for `duration` s.
+Rest cusick_under_vbd(int rings, int steps_per_sixtieth, double duration) {
+  const double dt = 1.0 / (60.0 * steps_per_sixtieth);  // s
   const std::vector<std::string> overrides = {
       "duration=" + fixtures::measured(duration, 6), "frame_rate=10",
       "cloth.rings=" + std::to_string(rings),
       "solvers=[{name: ours, type: spring_damper, integrator: vbd, dt: " +
           fixtures::measured(dt, 17) + "}]"};
-  const auto loaded =
-      scene::load_scene_file(std::string(DRAPELAB_SOURCE_DIR) + "/scenes/cusick.yaml", overrides);
-  if (!loaded.ok()) {
-    ADD_FAILURE() << "cusick.yaml does not load: "
-                  << (loaded.errors.empty() ? "" : loaded.errors.front());
-    return {};
-  }
-  const scene::Scene& scene = *loaded.scene;
-  const runner::SceneSetup setup = runner::build_scene_setup(scene);
-  const runner::SimulationResult result =
-      runner::simulate_solver(scene, scene.solvers.front(), setup);
-  EXPECT_EQ(result.status, SolverStatus::ok) << result.message;
-  return {result.final_metrics.kinetic_energy,
-          result.final_metrics.drape_coefficient.value_or(-1.0),
-          result.final_metrics.drape_nodes.value_or(-1)};
+  return fixtures::drape_at_end(
+      scene::load_scene_file(std::string(DRAPELAB_SOURCE_DIR) + "/scenes/cusick.yaml", overrides),
+      "cusick.yaml");
 }
 
 constexpr int kRings = 24;
