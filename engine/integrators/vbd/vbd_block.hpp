@@ -114,9 +114,10 @@ inline void add_friction(double fn, const double* n, const double* rel, double k
   }
 }
 
-// Which of particle i's springs a block takes: all with their Hessians, their forces only, or
-// none.
-enum class SpringTerms { all, forces_only, none };
+// What a block takes of the cloth's own forces: the springs and a continuum cloth's elements with
+// their Hessians (the sweeps), or no springs and the elements' forces alone (the coarse step,
+// which models the stiffness with the springs itself).
+enum class SpringTerms { all, none };
 
 // Particle i's force f = -dG/dx_i and block H = d2G/dx_i2 at x (vbd_loops.cpp), with the springs'
 // terms as `terms` says.

@@ -13,13 +13,12 @@
 namespace drapelab::kernels {
 namespace {
 
-void add_springs(const VbdProblem& p, std::int64_t i, const double* x, SpringTerms terms,
-                 Block& b) {
+void add_springs(const VbdProblem& p, std::int64_t i, const double* x, Block& b) {
   const VbdSprings& s = p.springs;
   for (std::int32_t e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
     const std::int64_t j = s.other[e];
     add_spring(x + 3 * i, p.start + 3 * i, x + 3 * j, p.start + 3 * j, s.rest_length[e], s.ks[e],
-               s.kd[e], p.h, terms == SpringTerms::all, b);
+               s.kd[e], p.h, true, b);
   }
 }
 
@@ -89,11 +88,10 @@ void particle_block(const VbdProblem& p, std::int64_t i, const double* x, Spring
   const double drag = p.air_damping * p.mass[i] / p.h;  // N/m
   for (int d = 0; d < 3; ++d) b.f[d] = -inertia * (xi[d] - yi[d]) - drag * move_i[d];
   b.add_identity(inertia + drag);
-  if (terms != SpringTerms::none) add_springs(p, i, x, terms, b);
+  if (terms == SpringTerms::all) add_springs(p, i, x, b);
   if (p.continuum) {
-    // The coarse step models the stiffness between aggregates with the cloth's springs; it takes
-    // only the elements' forces here (an element inside an aggregate does not deform when the
-    // aggregate translates).
+    // The coarse step models the cloth's stiffness with its springs; it takes only the elements'
+    // forces here.
     double unused[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     continuum_particle_terms(*p.continuum, i, x, p.start, p.h, b.f,
                              terms == SpringTerms::all ? b.h : unused);
