@@ -101,11 +101,11 @@ class VertexBlockDescent {
   // `h` (s): the step, over which a coupling's far end moves by h end_rate.
   void index_couplings(int n, const std::vector<WeightedContact>& couplings,
                        const Eigen::Matrix3Xd& x, double h);
-  // A Newton step on G over the aggregates' rigid motions, solved exactly (sparse Cholesky): the
-  // sweeps move each particle against its neighbours, so a motion of a whole region of the cloth
-  // against stiff springs (a fall, a skirt swinging or folding off a collider) spreads one colour
-  // at a time. `refactor`: assemble and factor the matrix at this iterate (the step's first coarse
-  // step); the step's later coarse steps reuse it with their own forces (a chord Newton step).
+  // A Newton step on G over the aggregates' rigid motions (coarse_step.cpp): the sweeps move each
+  // particle against its neighbours, so a motion of a whole region of the cloth against stiff
+  // springs (a fall, a skirt swinging or folding off a collider) spreads one colour at a time.
+  // `refactor`: factorise the matrix at this iterate (the step's first coarse step); the step's
+  // later coarse steps solve their own matrix with that factorisation as a preconditioner.
   void coarse_step(const kernels::VbdProblem& problem, bool refactor, Eigen::Matrix3Xd& x);
   // The coarse matrix's values at the kernel's terms.
   void assemble_coarse_matrix();
