@@ -50,8 +50,8 @@ struct VbdStats {
   // Sweeps past the ones asked for because a passive step's end held more energy than its start,
   // summed over steps.
   std::int64_t energy_sweeps = 0;
-  // Factorisations of the coarse step's matrix, summed over steps: one a step, and more where the
-  // last one no longer preconditioned the coarse system well.
+  // Factorisations of the coarse step's matrix, summed over steps: one a step, and one more for
+  // each coarse step whose system the step's first factorisation did not precondition well.
   std::int64_t coarse_factorizations = 0;
   // Unknowns per aggregate of the coarse step: 6 (a translation and a turn) or 3 (a translation).
   int coarse_unknowns = 0;

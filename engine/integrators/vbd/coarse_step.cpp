@@ -132,6 +132,8 @@ void VertexBlockDescent::build_coarse_system(const ClothModel& model) {
   pair_block_.resize(kRigidUnknowns * kRigidUnknowns * pairs);
   coarse_move_.resize(dofs * static_cast<Eigen::Index>(count));
   coarse_rhs_.resize(dofs * static_cast<Eigen::Index>(count));
+  for (Eigen::VectorXd* v : {&cg_residual_, &cg_preconditioned_, &cg_direction_, &cg_product_})
+    v->resize(dofs * static_cast<Eigen::Index>(count));
   coarse_reach_ = springs.size() > 0 ? 0.5 * *std::min_element(springs.rest_length.begin(),
                                                                springs.rest_length.end())
                                      : 0.0;
@@ -203,14 +205,18 @@ bool VertexBlockDescent::solve_with_last_factor() {
   const Eigen::VectorXd& b = coarse_rhs_;
   const double target = kCoarseTolerance * b.norm();
   Eigen::VectorXd& x = coarse_move_;
+  Eigen::VectorXd& r = cg_residual_;
+  Eigen::VectorXd& z = cg_preconditioned_;
+  Eigen::VectorXd& p = cg_direction_;
+  Eigen::VectorXd& q = cg_product_;
   x.setZero();
-  Eigen::VectorXd r = b;
+  r = b;
   if (!(r.norm() > target)) return true;
-  Eigen::VectorXd z = coarse_solver_.solve(r);
-  Eigen::VectorXd p = z;
+  z = coarse_solver_.solve(r);
+  p = z;
   double rz = r.dot(z);
   for (int k = 0; k < kMostCoarseIterations; ++k) {
-    const Eigen::VectorXd q = coarse_matrix_.selfadjointView<Eigen::Lower>() * p;
+    q.noalias() = coarse_matrix_.selfadjointView<Eigen::Lower>() * p;
     const double pq = p.dot(q);
     if (!(pq > 0.0)) return false;
     const double alpha = rz / pq;

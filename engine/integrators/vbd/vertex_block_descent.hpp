@@ -166,6 +166,8 @@ class VertexBlockDescent {
   // torque (6), block (36); per pair, block (36).
   std::vector<double> coarse_centre_, coarse_radius_, coarse_force_, coarse_block_, pair_block_;
   Eigen::VectorXd coarse_rhs_, coarse_move_;  // the aggregates' forces, and the step
+  // solve_with_last_factor's vectors, kept so that a step allocates none.
+  Eigen::VectorXd cg_residual_, cg_preconditioned_, cg_direction_, cg_product_;
   Eigen::SparseMatrix<double> coarse_matrix_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarse_solver_;
   bool coarse_factored_ = false;
