@@ -145,6 +145,7 @@ void VertexBlockDescent::build_coarse_system(const ClothModel& model) {
       aggregate_of_.data(),
       model.uses_continuum() ? coarse_springs_.view() : springs_.view(),
       !model.uses_continuum(),
+      coarse_dofs_ == kRigidUnknowns,
       static_cast<std::int64_t>(pairs),
       pair_aggregates_.data(),
       pair_offsets_.data(),

@@ -48,6 +48,12 @@ Mat3 product(const Mat3& a, const Mat3& b) {
   return p;
 }
 
+// out (6 x 6, row-major) += sign B in its top left: the block of translations alone.
+void add_translation(const Mat3& b, double sign, double* out) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out[6 * r + c] += sign * b(r, c);
+}
+
 // out (6 x 6, row-major) += sign P_a^T B P_b, with P = [I, -[r]x]: the blocks B, -B [rb]x,
 // [ra]x B and -[ra]x B [rb]x.
 void add_projected(const Mat3& b, const double* ra, const double* rb, double sign, double* out) {
@@ -116,15 +122,17 @@ void aggregate_terms(const VbdProblem& p, const double* x, const VbdAggregates& 
         for (int d = 0; d < 3; ++d) b.f[d] += spring.f[d];
       if (!inside)
         for (int d = 0; d < 6; ++d) b.h[d] += spring.h[d];
-      else if (j > i)
+      else if (j > i && g.turns)
         add_tension(xi, x + 3 * j, s.rest_length[e], s.ks[e], block);
+    }
+    for (int d = 0; d < 3; ++d) force[d] += b.f[d];
+    if (!g.turns) {
+      add_translation(symmetric(b.h), 1.0, block);
+      continue;
     }
     const double torque[3] = {r[1] * b.f[2] - r[2] * b.f[1], r[2] * b.f[0] - r[0] * b.f[2],
                               r[0] * b.f[1] - r[1] * b.f[0]};
-    for (int d = 0; d < 3; ++d) {
-      force[d] += b.f[d];
-      force[3 + d] += torque[d];
-    }
+    for (int d = 0; d < 3; ++d) force[3 + d] += torque[d];
     add_projected(symmetric(b.h), r, r, 1.0, block);
   }
   out.radius[a] = radius;
@@ -144,6 +152,10 @@ void pair_terms(const VbdProblem& p, const double* x, const VbdAggregates& g, st
     if (!add_spring(x + 3 * i, p.start + 3 * i, x + 3 * j, p.start + 3 * j, s.rest_length[e],
                     s.ks[e], s.kd[e], p.h, true, spring))
       continue;
+    if (!g.turns) {
+      add_translation(symmetric(spring.h), -1.0, block);
+      continue;
+    }
     const double ri[3] = {x[3 * i] - ca[0], x[3 * i + 1] - ca[1], x[3 * i + 2] - ca[2]};
     const double rj[3] = {x[3 * j] - cb[0], x[3 * j + 1] - cb[1], x[3 * j + 2] - cb[2]};
     add_projected(symmetric(spring.h), ri, rj, -1.0, block);

@@ -242,6 +242,9 @@ struct VbdAggregates {
   // false).
   VbdSprings springs;
   bool spring_forces = true;
+  // Whether the aggregates turn; when they only translate, the terms are the blocks' top left
+  // 3 x 3 and the forces, and the torques and turn terms stay zero.
+  bool turns = true;
   // Pairs of aggregates joined by a spring: pair p joins aggregates[2 p] and aggregates[2 p + 1],
   // and its springs are entries offsets[p] to offsets[p + 1] - 1 of `joining`, each with its v0 in
   // the first aggregate.
