@@ -146,6 +146,11 @@ TEST(SegmentCrossesTriangle, NeedsStrictCrossingThroughTheInside) {
   EXPECT_FALSE(segment_crosses_triangle({0, -1, 0}, {0, 1, 0}, a, b, c)) << "through a corner";
   EXPECT_FALSE(segment_crosses_triangle({0.1, 0, 0.1}, {0.3, 0, 0.2}, a, b, c)) << "coplanar";
   EXPECT_FALSE(segment_crosses_triangle(a, {0.2, 1, 0.2}, a, b, c)) << "shares a vertex";
+  // A triangle in a plane of constant x: an endpoint with that x is on it.
+  const Vector3d d(0.3, 0, 0), e(0.3, 1, 0), f(0.3, 0, 1);
+  EXPECT_TRUE(segment_crosses_triangle({-1, 0.2, 0.2}, {1, 0.2, 0.2}, d, e, f)) << "across x";
+  EXPECT_FALSE(segment_crosses_triangle({0.3, 0.2, 0.2}, {1, 0.2, 0.2}, d, e, f)) << "on x";
+  EXPECT_FALSE(segment_crosses_triangle({1, 0.2, 0.2}, {0.3, 0.2, 0.2}, d, e, f)) << "on x, q";
 }
 
 TEST(SegmentCrossesTriangle, ANearlyCoplanarEndpointIsDecidedExactly) {
