@@ -2,7 +2,7 @@
 // disc brings its drape coefficient to real cotton's (40 rings within 0.03 of 0.68, and no
 // further from it than 20 rings; the springs' change is reported beside it), and the silk preset
 // drapes below DC 0.5, as real silk does (0.2 to 0.4 measured). Our solver only, implicit Euler at
-// 1/240 s, which brings this light cloth to rest by 0.6 s (vbd's rest is test_vbd_rest.cpp's),
+// 1/240 s, which brings this light cloth to rest by 1.5 s (vbd's rest is test_vbd_rest.cpp's),
 // self-collision off (the folds touch; it would split every step). Label `drape`, outside the
 // sanitizer run. The refinement runs on 20 and 40 rings take about two minutes of CPU each and
 // carry the label `slow` too (tools/test.sh --all); their CI-sized twins (ContinuumDrapeCi.*)
