@@ -115,6 +115,11 @@ int orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 int orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
              const Eigen::Vector3d& d) {
   if (const std::optional<int> sign = orient3d_filtered(a, b, c, d)) return *sign;
+  // Four points sharing one coordinate lie in a plane of constant x, y or z: exactly 0. A sheet
+  // lying flat (a grid falling in a plane of constant y) would otherwise send every pair of its
+  // edges and triangles to the exact stage only to get that 0.
+  for (int axis = 0; axis < 3; ++axis)
+    if (d[axis] == a[axis] && d[axis] == b[axis] && d[axis] == c[axis]) return 0;
   return orient3d_exact(a, b, c, d);
 }
 

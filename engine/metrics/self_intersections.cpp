@@ -84,10 +84,6 @@ std::vector<Eigen::Vector2i> unique_edges(const Eigen::Matrix3Xi& triangles) {
 bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
                               const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const Eigen::Vector3d& c) {
-  // A sheet lying in a plane of constant x, y or z (a grid falling flat) puts p in the triangle's
-  // plane exactly, where orient3d's filter cannot decide and its exact stage would give 0.
-  for (int axis = 0; axis < 3; ++axis)
-    if (p[axis] == a[axis] && p[axis] == b[axis] && p[axis] == c[axis]) return false;
   const int side_p = orient3d(a, b, c, p);
   if (side_p == 0) return false;
   const int side_q = orient3d(a, b, c, q);

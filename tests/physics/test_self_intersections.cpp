@@ -95,6 +95,17 @@ TEST(Orient3d, IsAntisymmetricUnderSwappingAnyTwoPoints) {
   }
 }
 
+TEST(Orient3d, FourPointsSharingACoordinateAreCoplanarAsTheExactStageSays) {
+  // A flat sheet's points: in a plane of constant y (and of constant x, z), where the filter
+  // cannot decide.
+  for (int axis = 0; axis < 3; ++axis) {
+    Vector3d a(0.1, 0.7, 0.3), b(0.9, 0.2, 0.4), c(0.3, 0.5, 0.8), d(0.6, 0.1, 0.2);
+    a[axis] = b[axis] = c[axis] = d[axis] = 0.37;
+    EXPECT_EQ(orient3d(a, b, c, d), 0) << axis;
+    EXPECT_EQ(orient3d_exact(a, b, c, d), 0) << axis;
+  }
+}
+
 // The plane x + y + z = 1 through (1,0,0), (0,1,0), (0,0,1), counter-clockwise seen from
 // (1,1,1). The doubles nearest 0.1, 0.2 and 0.7 sum to exactly 1 - 2^-55 (0.7 rounds down by more
 // than 0.1 and 0.2 round up), so (0.1, 0.2, 0.7) lies just below the plane: a determinant of about
