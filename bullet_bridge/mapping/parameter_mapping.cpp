@@ -47,6 +47,15 @@ double default_voxel_size(const std::vector<Collider>& colliders, double margin)
         break;
       case ColliderShape::plane:
         break;
+      case ColliderShape::mesh:
+        // Bullet meets a mesh one triangle at a time: its feature is a triangle's shortest side.
+        if (c.mesh)
+          for (Eigen::Index t = 0; t < c.mesh->triangles.cols(); ++t)
+            for (int k = 0; k < 3; ++k)
+              feature = std::min(feature, (c.mesh->vertices.col(c.mesh->triangles(k, t)) -
+                                           c.mesh->vertices.col(c.mesh->triangles((k + 1) % 3, t)))
+                                              .norm());
+        break;
     }
   }
   return std::min(margin, feature / 10.0);

@@ -2,9 +2,11 @@
 #include "bullet_colliders.hpp"
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 
 #include "bullet_math.hpp"
 
@@ -51,6 +53,18 @@ BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
       out.shape_in_collider.linear() = y_onto(c.normal);
       out.shape_in_collider.translation() = -kPlaneHalfThickness * c.normal.normalized();
       break;
+    case ColliderShape::mesh: {
+      const TriangleMesh& mesh = *c.mesh;
+      out.mesh_indices.assign(mesh.triangles.data(), mesh.triangles.data() + mesh.triangles.size());
+      out.mesh_vertices.assign(mesh.vertices.data(), mesh.vertices.data() + mesh.vertices.size());
+      out.mesh_arrays = std::make_unique<btTriangleIndexVertexArray>(
+          static_cast<int>(mesh.triangles.cols()), out.mesh_indices.data(),
+          static_cast<int>(3 * sizeof(int)), static_cast<int>(mesh.vertices.cols()),
+          out.mesh_vertices.data(), static_cast<int>(3 * sizeof(btScalar)));
+      out.shape = std::make_unique<btBvhTriangleMeshShape>(out.mesh_arrays.get(), true);
+      out.shape->setMargin(edge_margin);
+      break;
+    }
   }
   return out;
 }

@@ -85,14 +85,17 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
     const bool drag = c.b.kind == ConstraintEnd::Kind::drag;
     const double k = drag ? c.b.drag->stiffness : c.stiffness;    // N/m
     const double damping = drag ? c.b.drag->damping : c.damping;  // N*s/m
-    const double push = k * (c.length - l) - damping * (v.col(a) - vb).dot(n);
+    const double length = c.length_at(t);                         // m
+    const double push = k * (length - l) - damping * (v.col(a) - vb).dot(n);
     force.col(a) += push * n;
     const bool b_particle = c.b.kind == ConstraintEnd::Kind::particle;
     if (b_particle) force.col(c.b.particle) -= push * n;
     // A particle end is cloth: only a collider's point or a drag's target moves from outside.
-    if (power)
-      *power += push_power(push, k * (c.length - l), n, v.col(a) - vb,
+    if (power) {
+      *power += push_power(push, k * (length - l), n, v.col(a) - vb,
                            b_particle ? Eigen::Vector3d::Zero() : Eigen::Vector3d(vb));
+      power->external += k * (l - length) * -c.length_rate(t);
+    }
     const bool b_body = c.b.kind == ConstraintEnd::Kind::collider_point &&
                         colliders[static_cast<std::size_t>(c.b.collider)].dynamic();
     if (body_loads && b_body) {
@@ -111,7 +114,7 @@ void DistanceConstraints::add_soft_forces(double t, const Eigen::Matrix3Xd& x,
     coupling.normal = n;
     coupling.stiffness = k;
     coupling.damping = damping;
-    coupling.depth = c.length - l;
+    coupling.depth = length - l;
     coupling.force = push;
     coupling.two_sided = true;
     if (!b_particle) coupling.end_rate = n.dot(vb);
@@ -218,7 +221,7 @@ double DistanceConstraints::soft_energy(double t, const Eigen::Matrix3Xd& x) con
   double energy = 0.0;
   for (const DistanceConstraint& c : list) {
     if (c.mode != ConstraintMode::soft || !acts(c, t)) continue;
-    const double stretch = (x.col(particle_a(c)) - end_b(c, t, x, x).first).norm() - c.length;
+    const double stretch = (x.col(particle_a(c)) - end_b(c, t, x, x).first).norm() - c.length_at(t);
     const double k = c.b.kind == ConstraintEnd::Kind::drag ? c.b.drag->stiffness : c.stiffness;
     energy += 0.5 * k * stretch * stretch;
   }

@@ -36,6 +36,8 @@ const char* collider_shape_name(ColliderShape shape) {
       return "box";
     case ColliderShape::plane:
       return "plane";
+    case ColliderShape::mesh:
+      return "mesh";
   }
   return "unknown";
 }

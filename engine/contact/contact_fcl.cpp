@@ -17,6 +17,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace drapelab {
 
@@ -46,6 +48,13 @@ FclCollider make_fcl_collider(const Collider& c) {
       // two-sided).
       out.geometry = std::make_shared<fcl::Halfspace<double>>(c.normal.normalized(), 0.0);
       break;
+    case ColliderShape::mesh: {
+      if (!c.mesh) throw std::invalid_argument("mesh collider '" + c.name + "' has no mesh");
+      auto surface = std::make_shared<const MeshSurface>(*c.mesh);
+      out.geometry = surface->bvh();
+      out.mesh = std::move(surface);
+      break;
+    }
   }
   out.geometry->computeLocalAABB();
   return out;
@@ -61,6 +70,11 @@ ParticleContactQuery::~ParticleContactQuery() = default;
 std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& collider,
                                                              const Eigen::Isometry3d& shape_pose,
                                                              const Eigen::Vector3d& x) const {
+  if (collider.mesh) {
+    const auto near = collider.mesh->signed_nearest(shape_pose.inverse() * x, radius_);
+    if (!near || !(near->distance < radius_)) return std::nullopt;
+    return ParticleContact{radius_ - near->distance, shape_pose.linear() * near->normal};
+  }
   fcl::Transform3d particle_pose = fcl::Transform3d::Identity();
   particle_pose.translation() = x;
   // The closed forms fcl::collide dispatches to for these pairs, called directly (docs/bullet.md,
@@ -108,6 +122,11 @@ std::optional<ParticleContact> ParticleContactQuery::contact(const FclCollider& 
 double ParticleContactQuery::clearance(const FclCollider& collider,
                                        const Eigen::Isometry3d& shape_pose,
                                        const Eigen::Vector3d& x) const {
+  if (collider.mesh) {
+    const auto near =
+        collider.mesh->nearest(shape_pose.inverse() * x, std::numeric_limits<double>::infinity());
+    return near->distance - radius_;
+  }
   if (const auto touching = contact(collider, shape_pose, x)) return -touching->depth;
   if (collider.geometry->getNodeType() == fcl::GEOM_HALFSPACE) {
     // FCL has no sphere-halfspace distance routine (its libccd fallback crashes: a half-space has
@@ -125,6 +144,7 @@ double ParticleContactQuery::clearance(const FclCollider& collider,
 }
 
 double bounding_radius(const FclCollider& collider) {
+  if (collider.mesh) return collider.mesh->vertices().colwise().norm().maxCoeff();
   const fcl::CollisionGeometry<double>& shape = *collider.geometry;
   switch (shape.getNodeType()) {
     case fcl::GEOM_SPHERE:

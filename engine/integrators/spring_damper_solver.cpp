@@ -65,7 +65,8 @@ void SpringDamperSolver::check_settings() const {
             c.b.collider >= static_cast<int>(settings_.constraints->colliders.size()))) ||
           (c.b.kind == ConstraintEnd::Kind::drag
                ? (!c.b.drag || c.b.drag->particle < 0 || c.b.drag->particle >= n)
-               : !(c.length > 0.0)))  // a drag's spring has length 0
+               : !(c.length > 0.0 || (c.mode == ConstraintMode::soft && c.length == 0.0))))
+        // a drag's spring has length 0, and so may any soft one (a seam's shut stitch)
         throw std::invalid_argument(
             "a distance constraint names a particle or collider the scene "
             "does not have, or has a length that is not positive");

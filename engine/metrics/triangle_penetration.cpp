@@ -12,6 +12,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
+
+#include "core/proximity.hpp"
 
 namespace drapelab {
 namespace {
@@ -78,12 +81,77 @@ double gjk_signed_distance(const Shape& shape, const Eigen::Isometry3d& shape_po
   return -std::abs(depth);
 }
 
+// The points of triangle a-b-c (given in the mesh's frame) where a mesh may come nearest to it:
+// its corners, the feet on it of the mesh's vertices that lie over it, and the feet of the ends of
+// the mesh's edges cut to the triangle's prism. A mesh's signed distance is linear over any part
+// of the triangle that faces one flat piece of the mesh, so its least value lies at one of these.
+// Features farther from the triangle's box than its longest edge are left out: reaching deeper,
+// the solid would hold a corner first.
+double mesh_triangle_signed_distance(const MeshSurface& mesh, const Eigen::Vector3d& a,
+                                     const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  double least = infinity;  // m
+  const auto sample = [&](const Eigen::Vector3d& q) {
+    if (const auto near = mesh.signed_nearest(q, infinity)) least = std::min(least, near->distance);
+  };
+  sample(a);
+  sample(b);
+  sample(c);
+  const Eigen::Vector3d cross = (b - a).cross(c - a);
+  if (!(cross.squaredNorm() > 0.0)) return least;  // no plane to stand features over
+  const Eigen::Vector3d n = cross.normalized();
+  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  Eigen::AlignedBox3d box(a);
+  box.extend(b).extend(c);
+  box.min().array() -= longest;
+  box.max().array() += longest;
+  thread_local std::vector<int> near_triangles;
+  mesh.triangles_in_box(box, near_triangles);
+  const Eigen::Vector3d corner[3] = {a, b, c};
+  const auto foot = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    return p - (p - a).dot(n) * n;
+  };
+  for (const int t : near_triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d v = mesh.vertices().col(mesh.triangles()(k, t));
+      const Eigen::Vector3d q = foot(v);
+      if (closest_point_on_triangle(q, a, b, c).region == TriangleRegion::face) sample(q);
+      // The edge opposite corner k, cut to the prism over the triangle: (p - from) . m >= 0 on
+      // each side's inward normal m.
+      const MeshEdge& edge = mesh.edges()[static_cast<std::size_t>(mesh.triangle_edge(t, k))];
+      const Eigen::Vector3d e0 = mesh.vertices().col(edge.from), e1 = mesh.vertices().col(edge.to);
+      double low = 0.0, high = 1.0;
+      for (int side = 0; side < 3 && low <= high; ++side) {
+        const Eigen::Vector3d& from = corner[side];
+        const Eigen::Vector3d& to = corner[(side + 1) % 3];
+        const Eigen::Vector3d inward = n.cross(to - from);  // the triangle is wound about n
+        const double start = (e0 - from).dot(inward), slope = (e1 - e0).dot(inward);
+        if (slope == 0.0) {
+          if (start < 0.0) high = -1.0;
+        } else if (slope > 0.0) {
+          low = std::max(low, -start / slope);
+        } else {
+          high = std::min(high, -start / slope);
+        }
+      }
+      if (low > high) continue;
+      sample(foot(e0 + low * (e1 - e0)));
+      sample(foot(e0 + high * (e1 - e0)));
+    }
+  }
+  return least;
+}
+
 }  // namespace
 
 double collider_triangle_signed_distance(const FclCollider& collider,
                                          const Eigen::Isometry3d& shape_pose,
                                          const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                          const Eigen::Vector3d& c) {
+  if (collider.mesh) {
+    const Eigen::Isometry3d to_mesh = shape_pose.inverse();
+    return mesh_triangle_signed_distance(*collider.mesh, to_mesh * a, to_mesh * b, to_mesh * c);
+  }
   const fcl::CollisionGeometry<double>& shape = *collider.geometry;
   switch (shape.getNodeType()) {
     case fcl::GEOM_HALFSPACE: {

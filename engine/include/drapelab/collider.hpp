@@ -1,16 +1,20 @@
-// Colliders shared by every solver of a scene: sphere, capped cylinder, capsule, box and plane
-// (a half-space), each with a pose, an optional kinematic motion and a friction coefficient.
+// Colliders shared by every solver of a scene: sphere, capped cylinder, capsule, box, plane (a
+// half-space) and triangle mesh, each with a pose, an optional kinematic motion and a friction
+// coefficient.
 // One definition; converted once to FCL (contact_fcl.hpp) and once to Bullet (bullet_bridge/).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "drapelab/triangle_mesh.hpp"
+
 namespace drapelab {
 
-enum class ColliderShape { sphere, cylinder, capsule, box, plane };
+enum class ColliderShape { sphere, cylinder, capsule, box, plane, mesh };
 const char* collider_shape_name(ColliderShape shape);
 
 // A pose at time t, for linear keyframe motion: the collider's centre in the world, and a rotation
@@ -57,6 +61,12 @@ struct Collider {
   Eigen::Vector3d rotation = Eigen::Vector3d::Zero();  // deg, Euler angles (x, y, z)
   double friction = 0.3;                               // kinetic Coulomb coefficient
   double static_friction = 0.3;                        // static Coulomb coefficient, >= friction
+  // mesh: the surface in the collider's own frame (m: the OBJ file's coordinates times
+  // mesh_scale, so the file's origin sits at `center`), shared by every copy of the collider; and
+  // the file and scale as the scene gave them, for resolved.yaml.
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::string mesh_file;
+  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
   ColliderMotion motion;
   // The collider it moves with (empty: none): then center, rotation and motion are in that
   // collider's frame, and `ancestors` holds the frames it moves with, nearest first (the scene

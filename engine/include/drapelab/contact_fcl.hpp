@@ -1,7 +1,8 @@
 // Particle-versus-collider queries with FCL's exact closed-form shape routines. A particle is a
 // sphere of radius r (the cloth's thickness); FCL's sphere-{sphere, capsule, cylinder, box,
 // halfspace} intersection routines, called directly, give the exact penetration depth and normal
-// (docs/bullet.md, "FCL queries we use" and "FCL accuracy").
+// (docs/bullet.md, "FCL queries we use" and "FCL accuracy"). A mesh collider is FCL's hierarchy of
+// its triangles, searched for the nearest point and signed by pseudo-normals (mesh_surface.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "drapelab/collider.hpp"
+#include "drapelab/mesh_surface.hpp"
 
 namespace fcl {
 template <typename S>
@@ -27,9 +29,12 @@ struct FclCollider {
   std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
   Eigen::Isometry3d shape_in_collider =
       Eigen::Isometry3d::Identity();  // FCL shape frame -> collider frame
+  // A mesh collider's surface, whose hierarchy `geometry` holds; null for the other shapes.
+  std::shared_ptr<const MeshSurface> mesh;
 };
 
-// The one conversion from our Collider to FCL geometry.
+// The one conversion from our Collider to FCL geometry. A mesh collider must have its mesh; a
+// mesh_surface_problem in it throws std::invalid_argument (the scene loader reports it first).
 FclCollider make_fcl_collider(const Collider& collider);
 
 // Overlap of a particle sphere (centre x, radius r, m) with a collider posed by `shape_pose`
@@ -49,7 +54,8 @@ class ParticleContactQuery {
   ParticleContactQuery(const ParticleContactQuery&) = delete;
   ParticleContactQuery& operator=(const ParticleContactQuery&) = delete;
 
-  // The contact when the sphere overlaps the collider; nothing when they are apart.
+  // The contact when the sphere overlaps the collider; nothing when they are apart. A mesh
+  // collider sees a particle inside it at any depth while the particle is within the mesh's box.
   std::optional<ParticleContact> contact(const FclCollider& collider,
                                          const Eigen::Isometry3d& shape_pose,
                                          const Eigen::Vector3d& x) const;

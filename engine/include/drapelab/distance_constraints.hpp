@@ -3,6 +3,9 @@
 //   hard: |a - b| = L, held to a relative tolerance after every step by projection;
 //   rope: |a - b| <= L, the same projection, only while the rope would be longer than L;
 //   soft: a damped spring between the ends, f_a = -[k (l - L) + c (v_a - v_b).n] n, n = (a - b)/l.
+// A seam's stitch (cloth.seams) is a soft constraint between two particles whose length L falls
+// from their rest distance to 0 over its close time, then stays 0: it pulls the seam shut, then
+// holds it.
 // Only a soft constraint may end on a dynamic collider (a rigid body of the solver's world): its
 // end then follows the solver's own body (`poses`) and the body takes the spring's reaction.
 // Every solver applies them itself: our solver adds the soft ones as forces (implicit for implicit
@@ -11,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <utility>
@@ -50,6 +54,19 @@ struct DistanceConstraint {
   double stiffness = 0.0;   // N/m (soft)
   double damping = 0.0;     // N*s/m (soft)
   double tolerance = 1e-6;  // hard and rope: the largest |l - L| / L a projection leaves
+  // s, soft only: when > 0 the length falls linearly from `length` at t = 0 to 0 at close_time
+  // (a seam's stitch), and stays 0 after.
+  double close_time = 0.0;
+
+  // L at time t (s), m.
+  double length_at(double t) const {
+    if (close_time <= 0.0) return length;
+    return t >= close_time ? 0.0 : length * (1.0 - std::max(0.0, t) / close_time);
+  }
+  // dL/dt at time t (m/s): -length / close_time while the stitch closes, else 0.
+  double length_rate(double t) const {
+    return close_time > 0.0 && t >= 0.0 && t < close_time ? -length / close_time : 0.0;
+  }
 };
 
 // What one projection did (hard and rope constraints).
@@ -93,7 +110,7 @@ struct DistanceConstraints {
   // (one entry per collider), it is reset and receives the reactions on the dynamic colliders:
   // the force on each (N) and its moment about the world origin (N*m). When `power` is given, it
   // is reset and receives the dampers' dissipation and the moving ends' work (W,
-  // energy_ledger.hpp).
+  // energy_ledger.hpp), and a closing stitch's: its shortening does work k (l - L) (-dL/dt).
   void add_soft_forces(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                        Eigen::Matrix3Xd& force, std::vector<WeightedContact>* couplings,
                        std::vector<ColliderForce>* body_loads = nullptr,

@@ -21,14 +21,9 @@
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/cloth_state.hpp"
 #include "drapelab/grid_cloth.hpp"
+#include "drapelab/triangle_mesh.hpp"
 
 namespace drapelab {
-
-struct TriangleMesh {
-  Eigen::Matrix3Xd vertices;   // m
-  Eigen::Matrix3Xi triangles;  // vertex indices, consistently wound
-  Eigen::Matrix2Xd uvs;        // one per vertex in [0, 1], or empty (then planar)
-};
 
 struct MeshClothSpec : ClothPhysicsSpec {
   TriangleMesh mesh;

@@ -16,7 +16,9 @@ namespace drapelab {
 // minus the penetration depth (the shortest translation that separates them) when the solid
 // crosses or holds the triangle. Closed forms for a half-space (the deepest vertex) and a sphere
 // (centre to triangle, less the radius); FCL's GJK and EPA (libccd) for a box, a capsule or a
-// cylinder, to within kTriangleDistanceTolerance.
+// cylinder, to within kTriangleDistanceTolerance. A mesh: the least of the mesh's signed distance
+// (mesh_surface.hpp) over the triangle's corners and the points of the triangle over the mesh's
+// vertices and edges (docs/metrics.md, "Triangle penetration").
 double collider_triangle_signed_distance(const FclCollider& collider,
                                          const Eigen::Isometry3d& shape_pose,
                                          const Eigen::Vector3d& a, const Eigen::Vector3d& b,

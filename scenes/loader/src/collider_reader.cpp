@@ -4,6 +4,8 @@
 #include <map>
 #include <set>
 
+#include "drapelab/mesh_surface.hpp"
+#include "drapelab/obj_reader.hpp"
 #include "drapelab/scene/number_format.hpp"
 #include "scene_keys.hpp"
 #include "text_checks.hpp"
@@ -17,6 +19,7 @@ ColliderShape shape_of(const std::string& type) {
   if (type == "capsule") return ColliderShape::capsule;
   if (type == "box") return ColliderShape::box;
   if (type == "plane") return ColliderShape::plane;
+  if (type == "mesh") return ColliderShape::mesh;
   return ColliderShape::sphere;
 }
 
@@ -130,8 +133,99 @@ void read_dynamic(SceneReader& r, MapReader& map, Collider& c) {
   c.dynamic_mass = *mass;
 }
 
+// colliders[].scale: one number for all three axes, or three.
+Eigen::Vector3d read_scale(MapReader& map) {
+  const SceneKey& row = key("colliders[].scale");
+  if (map.has("scale") && map.get("scale").IsScalar()) {
+    const auto one = map.number("scale", row.range, std::nullopt);
+    return Eigen::Vector3d::Constant(one.value_or(1.0));
+  }
+  return map.numbers(row).value_or(Eigen::Vector3d::Ones());
+}
+
+// What is odd about a usable surface, for warnings; a mesh wound inwards is turned outwards.
+std::vector<std::string> surface_warnings(TriangleMesh& mesh) {
+  std::vector<std::string> found;
+  const MeshQuality quality = MeshSurface(mesh).quality();
+  const auto count = [](int n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  if (quality.border_edges > 0)
+    found.push_back(
+        "is open (" + count(quality.border_edges, "edge has", "edges have") +
+        " one triangle): the solid is taken to lie behind each face, so cloth that reaches the "
+        "back of an open surface is pushed through it to the front");
+  if (quality.non_manifold_edges > 0)
+    found.push_back("has " + count(quality.non_manifold_edges, "edge", "edges") +
+                    " shared by three or more triangles: inside and outside are uncertain there");
+  if (quality.misoriented_edges > 0)
+    found.push_back("is not wound consistently (" +
+                    count(quality.misoriented_edges, "edge runs", "edges run") +
+                    " the same way in both its triangles): cloth near those faces may be pushed "
+                    "into the solid; wind every face counter-clockwise seen from outside");
+  if (quality.border_edges == 0 && quality.misoriented_edges == 0 && quality.volume < 0.0) {
+    mesh.triangles.row(1).swap(mesh.triangles.row(2));
+    found.push_back("is wound inwards (its enclosed volume is " + format_number(quality.volume) +
+                    " m^3); its faces are turned to face outwards");
+  }
+  return found;
+}
+
+// colliders[].file: the OBJ file, its surface scaled into the collider's frame. Errors name the
+// file and line; a usable but odd surface gives warnings.
+void read_mesh_file(SceneReader& r, MapReader& map, const std::filesystem::path& folder,
+                    Collider& c, std::vector<std::string>& warnings) {
+  if (!map.has("file")) {
+    map.missing("file",
+                "the OBJ file of the surface, relative to the scene file (for example "
+                "meshes/mannequin.obj)");
+    return;
+  }
+  const auto file = map.text("file", std::nullopt);
+  if (!file) return;
+  if (const auto problem = path_problem(*file)) {
+    r.error(map.get("file"), map.path_of("file"), *problem);
+    return;
+  }
+  const std::filesystem::path full =
+      std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : folder / *file;
+  c.mesh_file = full.string();
+  c.mesh_scale = read_scale(map);
+  const ObjReadResult read = read_obj_file(full);
+  const std::string shown =
+      full.string() + (read.error_line > 0 ? ":" + std::to_string(read.error_line) : "");
+  if (!read.mesh) {
+    r.error(map.get("file"), map.path_of("file"), "'" + shown + "': " + read.error);
+    return;
+  }
+  TriangleMesh mesh = *read.mesh;
+  mesh.uvs.resize(2, 0);
+  for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
+    mesh.vertices.col(v) = mesh.vertices.col(v).cwiseProduct(c.mesh_scale);
+  const double largest = mesh.vertices.cwiseAbs().maxCoeff();  // m
+  if (!(largest <= kMaxCoordinate)) {
+    r.error(map.get("file"), map.path_of("file"),
+            "'" + shown + "' scaled by " + format_list(c.mesh_scale) + " reaches " +
+                format_number(largest) + " m from its origin along an axis; at most " +
+                format_number(kMaxCoordinate) + " m is allowed");
+    return;
+  }
+  if (const auto problem = mesh_surface_problem(mesh)) {
+    r.error(map.get("file"), map.path_of("file"),
+            "'" + shown + "' scaled by " + format_list(c.mesh_scale) +
+                " is not a usable collider surface: " + *problem);
+    return;
+  }
+  for (const std::string& warning : surface_warnings(mesh))
+    warnings.push_back(r.where(map.get("file"), map.path_of("file"), map.node()) + ": " +
+                       map.path_of("file") + " '" + full.string() + "' " + warning);
+  c.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
 std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
-                                      const std::string& path, const ContactSpec& contact) {
+                                      const std::string& path, const ContactSpec& contact,
+                                      const std::filesystem::path& folder,
+                                      std::vector<std::string>& warnings) {
   // The type decides which keys are valid, so read it before checking the keys.
   std::string type = "sphere";
   record_key_lines(r, node, path);  // so that an empty type: is reported on its own line
@@ -142,7 +236,7 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
     type = *chosen;
   } else if (node.IsMap()) {
     r.error(YAML::Node(), path + ".type",
-            "is required: one of sphere | cylinder | capsule | box | plane", node);
+            "is required: one of sphere | cylinder | capsule | box | plane | mesh", node);
     return std::nullopt;
   }
   MapReader map(r, node, path, key_names("colliders[]", type));
@@ -199,6 +293,7 @@ std::optional<Collider> read_collider(SceneReader& r, const YAML::Node& node,
     c.half_extents = map.numbers(key("colliders[].half_extents"), Eigen::Vector3d::Constant(0.5))
                          .value_or(Eigen::Vector3d::Constant(0.5));
   }
+  if (c.shape == ColliderShape::mesh) read_mesh_file(r, map, folder, c, warnings);
   c.rotation = map.numbers(key("colliders[].rotation")).value_or(Eigen::Vector3d::Zero());
   c.friction = map.number(key("colliders[].friction"), contact.friction).value_or(contact.friction);
   // A collider that sets only its kinetic coefficient gets the same static one.
@@ -273,7 +368,9 @@ void resolve_parents(SceneReader& r, std::vector<Collider>& colliders,
 }  // namespace
 
 std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list,
-                                     const ContactSpec& contact) {
+                                     const ContactSpec& contact,
+                                     const std::filesystem::path& folder,
+                                     std::vector<std::string>& warnings) {
   std::vector<Collider> colliders;
   if (list.IsNull()) return colliders;
   if (!list.IsSequence()) {
@@ -286,7 +383,7 @@ std::vector<Collider> read_colliders(SceneReader& reader, const YAML::Node& list
   std::vector<std::string> paths;
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string path = "colliders." + std::to_string(k);
-    auto collider = read_collider(reader, list[k], path, contact);
+    auto collider = read_collider(reader, list[k], path, contact, folder, warnings);
     if (!collider) continue;
     if (!names.insert(collider->name).second) {
       const YAML::Node& item = list[k];

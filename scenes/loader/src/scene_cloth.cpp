@@ -136,13 +136,32 @@ bool has_dynamic_colliders(const Scene& scene) {
 }
 
 std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene) {
-  if (scene.constraints.empty() && scene.interactions.empty()) return nullptr;
+  if (scene.constraints.empty() && scene.interactions.empty() && scene.cloth.seams.empty())
+    return nullptr;
   auto constraints = std::make_shared<DistanceConstraints>();
   constraints->colliders = scene.colliders;
   constraints->list = scene.constraints;
   for (const DragSpec& drag : scene.interactions)
     constraints->list.push_back(drag_constraint(drag));
+  for (const SeamSpec& seam : scene.cloth.seams)
+    for (std::size_t k = 0; k < seam.a.size(); ++k)
+      constraints->list.push_back(seam_stitch(seam, k));
   return constraints;
+}
+
+DistanceConstraint seam_stitch(const SeamSpec& seam, std::size_t k) {
+  DistanceConstraint c;
+  c.a = seam.a[k];
+  c.b.kind = ConstraintEnd::Kind::particle;
+  c.b.particle = seam.b[k];
+  c.length = seam.rest[k];
+  c.mode = ConstraintMode::soft;
+  c.stiffness = seam.stiffness;
+  c.damping = seam.damping;
+  // Shut at once: a stitch of length 0 from the start.
+  c.close_time = seam.close_time;
+  if (seam.close_time <= 0.0) c.length = 0.0;
+  return c;
 }
 
 DistanceConstraint drag_constraint(const DragSpec& drag) {

@@ -15,7 +15,7 @@ inline constexpr SceneKey kColliderKeys[] = {
      .doc = "`[a-z0-9_-]+`, 1 to 64 characters, unique"},
     {.path = "colliders[].type",
      .type = KeyType::choice,
-     .choices = "sphere|cylinder|capsule|box|plane",
+     .choices = "sphere|cylinder|capsule|box|plane|mesh",
      .given = Given::required,
      .doc = "the shape; it decides which keys below exist, and a key of another shape is an "
             "error (a `radius` on a box, say)"},
@@ -64,12 +64,12 @@ inline constexpr SceneKey kColliderKeys[] = {
      .type = KeyType::numbers,
      .size = 3,
      .range = coordinate_range(),
-     .when = "sphere|cylinder|capsule|box",
+     .when = "sphere|cylinder|capsule|box|mesh",
      .given = Given::required,
      .fallback = "required, unless the motion has keyframes",
      .unit = "m",
      .comment = "m",
-     .doc = "the centre"},
+     .doc = "the centre (a mesh: where the file's origin goes)"},
     {.path = "colliders[].radius",
      .range = collider_size_range(),
      .when = "sphere|cylinder|capsule",
@@ -123,6 +123,26 @@ inline constexpr SceneKey kColliderKeys[] = {
      .doc = "the plane's normal; non-zero (length ≥ 10⁻¹²), normalised. A half-space: everything "
             "below the plane is solid, so a particle that falls through is pushed back up, never "
             "down"},
+    {.path = "colliders[].file",
+     .type = KeyType::text,
+     .when = "mesh",
+     .given = Given::required,
+     .fallback = "required (mesh)",
+     .doc = "the OBJ file of the surface, relative to the scene file (read like `cloth.path`: "
+            "`v` and `f` lines, polygons fanned, at most 64 MB, 1 000 000 vertices and 2 000 000 "
+            "triangles). A closed, consistently wound mesh is a solid; a triangle with no area is "
+            "an error naming it; an open, non-manifold or inconsistently wound mesh loads with a "
+            "warning, and one wound inwards is turned outwards with a warning. See "
+            "[Mesh colliders](contact.md#mesh-colliders)"},
+    {.path = "colliders[].scale",
+     .type = KeyType::numbers,
+     .size = 3,
+     .range = mesh_scale_range(),
+     .when = "mesh",
+     .given = Given::value,
+     .fallback = "[1, 1, 1]",
+     .doc = "a number, or three (along the file's x, y, z): scales the file's coordinates about "
+            "its origin, before `rotation` and `center`"},
 };
 
 inline constexpr SceneKey kColliderPartKeys[] = {

@@ -20,6 +20,7 @@
 #include "run_limits.hpp"
 #include "run_memory.hpp"
 #include "scene_keys.hpp"
+#include "seam_reader.hpp"
 #include "solver_reader.hpp"
 #include "start_state.hpp"
 #include "text_checks.hpp"
@@ -33,7 +34,10 @@ namespace {
 class SceneBuilder {
  public:
   SceneBuilder(SceneReader& reader, const std::filesystem::path& folder, StartInside start_inside)
-      : r_(reader), cloth_reader_(reader, scene_, folder), start_inside_(start_inside) {}
+      : r_(reader),
+        folder_(folder),
+        cloth_reader_(reader, scene_, folder),
+        start_inside_(start_inside) {}
 
   Scene build(const YAML::Node& root) {
     MapReader top(r_, root, "", key_names(""));
@@ -72,7 +76,8 @@ class SceneBuilder {
                   "a map describing the cloth (shape, size, resolution, mass, springs, pins)");
     if (top.has("contact")) read_contact(top.get("contact"));  // first: colliders take its friction
     if (top.has("colliders"))
-      scene_.colliders = read_colliders(r_, top.get("colliders"), scene_.contact);
+      scene_.colliders =
+          read_colliders(r_, top.get("colliders"), scene_.contact, folder_, warnings);
     if (top.has("metrics")) read_metrics(top.get("metrics"));
     if (top.has("air")) scene_.air = read_air(r_, top.get("air"), scene_.seed);
     cloth_reader_.finish();
@@ -220,6 +225,8 @@ class SceneBuilder {
       scene_.constraints = read_constraints(r_, top.get("constraints"), scene_, model.get());
     if (top.has("interactions"))
       scene_.interactions = read_interactions(r_, top.get("interactions"), scene_, model.get());
+    if (top.has("cloth") && top.get("cloth").IsMap() && top.get("cloth")["seams"].IsDefined())
+      scene_.cloth.seams = read_seams(r_, top.get("cloth")["seams"], scene_, model.get());
     scene_.solvers = scene::read_solvers(r_, solvers, scene_, model.get(), notes);
     check_continuum_is_used();
     check_dynamic_hosts(top);
@@ -288,6 +295,7 @@ class SceneBuilder {
   }
 
   SceneReader& r_;
+  std::filesystem::path folder_;  // the scene file's, for the files it names
   Scene scene_;
   ClothReader cloth_reader_;
   StartInside start_inside_;
@@ -383,7 +391,11 @@ LoadResult load_from_text(const std::string& text, const std::string& display_na
     add_unlisted_count(reader, display_name, result.errors);
     return result;
   }
-  SceneBuilder builder(reader, source.parent_path(), start_inside);
+  // The files a scene names are found from its folder, made absolute so that resolved.yaml, which
+  // writes their full paths, loads from any folder (a run folder's, for drapelab render).
+  std::error_code no_folder;
+  const std::filesystem::path folder = std::filesystem::absolute(source, no_folder).parent_path();
+  SceneBuilder builder(reader, no_folder ? source.parent_path() : folder, start_inside);
   Scene scene = builder.build(root);
   add_unlisted_count(reader, display_name, result.errors);
   if (!result.errors.empty()) return result;

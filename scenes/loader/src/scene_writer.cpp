@@ -111,6 +111,10 @@ void write_collider(std::ostream& out, const Collider& c) {
       put(out, in, *row, format_list(c.half_extents));
     else if (name == "normal")
       put(out, in, *row, format_list(c.normal));
+    else if (name == "file")
+      put(out, in, *row, quoted(c.mesh_file));
+    else if (name == "scale")
+      put(out, in, *row, format_list(c.mesh_scale));
     else
       value_missing(*row);
   }
@@ -203,6 +207,27 @@ void write_cloth(std::ostream& out, const Scene& s) {
       const std::string attach = k < s.cloth.pin_attach.size() ? s.cloth.pin_attach[k] : "";
       if (!attach.empty()) text.insert(text.size() - 1, ", attach: " + attach);  // a map's
       out << "    - " << text << "\n";
+    }
+  }
+  if (!s.cloth.seams.empty()) {
+    put(out, in, key("cloth.seams"), "");
+    const auto indices = [](const std::vector<int>& list) {
+      std::string text = "[";
+      for (std::size_t k = 0; k < list.size(); ++k)
+        text += (k ? ", " : "") + std::to_string(list[k]);
+      return text + "]";
+    };
+    // The lists first (flow_map writes scalars only), then the scalars in table order.
+    for (const SeamSpec& seam : s.cloth.seams) {
+      const std::string scalars = flow_map("cloth.seams[]", [&](const SceneKey& row) {
+        const std::string_view name = row.name();
+        if (name == "close_time") return format_number(seam.close_time);
+        if (name == "stiffness") return format_number(seam.stiffness);
+        if (name == "damping") return format_number(seam.damping);
+        value_missing(row);
+      });
+      out << "    - {a: " << indices(seam.a) << ", b: " << indices(seam.b) << ", "
+          << scalars.substr(1) << "\n";
     }
   }
   const SelfCollisionSettings& self = s.cloth.self_collision;

@@ -95,6 +95,9 @@ std::string describe_collider(const Collider& c) {
     case ColliderShape::capsule:
       return named + " of radius " + format_number(c.radius) + " m and height " +
              format_number(c.height) + " m" + at;
+    case ColliderShape::mesh:
+      return named + " from '" + c.mesh_file + "' (" +
+             std::to_string(c.mesh ? c.mesh->triangles.cols() : 0) + " triangles)" + at;
   }
   return named;
 }

@@ -166,6 +166,37 @@ DrawMesh box_mesh(const Eigen::Vector3d& half, const Eigen::Vector3f& color) {
   return builder.build();
 }
 
+// A mesh collider's own triangles, each corner shaded by the mean normal of the triangles about
+// its vertex that turn from this one by less than kSmoothTurn: curved surfaces look smooth and
+// sharp edges (a table's rim, a box's edges) stay sharp.
+DrawMesh surface_mesh(const TriangleMesh& mesh, const Eigen::Vector3f& color) {
+  const double smooth_cosine = std::cos(30.0 * std::numbers::pi / 180.0);  // kSmoothTurn, 30 deg
+  const Eigen::Index count = mesh.triangles.cols();
+  Eigen::Matrix3Xd face(3, count);
+  std::vector<std::vector<Eigen::Index>> faces_at(static_cast<std::size_t>(mesh.vertices.cols()));
+  for (Eigen::Index t = 0; t < count; ++t) {
+    const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t));
+    face.col(t) = (mesh.vertices.col(mesh.triangles(1, t)) - a)
+                      .cross(mesh.vertices.col(mesh.triangles(2, t)) - a);  // area-weighted
+    for (int k = 0; k < 3; ++k)
+      faces_at[static_cast<std::size_t>(mesh.triangles(k, t))].push_back(t);
+  }
+  MeshBuilder builder(color);
+  for (Eigen::Index t = 0; t < count; ++t) {
+    const Eigen::Vector3d own = face.col(t).normalized();
+    int corner[3];
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.triangles(k, t);
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      for (const Eigen::Index other : faces_at[static_cast<std::size_t>(v)])
+        if (face.col(other).normalized().dot(own) >= smooth_cosine) normal += face.col(other);
+      corner[k] = builder.vertex(mesh.vertices.col(v), normal);
+    }
+    builder.triangle(corner[0], corner[1], corner[2]);
+  }
+  return builder.build();
+}
+
 }  // namespace
 
 DrawMesh solid_collider_mesh(const Collider& c, const Eigen::Vector3f& color) {
@@ -178,11 +209,15 @@ DrawMesh solid_collider_mesh(const Collider& c, const Eigen::Vector3f& color) {
       return capsule_mesh(c.radius, c.height, c.axis, color);
     case ColliderShape::box:
       return box_mesh(c.half_extents, color);
+    case ColliderShape::mesh:
+      if (c.mesh) return surface_mesh(*c.mesh, color);
+      break;
     case ColliderShape::plane:
       break;
   }
   throw std::invalid_argument(
-      "solid_collider_mesh: a plane has no solid mesh (use plane_patch_mesh)");
+      "solid_collider_mesh: a plane has no solid mesh (use plane_patch_mesh), and a mesh collider "
+      "needs its mesh");
 }
 
 double round_tile_size(double span) {
@@ -226,6 +261,12 @@ DrawMesh plane_patch_mesh(const Collider& plane, const Eigen::Vector3d& local_ce
 
 void add_collider_bounds(const Collider& c, const Eigen::Isometry3d& pose, Bounds& bounds) {
   if (c.shape == ColliderShape::plane) return;
+  if (c.shape == ColliderShape::mesh) {
+    if (c.mesh)
+      for (Eigen::Index v = 0; v < c.mesh->vertices.cols(); ++v)
+        bounds.add(pose * Eigen::Vector3d(c.mesh->vertices.col(v)));
+    return;
+  }
   if (c.shape == ColliderShape::sphere) {
     bounds.add(pose.translation() - Eigen::Vector3d::Constant(c.radius));
     bounds.add(pose.translation() + Eigen::Vector3d::Constant(c.radius));

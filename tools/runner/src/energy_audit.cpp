@@ -31,6 +31,11 @@ std::string scene_drivers(const scene::Scene& scene) {
       (!air.wind.isZero(0) || air.gust_amplitude > 0.0 || air.turbulence_intensity > 0.0))
     drivers.emplace_back("wind");
   if (!scene.interactions.empty()) drivers.emplace_back("scripted drags");
+  for (const scene::SeamSpec& seam : scene.cloth.seams)
+    if (seam.close_time > 0.0) {
+      drivers.emplace_back("seams being sewn shut");
+      break;
+    }
   for (const DistanceConstraint& c : scene.constraints)
     if (c.b.kind == ConstraintEnd::Kind::collider_point) {
       const Collider& end = scene.colliders[static_cast<std::size_t>(c.b.collider)];

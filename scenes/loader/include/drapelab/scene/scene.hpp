@@ -28,6 +28,16 @@
 
 namespace drapelab::scene {
 
+// cloth.seams: particle a[k] is sewn to b[k] by a stitch (a soft constraint whose length falls from
+// rest[k], their rest distance, to 0 over close_time, then stays 0).
+struct SeamSpec {
+  std::vector<int> a, b;
+  std::vector<double> rest;  // m
+  double close_time = 0.5;   // s
+  double stiffness = 0.0;    // N/m
+  double damping = 0.0;      // N*s/m
+};
+
 struct ClothSpec {
   std::string shape = "grid";  // grid | disc | mesh
   // Every shape's common keys live here too: center, rotation, mass or areal_density, thickness,
@@ -50,6 +60,7 @@ struct ClothSpec {
   bool continuum_given = false;  // the scene has a cloth.continuum block
   // Per entry of grid.pins: the collider its particles move with (cloth.pins[].attach), or empty.
   std::vector<std::string> pin_attach;
+  std::vector<SeamSpec> seams;  // resolved on the built cloth
 };
 
 // metrics.drape_support: the support disc of the drape coefficient.
@@ -172,10 +183,13 @@ std::shared_ptr<const Attachments> scene_attachments(const Scene& scene, const C
 bool has_dynamic_colliders(const Scene& scene);
 
 // The scene's distance constraints for a solver (their colliders the scene's), its drags
-// (`interactions`) among them as soft constraints to their moving targets; null when none.
+// (`interactions`) among them as soft constraints to their moving targets, and its seams' stitches;
+// null when none.
 std::shared_ptr<const DistanceConstraints> scene_constraints(const Scene& scene);
 // A drag as the soft constraint of length 0 every solver applies (its own track).
 DistanceConstraint drag_constraint(const DragSpec& drag);
+// A seam's k-th stitch.
+DistanceConstraint seam_stitch(const SeamSpec& seam, std::size_t k);
 
 // Named pin sets of the scene's cloth shape (grid: corners, ...; disc: center, rim; mesh: center).
 std::vector<std::string> pin_set_names(const ClothSpec& cloth);

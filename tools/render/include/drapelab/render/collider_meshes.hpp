@@ -20,8 +20,8 @@ struct DrawMesh {
 
 // Sphere, capped cylinder, capsule and box as the contact model sees them (cylinder and capsule
 // along `axis`, of full length `height` between cap centres; a capsule's hemispheres add `radius`
-// at each end). Smooth normals on curved surfaces, flat ones on caps and box faces. `color` for
-// every vertex.
+// at each end), and a mesh collider's own triangles. Smooth normals on curved surfaces, flat ones
+// on caps, box faces and across a mesh's sharp edges. `color` for every vertex.
 DrawMesh solid_collider_mesh(const Collider& collider, const Eigen::Vector3f& color);
 
 // A plane drawn as a finite square floor patch of half side `half_size` (m) with a checker of

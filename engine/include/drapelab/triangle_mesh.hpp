@@ -1,0 +1,15 @@
+// A triangle mesh as read from an OBJ file: a cloth's rest shape (mesh_cloth.hpp) or a collider's
+// surface (mesh_surface.hpp).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace drapelab {
+
+struct TriangleMesh {
+  Eigen::Matrix3Xd vertices;   // m
+  Eigen::Matrix3Xi triangles;  // vertex indices, consistently wound
+  Eigen::Matrix2Xd uvs;        // one per vertex in [0, 1], or empty (then planar)
+};
+
+}  // namespace drapelab
