@@ -18,6 +18,8 @@ namespace {
 
 // m^2: a triangle below this area has no direction of its own.
 constexpr double kSmallestArea = 1e-14;
+// m: a point this near the surface lies on it, for the direction of its way out.
+constexpr double kOnSurface = 1e-12;
 
 // Squared distance (m^2) from p to an FCL box.
 double squared_distance_to_box(const fcl::AABB<double>& box, const Eigen::Vector3d& p) {
@@ -179,7 +181,9 @@ std::optional<MeshSurfacePoint> MeshSurface::nearest(const Eigen::Vector3d& p, d
   const double length = away.norm();
   const bool inside = away.dot(pseudo) < 0.0;
   out.distance = inside ? -length : length;
-  out.normal = length > 0.0 ? Eigen::Vector3d((inside ? -away : away) / length) : pseudo;
+  // On the surface (within rounding of it) the direction to the point is noise: the feature's
+  // pseudo-normal is the way out.
+  out.normal = length > kOnSurface ? Eigen::Vector3d((inside ? -away : away) / length) : pseudo;
   return out;
 }
 

@@ -96,6 +96,16 @@ TEST_F(MeshColliderScene, ABadFileIsAnErrorNamingTheSceneLineAndTheObjLine) {
                        {"colliders.0.file", "cannot be read (no such file)"}));
 }
 
+// Bullet gives a concave mesh no inertia: a mesh collider is static or kinematic only.
+TEST_F(MeshColliderScene, AMeshCannotBeDynamic) {
+  write("meshes/solid.obj", kTetrahedron);
+  std::string text = kScene;
+  text.insert(text.find("solvers:"), "    dynamic: {mass: 1}\n");
+  write("scene.yaml", text);
+  EXPECT_TRUE(HasError(load_scene_file(scene_file_), at(13),
+                       {"colliders.0.dynamic", "a mesh collider cannot be dynamic"}));
+}
+
 TEST_F(MeshColliderScene, AnOpenOrOddMeshLoadsWithAWarning) {
   // The tetrahedron without its last face: open.
   const auto open = load_with("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");

@@ -119,10 +119,11 @@ void read_dynamic(SceneReader& r, MapReader& map, Collider& c) {
   if (!dynamic.has("mass")) dynamic.missing("mass", "the body's mass in kg, > 0");
   const auto mass = dynamic.number(key("colliders[].dynamic.mass"));
   if (!mass) return;
-  const char* clash = c.shape == ColliderShape::plane ? "a plane cannot be dynamic"
-                      : map.has("motion")             ? "a dynamic collider has no motion key"
-                      : map.has("parent")             ? "a dynamic collider has no parent"
-                                                      : nullptr;
+  const char* clash = c.shape == ColliderShape::plane  ? "a plane cannot be dynamic"
+                      : c.shape == ColliderShape::mesh ? "a mesh collider cannot be dynamic"
+                      : map.has("motion")              ? "a dynamic collider has no motion key"
+                      : map.has("parent")              ? "a dynamic collider has no parent"
+                                                       : nullptr;
   if (clash) {
     r.error(map.get("dynamic"), path,
             std::string(clash) +
