@@ -1,6 +1,7 @@
 // Our spring constants and colliders as Bullet's parameters (parameter_mapping.hpp).
 #include "drapelab/bullet/parameter_mapping.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -48,13 +49,14 @@ double default_voxel_size(const std::vector<Collider>& colliders, double margin)
       case ColliderShape::plane:
         break;
       case ColliderShape::mesh:
-        // Bullet meets a mesh one triangle at a time: its feature is a triangle's shortest side.
+        // Bullet meets a mesh as its parts' convex hulls: a part's feature is its box's
+        // shortest side.
         if (c.mesh)
-          for (Eigen::Index t = 0; t < c.mesh->triangles.cols(); ++t)
-            for (int k = 0; k < 3; ++k)
-              feature = std::min(feature, (c.mesh->vertices.col(c.mesh->triangles(k, t)) -
-                                           c.mesh->vertices.col(c.mesh->triangles((k + 1) % 3, t)))
-                                              .norm());
+          for (const std::vector<int>& part : connected_parts(*c.mesh)) {
+            Eigen::AlignedBox3d box;
+            for (const int v : part) box.extend(Eigen::Vector3d(c.mesh->vertices.col(v)));
+            feature = std::min(feature, box.sizes().minCoeff());
+          }
         break;
     }
   }

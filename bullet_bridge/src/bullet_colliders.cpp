@@ -2,11 +2,11 @@
 #include "bullet_colliders.hpp"
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
-#include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
-#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 
 #include "bullet_math.hpp"
 
@@ -54,15 +54,18 @@ BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
       out.shape_in_collider.translation() = -kPlaneHalfThickness * c.normal.normalized();
       break;
     case ColliderShape::mesh: {
-      const TriangleMesh& mesh = *c.mesh;
-      out.mesh_indices.assign(mesh.triangles.data(), mesh.triangles.data() + mesh.triangles.size());
-      out.mesh_vertices.assign(mesh.vertices.data(), mesh.vertices.data() + mesh.vertices.size());
-      out.mesh_arrays = std::make_unique<btTriangleIndexVertexArray>(
-          static_cast<int>(mesh.triangles.cols()), out.mesh_indices.data(),
-          static_cast<int>(3 * sizeof(int)), static_cast<int>(mesh.vertices.cols()),
-          out.mesh_vertices.data(), static_cast<int>(3 * sizeof(btScalar)));
-      out.shape = std::make_unique<btBvhTriangleMeshShape>(out.mesh_arrays.get(), true);
-      out.shape->setMargin(edge_margin);
+      auto compound = std::make_unique<btCompoundShape>();
+      for (const std::vector<int>& part : connected_parts(*c.mesh)) {
+        auto hull = std::make_unique<btConvexHullShape>();
+        for (const int v : part)
+          hull->addPoint(to_bullet(Eigen::Vector3d(c.mesh->vertices.col(v))), false);
+        hull->recalcLocalAabb();
+        hull->setMargin(edge_margin);
+        compound->addChildShape(btTransform::getIdentity(), hull.get());
+        out.parts.push_back(std::move(hull));
+      }
+      compound->setMargin(edge_margin);
+      out.shape = std::move(compound);
       break;
     }
   }

@@ -2,7 +2,6 @@
 // every other solver.
 #pragma once
 
-#include <BulletCollision/CollisionShapes/btStridingMeshInterface.h>
 #include <BulletDynamics/Dynamics/btDynamicsWorld.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
@@ -18,19 +17,17 @@ namespace drapelab::bullet {
 // A Bullet shape for a collider, and where the shape sits in the collider's frame (Bullet's
 // cylinder and capsule lie along local y; a plane becomes a thick box whose top face is the plane).
 struct BulletShape {
-  // A mesh's triangles as Bullet reads them, in place: the shape refers to these arrays, so they
-  // are declared first and outlive it.
-  std::vector<int> mesh_indices;
-  std::vector<btScalar> mesh_vertices;  // m, x y z per vertex
-  std::unique_ptr<btStridingMeshInterface> mesh_arrays;
+  // A mesh's parts, which its compound `shape` refers to: declared first, so they outlive it.
+  std::vector<std::unique_ptr<btCollisionShape>> parts;
   std::unique_ptr<btCollisionShape> shape;
   Eigen::Isometry3d shape_in_collider = Eigen::Isometry3d::Identity();
 };
 
 // The one conversion from our Collider to Bullet. `edge_margin` (m) is given to boxes, cylinders
 // and meshes, whose edges Bullet rounds by their margin (spheres and capsules are exact). A mesh
-// becomes a btBvhTriangleMeshShape, which Bullet's soft bodies meet one triangle at a time
-// (docs/bullet.md, "Mesh colliders").
+// becomes the convex hulls of its connected parts in one btCompoundShape: Bullet's soft bodies
+// meet only convex shapes through their signed-distance cache, and a triangle-mesh shape holds
+// them off the surface or lets them through (docs/bullet.md, "Mesh colliders").
 BulletShape make_bullet_shape(const Collider& collider, double edge_margin);
 
 // Bodies for every collider in one world: kinematic ones, which move_to(t0, t1) poses at t1 with

@@ -167,15 +167,9 @@ void ColliderFeatures::candidate_edges(const Eigen::Vector3d& a, const Eigen::Ve
       if (high[axis] >= half_extents[axis] - reach || low[axis] <= -half_extents[axis] + reach)
         ++near_faces;
     if (near_faces < 2) return;
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      const Eigen::Vector3d edge_low = edges[e].from.cwiseMin(edges[e].to).array() - reach;
-      const Eigen::Vector3d edge_high = edges[e].from.cwiseMax(edges[e].to).array() + reach;
-      if ((high.array() >= edge_low.array()).all() && (low.array() <= edge_high.array()).all())
-        visit(e);
-    }
-    return;
   }
-  if (shape == ColliderShape::mesh) {
+  if (shape == ColliderShape::box || shape == ColliderShape::mesh) {
+    // Every edge whose box, grown by the reach, meets the segment's.
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const Eigen::Vector3d edge_low = edges[e].from.cwiseMin(edges[e].to).array() - reach;
       const Eigen::Vector3d edge_high = edges[e].from.cwiseMax(edges[e].to).array() + reach;

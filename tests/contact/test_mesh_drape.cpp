@@ -1,50 +1,26 @@
 // Cloth on mesh colliders and garments sewn with seams, end to end through the scene loader and
 // the runner: a sphere given as a mesh drapes like the sphere collider within what its facets
-// allow; a seam pulls a sheet into a tube and holds it; two panels sewn round the mannequin hang
-// from its shoulders.
+// allow; a seam pulls a sheet into a tube and holds it. The shirt sewn round the mannequin is
+// test_garment_drape.cpp's.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "drapelab/runner/scene_setup.hpp"
-#include "drapelab/runner/simulate_solver.hpp"
-#include "drapelab/scene/scene_loader.hpp"
+#include "scene_runs.hpp"
 
 namespace drapelab {
 namespace {
 
-struct SceneRun {
-  scene::Scene scene;
-  runner::SimulationResult result;
-};
-
-SceneRun run_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  const auto loaded =
-      scene::load_scene_file(std::string(DRAPELAB_SOURCE_DIR) + "/" + path, overrides);
-  EXPECT_TRUE(loaded.ok()) << (loaded.errors.empty() ? "" : loaded.errors.front());
-  SceneRun run{*loaded.scene, {}};
-  const runner::SceneSetup setup = runner::build_scene_setup(run.scene, loaded.model);
-  run.result = runner::simulate_solver(run.scene, run.scene.solvers.front(), setup, {});
-  EXPECT_EQ(run.result.status, SolverStatus::ok) << run.result.message;
-  return run;
-}
-
-// The largest gap (m) between the sewn particles of every seam.
-double widest_stitch(const SceneRun& run) {
-  double widest = 0.0;
-  const Eigen::Matrix3Xd& x = run.result.final_state.x;
-  for (const scene::SeamSpec& seam : run.scene.cloth.seams)
-    for (std::size_t k = 0; k < seam.a.size(); ++k)
-      widest = std::max(widest, (x.col(seam.a[k]) - x.col(seam.b[k])).norm());
-  return widest;
-}
+using scene_runs::run_scene;
+using scene_runs::SceneRun;
+using scene_runs::widest_stitch;
 
 // The ball of tests/contact/scenes/sphere_mesh_drape.yaml (radius 0.3 m) as the 1,280-triangle
 // icosphere scaled by 2: its faces lie up to 1.4 mm inside the sphere and its edges turn by 5.8
-// degrees at most, below the sharp-feature limit. Measured at 1 s: 7.6 mm rms apart (2.1 cm at most, in
-// the folds, which the facets start differently), lowest points 6 mm apart.
+// degrees at most, below the sharp-feature limit. Measured at 1 s: 7.6 mm rms apart (2.1 cm at
+// most, in the folds, which the facets start differently), lowest points 6 mm apart.
 TEST(MeshDrape, ASphereGivenAsAMeshDrapesLikeTheSphere) {
   const SceneRun sphere = run_scene("tests/contact/scenes/sphere_mesh_drape.yaml", {});
   const SceneRun mesh = run_scene(
@@ -73,16 +49,6 @@ TEST(Seams, ASeamSewsASheetIntoATubeAndHoldsItShut) {
     const Eigen::Vector3d centroid = tube.result.final_state.x.rowwise().mean();
     EXPECT_LT((centroid - Eigen::Vector3d(0, 1, 0)).norm(), 1e-3) << integrator;
   }
-}
-
-// scenes/mannequin_tshirt.yaml, its first second: the four seams shut round the body and the shirt
-// hangs from the shoulders (its hem starts at 1.0 m and stays above 0.9 m; the mannequin's
-// shoulders are at 1.45 m).
-TEST(Seams, TheShirtIsSewnRoundTheMannequinAndHangsFromItsShoulders) {
-  const SceneRun shirt = run_scene("scenes/mannequin_tshirt.yaml", {"duration=1"});
-  EXPECT_LT(widest_stitch(shirt), 0.015);
-  EXPECT_GT(shirt.result.final_metrics.lowest_y, 0.9);
-  EXPECT_GT(shirt.result.final_metrics.centroid.y(), 1.15);
 }
 
 }  // namespace

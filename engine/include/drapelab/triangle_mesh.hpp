@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace drapelab {
 
@@ -11,5 +12,10 @@ struct TriangleMesh {
   Eigen::Matrix3Xi triangles;  // vertex indices, consistently wound
   Eigen::Matrix2Xd uvs;        // one per vertex in [0, 1], or empty (then planar)
 };
+
+// The mesh's connected parts (triangles joined through shared vertices), each as the list of its
+// vertices in increasing order; parts ordered by their lowest vertex. Vertices no triangle uses
+// are left out.
+std::vector<std::vector<int>> connected_parts(const TriangleMesh& mesh);
 
 }  // namespace drapelab
