@@ -22,6 +22,8 @@ mkdir -p tests/golden
 #                  the file records 2 s.
 #   parachute      the descent reaches its steady speed after about a second: the file records
 #                  the whole 2.5 s.
+#   mannequin_tshirt the shirt is sewn over its first 0.15 s and settles onto the shoulders by
+#                  1 s, where the contact carries it: the file records 1 s.
 #   free_fall      its explicit Euler solver gains energy and becomes unstable at 0.25 s, and
 #                  --update records only runs whose every solver is ok: the file records 0.2 s.
 duration_of() {
@@ -30,6 +32,7 @@ duration_of() {
     window_curtain) echo 2.0 ;;
     parachute) echo 2.5 ;;
     free_fall) echo 0.2 ;;
+    mannequin_tshirt) echo 1.0 ;;
     *) echo 0.5 ;;
   esac
 }

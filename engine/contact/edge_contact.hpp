@@ -74,6 +74,11 @@ struct ColliderFeatures {
 ColliderFeatures collider_features(const Collider& collider, const FclCollider& shape,
                                    double thickness);
 
+// A mesh's features: its convex edges sharper than kSharpMeshTurn, and the vertices where three
+// or more of them meet, each corner with the three of its faces' normals that cover the largest
+// angles there (engine/contact/mesh_features.cpp).
+ColliderFeatures mesh_features(const MeshSurface& mesh);
+
 // rad: a mesh edge whose two faces' normals differ by more than this is a sharp feature. Over a
 // gentler edge of turn a, a cloth edge of length s bridging it sags onto it by about s a / 4: at
 // most 2.2 mm for a 2 cm cloth edge, within the default 5 mm thickness.
