@@ -17,6 +17,7 @@
 #include <optional>
 
 #include "drapelab/render/camera.hpp"
+#include "drapelab/render/collider_meshes.hpp"
 #include "drapelab/render/image.hpp"
 #include "drapelab/render/panel_renderer.hpp"
 #include "drapelab/render/png_io.hpp"
@@ -50,13 +51,17 @@ struct Orbit {
   }
 };
 
-// What the scene starts with: the cloth and the solid colliders' centres.
+// What the scene starts with: the cloth, the solid colliders' centres and the mesh colliders'
+// whole extent (a mesh's centre is the origin of its file, which may lie anywhere near it).
 render::Bounds start_bounds(const LiveSession& session) {
   render::Bounds bounds;
   const ClothState& start = session.solvers().front().solver->state();
   for (Eigen::Index i = 0; i < start.x.cols(); ++i) bounds.add(start.x.col(i));
-  for (const Collider& c : session.scene().colliders)
+  for (const Collider& c : session.scene().colliders) {
+    if (c.shape == ColliderShape::mesh)
+      render::add_collider_bounds(c, collider_pose(c, 0.0), bounds);
     if (c.shape != ColliderShape::plane) bounds.add(collider_pose(c, 0.0).translation());
+  }
   return bounds;
 }
 
