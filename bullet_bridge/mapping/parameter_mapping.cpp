@@ -49,8 +49,8 @@ double default_voxel_size(const std::vector<Collider>& colliders, double margin)
       case ColliderShape::plane:
         break;
       case ColliderShape::mesh:
-        // Bullet meets a mesh as its parts' convex hulls: a part's feature is its box's
-        // shortest side.
+        // The signed-distance cache meets a mesh as its parts' convex hulls: a part's feature
+        // is its box's shortest side.
         if (c.mesh)
           for (const std::vector<int>& part : connected_parts(*c.mesh)) {
             Eigen::AlignedBox3d box;
@@ -61,6 +61,33 @@ double default_voxel_size(const std::vector<Collider>& colliders, double margin)
     }
   }
   return std::min(margin, feature / 10.0);
+}
+
+bool mesh_parts_are_convex(const TriangleMesh& mesh) {
+  const Eigen::Index n = mesh.vertices.cols();
+  if (n == 0) return true;
+  const double size =
+      (mesh.vertices.rowwise().maxCoeff() - mesh.vertices.rowwise().minCoeff()).norm();  // m
+  const double tolerance = 1e-9 + 1e-7 * size;  // m: an OBJ file's printed digits
+  const std::vector<std::vector<int>> parts = connected_parts(mesh);
+  std::vector<std::size_t> part_of(static_cast<std::size_t>(n), 0);
+  for (std::size_t p = 0; p < parts.size(); ++p)
+    for (const int v : parts[p]) part_of[static_cast<std::size_t>(v)] = p;
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t) {
+    const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t));
+    const Eigen::Vector3d b = mesh.vertices.col(mesh.triangles(1, t));
+    const Eigen::Vector3d c = mesh.vertices.col(mesh.triangles(2, t));
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();  // outwards
+    for (const int v : parts[part_of[static_cast<std::size_t>(mesh.triangles(0, t))]])
+      if (normal.dot(Eigen::Vector3d(mesh.vertices.col(v)) - a) > tolerance) return false;
+  }
+  return true;
+}
+
+bool deformable_meets_mesh_triangles(const std::vector<Collider>& colliders) {
+  return std::any_of(colliders.begin(), colliders.end(), [](const Collider& c) {
+    return c.shape == ColliderShape::mesh && c.mesh && !mesh_parts_are_convex(*c.mesh);
+  });
 }
 
 }  // namespace drapelab::bullet

@@ -7,6 +7,7 @@
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/Gimpact/btGImpactShape.h>
 
 #include "bullet_math.hpp"
 
@@ -24,9 +25,38 @@ Eigen::Matrix3d y_onto(const Eigen::Vector3d& direction) {
       .toRotationMatrix();
 }
 
+void add_convex_parts(const TriangleMesh& mesh, double edge_margin, BulletShape& out) {
+  auto compound = std::make_unique<btCompoundShape>();
+  for (const std::vector<int>& part : connected_parts(mesh)) {
+    auto hull = std::make_unique<btConvexHullShape>();
+    for (const int v : part)
+      hull->addPoint(to_bullet(Eigen::Vector3d(mesh.vertices.col(v))), false);
+    hull->recalcLocalAabb();
+    hull->setMargin(edge_margin);
+    compound->addChildShape(btTransform::getIdentity(), hull.get());
+    out.parts.push_back(std::move(hull));
+  }
+  compound->setMargin(edge_margin);
+  out.shape = std::move(compound);
+}
+
+// GImpact keeps its triangles' margin (default 1 cm) outside the surface: the cloth rests that far
+// off, so the mesh gets the edge margin like a box.
+void add_triangles(const TriangleMesh& mesh, double edge_margin, BulletShape& out) {
+  out.mesh_coordinates.assign(mesh.vertices.data(), mesh.vertices.data() + mesh.vertices.size());
+  out.mesh_indices.assign(mesh.triangles.data(), mesh.triangles.data() + mesh.triangles.size());
+  out.mesh_triangles = std::make_unique<btTriangleIndexVertexArray>(
+      static_cast<int>(mesh.triangles.cols()), out.mesh_indices.data(), 3 * sizeof(int),
+      static_cast<int>(mesh.vertices.cols()), out.mesh_coordinates.data(), 3 * sizeof(btScalar));
+  auto shape = std::make_unique<btGImpactMeshShape>(out.mesh_triangles.get());
+  shape->setMargin(edge_margin);
+  shape->updateBound();
+  out.shape = std::move(shape);
+}
+
 }  // namespace
 
-BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
+BulletShape make_bullet_shape(const Collider& c, double edge_margin, BulletMeshShape mesh_shape) {
   BulletShape out;
   switch (c.shape) {
     case ColliderShape::sphere:
@@ -53,30 +83,22 @@ BulletShape make_bullet_shape(const Collider& c, double edge_margin) {
       out.shape_in_collider.linear() = y_onto(c.normal);
       out.shape_in_collider.translation() = -kPlaneHalfThickness * c.normal.normalized();
       break;
-    case ColliderShape::mesh: {
-      auto compound = std::make_unique<btCompoundShape>();
-      for (const std::vector<int>& part : connected_parts(*c.mesh)) {
-        auto hull = std::make_unique<btConvexHullShape>();
-        for (const int v : part)
-          hull->addPoint(to_bullet(Eigen::Vector3d(c.mesh->vertices.col(v))), false);
-        hull->recalcLocalAabb();
-        hull->setMargin(edge_margin);
-        compound->addChildShape(btTransform::getIdentity(), hull.get());
-        out.parts.push_back(std::move(hull));
-      }
-      compound->setMargin(edge_margin);
-      out.shape = std::move(compound);
+    case ColliderShape::mesh:
+      if (mesh_shape == BulletMeshShape::triangles)
+        add_triangles(*c.mesh, edge_margin, out);
+      else
+        add_convex_parts(*c.mesh, edge_margin, out);
       break;
-    }
   }
   return out;
 }
 
 KinematicColliders::KinematicColliders(const std::vector<Collider>& colliders, double edge_margin,
-                                       btDynamicsWorld& world, double friction_divisor)
+                                       btDynamicsWorld& world, double friction_divisor,
+                                       BulletMeshShape mesh_shape)
     : world_(world), colliders_(colliders) {
   for (const auto& collider : colliders_) {
-    shapes_.push_back(make_bullet_shape(collider, edge_margin));
+    shapes_.push_back(make_bullet_shape(collider, edge_margin, mesh_shape));
     btCollisionShape* shape = shapes_.back().shape.get();
     btVector3 inertia(0, 0, 0);  // kg m^2, in the shape's principal axes
     if (collider.dynamic()) shape->calculateLocalInertia(collider.dynamic_mass, inertia);

@@ -2,6 +2,7 @@
 // every other solver.
 #pragma once
 
+#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 #include <BulletDynamics/Dynamics/btDynamicsWorld.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
@@ -17,18 +18,32 @@ namespace drapelab::bullet {
 // A Bullet shape for a collider, and where the shape sits in the collider's frame (Bullet's
 // cylinder and capsule lie along local y; a plane becomes a thick box whose top face is the plane).
 struct BulletShape {
-  // A mesh's parts, which its compound `shape` refers to: declared first, so they outlive it.
+  // A mesh's parts, which its compound `shape` refers to, or its triangles, which its GImpact
+  // `shape` reads in place: declared first, so they outlive it.
   std::vector<std::unique_ptr<btCollisionShape>> parts;
+  std::vector<btScalar> mesh_coordinates;  // m, x y z per vertex
+  std::vector<int> mesh_indices;           // three per triangle
+  std::unique_ptr<btTriangleIndexVertexArray> mesh_triangles;
   std::unique_ptr<btCollisionShape> shape;
   Eigen::Isometry3d shape_in_collider = Eigen::Isometry3d::Identity();
 };
 
+// How a mesh collider reaches Bullet (docs/bullet.md, "Mesh colliders").
+enum class BulletMeshShape {
+  // The convex hulls of its connected parts in one btCompoundShape: the classic cloth meets only
+  // convex shapes through its signed-distance cache, and a triangle-mesh shape holds it 10 cm off
+  // the surface or lets it through. Concave parts are filled.
+  convex_parts,
+  // Its triangles as a btGImpactMeshShape, for the deformable cloth's face contacts, which run
+  // GJK against each triangle: the concave surface itself. Needs GImpact's collision algorithm
+  // registered on the world's dispatcher.
+  triangles,
+};
+
 // The one conversion from our Collider to Bullet. `edge_margin` (m) is given to boxes, cylinders
-// and meshes, whose edges Bullet rounds by their margin (spheres and capsules are exact). A mesh
-// becomes the convex hulls of its connected parts in one btCompoundShape: Bullet's soft bodies
-// meet only convex shapes through their signed-distance cache, and a triangle-mesh shape holds
-// them off the surface or lets them through (docs/bullet.md, "Mesh colliders").
-BulletShape make_bullet_shape(const Collider& collider, double edge_margin);
+// and meshes, whose edges Bullet rounds by their margin (spheres and capsules are exact).
+BulletShape make_bullet_shape(const Collider& collider, double edge_margin,
+                              BulletMeshShape mesh_shape = BulletMeshShape::convex_parts);
 
 // Bodies for every collider in one world: kinematic ones, which move_to(t0, t1) poses at t1 with
 // the velocities of the motion over [t0, t1], as a substep needs; and the dynamic colliders'
@@ -39,7 +54,8 @@ BulletShape make_bullet_shape(const Collider& collider, double edge_margin);
 class KinematicColliders {
  public:
   KinematicColliders(const std::vector<Collider>& colliders, double edge_margin,
-                     btDynamicsWorld& world, double friction_divisor = 1.0);
+                     btDynamicsWorld& world, double friction_divisor = 1.0,
+                     BulletMeshShape mesh_shape = BulletMeshShape::convex_parts);
   ~KinematicColliders();
   KinematicColliders(const KinematicColliders&) = delete;
   KinematicColliders& operator=(const KinematicColliders&) = delete;

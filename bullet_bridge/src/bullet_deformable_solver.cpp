@@ -2,6 +2,7 @@
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 #include <BulletSoftBody/btDeformableBodySolver.h>
 #include <BulletSoftBody/btDeformableGravityForce.h>
 #include <BulletSoftBody/btDeformableMultiBodyConstraintSolver.h>
@@ -15,6 +16,7 @@
 #include "bullet_math.hpp"
 #include "deformable_contact_forces.hpp"
 #include "deformable_self_collision.hpp"
+#include "drapelab/bullet/parameter_mapping.hpp"
 #include "per_link_spring_force.hpp"
 #include "soft_body_cloth.hpp"
 
@@ -47,8 +49,13 @@ class BulletDeformableSolver final : public BulletClothSolver {
     const bool self_collision = options_.self_collision.enabled;
     const double friction_factor =
         self_collision ? deformable_self_friction_factor(options_.self_collision) : 1.0;
-    colliders_ = std::make_unique<KinematicColliders>(colliders, options_.collider_margin, *world_,
-                                                      friction_factor);
+    // A concave mesh collider is given as its triangles, met by face contacts
+    // (bullet_colliders.hpp).
+    const bool triangles = deformable_meets_mesh_triangles(colliders);
+    if (triangles) btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher_);
+    colliders_ = std::make_unique<KinematicColliders>(
+        colliders, options_.collider_margin, *world_, friction_factor,
+        triangles ? BulletMeshShape::triangles : BulletMeshShape::convex_parts);
     // Soft constraints ending on a dynamic collider follow this world's body.
     body_poses_ = follow_own_bodies(options_.constraints, colliders.size());
 
@@ -58,12 +65,18 @@ class BulletDeformableSolver final : public BulletClothSolver {
     btSoftBody::Config& cfg = cloth_->m_cfg;
     cfg.collisions =
         btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDN;  // node contacts
+    // GImpact hands each triangle over as one reused shape, whose signed-distance cells the node
+    // contacts would mix up: with a concave mesh in the scene, faces meet every collider instead.
+    if (triangles)
+      cfg.collisions = btSoftBody::fCollision::SDF_RD | btSoftBody::fCollision::SDF_RDF;
     cfg.kDF = 1.0;  // friction = collider friction
     cfg.kCHR = cfg.kKHR = 1.0;
     cfg.drag = 1.0 - std::exp(-options_.air_damping * options_.dt);
     cloth_->getCollisionShape()->setMargin(options_.margin);
     if (self_collision)
       enable_deformable_self_collision(*cloth_, options_.self_collision, options_.dt);
+    else if (triangles)
+      build_face_tree(*cloth_);  // the face contacts search it
     world_->addSoftBody(cloth_.get());
     if (options_.attachments)
       anchor_attached_nodes(

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "contact/edge_contact.hpp"
+#include "core/proximity.hpp"
 
 namespace drapelab {
 
@@ -45,7 +46,7 @@ ColliderFeatures mesh_features(const MeshSurface& mesh) {
       const Eigen::Vector3d at = mesh.vertices().col(v);
       const Eigen::Vector3d u = mesh.vertices().col(mesh.triangles()((k + 1) % 3, t)) - at;
       const Eigen::Vector3d w = mesh.vertices().col(mesh.triangles()((k + 2) % 3, t)) - at;
-      const double angle = std::atan2(u.cross(w).norm(), u.dot(w));  // rad
+      const double angle = angle_between(u, w);  // rad, the triangle's angle at the corner
       const Eigen::Vector3d normal = mesh.face_normals().col(t);
       auto& list = faces_at[static_cast<std::size_t>(v)];
       const auto same = std::find_if(list.begin(), list.end(), [&](const auto& entry) {

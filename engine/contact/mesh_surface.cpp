@@ -28,12 +28,6 @@ double squared_distance_to_box(const fcl::AABB<double>& box, const Eigen::Vector
   return (below + above).squaredNorm();
 }
 
-// The angle (rad) at corner `at` between the sides towards `u` and `w`.
-double corner_angle(const Eigen::Vector3d& at, const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
-  const Eigen::Vector3d a = u - at, b = w - at;
-  return std::atan2(a.cross(b).norm(), a.dot(b));
-}
-
 }  // namespace
 
 std::optional<std::string> mesh_surface_problem(const TriangleMesh& mesh) {
@@ -76,8 +70,9 @@ MeshSurface::MeshSurface(const TriangleMesh& mesh)
     for (int k = 0; k < 3; ++k) {
       const int at = triangles_(k, t), next = triangles_((k + 1) % 3, t),
                 previous = triangles_((k + 2) % 3, t);
+      const Eigen::Vector3d corner = vertices_.col(at);
       vertex_normals_.col(at) +=
-          corner_angle(vertices_.col(at), vertices_.col(next), vertices_.col(previous)) *
+          angle_between(vertices_.col(next) - corner, vertices_.col(previous) - corner) *
           face_normals_.col(t);
       // The side from `next` to `previous` is opposite corner k.
       const std::pair<int, int> key(std::min(next, previous), std::max(next, previous));

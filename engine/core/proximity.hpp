@@ -4,9 +4,17 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 
 namespace drapelab {
+
+// The angle (rad) between two directions, as atan2(|u x w|, u . w): exact near 0 and pi, where an
+// arccosine of the normalised dot product loses half its digits.
+inline double angle_between(const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
+  return std::atan2(u.cross(w).norm(), u.dot(w));
+}
 
 // Where the closest point of a triangle lies: inside it, on one of its edges, or at a corner.
 enum class TriangleRegion { face, edge, corner };

@@ -16,14 +16,17 @@ using scene_runs::run_scene;
 using scene_runs::SceneRun;
 using scene_runs::widest_stitch;
 
-// scenes/mannequin_tshirt.yaml, its first second: the four seams shut round the body and the shirt
-// hangs from the shoulders (its hem starts at 1.0 m and stays above 0.9 m; the mannequin's
-// shoulders are at 1.45 m).
+// scenes/mannequin_tshirt.yaml, its first second, under vbd: the four seams shut round the body
+// (measured: 2.6 mm at the widest stitch, 0.3 mm the median) and the shirt hangs from the
+// shoulders (its hem starts at 1.0 m and stays above 0.9 m; the mannequin's shoulders are at
+// 1.45 m), at most 0.5 mm into the mesh beyond its 4 mm thickness.
 TEST(Seams, TheShirtIsSewnRoundTheMannequinAndHangsFromItsShoulders) {
   const SceneRun shirt = run_scene("scenes/mannequin_tshirt.yaml", {"duration=1"});
-  EXPECT_LT(widest_stitch(shirt), 0.015);
+  EXPECT_LT(widest_stitch(shirt), 0.005);
   EXPECT_GT(shirt.result.final_metrics.lowest_y, 0.9);
   EXPECT_GT(shirt.result.final_metrics.centroid.y(), 1.15);
+  ASSERT_TRUE(shirt.result.final_metrics.min_clearance);
+  EXPECT_GT(*shirt.result.final_metrics.min_clearance, -0.002);
 }
 
 }  // namespace

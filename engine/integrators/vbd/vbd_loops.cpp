@@ -48,6 +48,39 @@ void add_planes(const VbdProblem& p, std::int64_t i, const double* xi, const dou
   }
 }
 
+// A soft distance constraint between two particles (a seam's stitch, a string between cloth
+// points) as the damped spring it is, at the current positions: force k (L - l) - c rate along the
+// ends' direction u, and the spring's stiffness matrix k [u u^T + max(0, 1 - L/l) (I - u u^T)] plus
+// c/h u u^T. Linearised along its direction at the step's start, a short stitch would pull only
+// along that direction, which is noise near zero length: the sideways gap would stay, and the
+// sweeps would push the pair along a stale direction. w is particle i's weight (+1 at the first
+// end, -1 at the other); L is the length at the step's start, depth + the ends' distance there.
+void add_particle_spring(const VbdProblem& p, std::int64_t contact, double w, std::int64_t i,
+                         const double* xi, const double* x, Block& b) {
+  const VbdCouplings& c = p.couplings;
+  const std::int64_t ja = c.particle[4 * contact], jb = c.particle[4 * contact + 1];
+  const double* xa = contact_partner(p, i, xi, x, ja);
+  const double* xb = contact_partner(p, i, xi, x, jb);
+  const double* sa = p.start + 3 * ja;
+  const double* sb = p.start + 3 * jb;
+  const double start_gap[3] = {sa[0] - sb[0], sa[1] - sb[1], sa[2] - sb[2]};
+  const double length = c.depth[contact] + std::sqrt(dot(start_gap, start_gap));  // m
+  const double d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
+  const double l = std::sqrt(dot(d, d));  // m
+  double u[3] = {c.normal[3 * contact], c.normal[3 * contact + 1], c.normal[3 * contact + 2]};
+  if (l > 1e-12)
+    for (int k = 0; k < 3; ++k) u[k] = d[k] / l;
+  const double move[3] = {(xa[0] - sa[0]) - (xb[0] - sb[0]), (xa[1] - sa[1]) - (xb[1] - sb[1]),
+                          (xa[2] - sa[2]) - (xb[2] - sb[2])};
+  const double k = c.stiffness[contact];  // N/m
+  const double fn =
+      k * (length - l) - c.damping[contact] * dot(move, u) / p.h;  // N, on the first end
+  b.add_force(w * fn, u);
+  const double sideways = l > length ? k * (1.0 - length / l) : 0.0;  // N/m
+  b.add_identity(w * w * sideways);
+  b.add_outer(w * w * (k + c.damping[contact] / p.h - sideways), u);
+}
+
 // Contacts between particles, linearised at the step's start; the other particles are read as
 // contact_partner says.
 void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, const double* x,
@@ -55,6 +88,10 @@ void add_couplings(const VbdProblem& p, std::int64_t i, const double* xi, const 
   const VbdCouplings& c = p.couplings;
   for (std::int32_t e = c.offsets[i]; e < c.offsets[i + 1]; ++e) {
     const std::int64_t contact = c.contact[e];
+    if (c.two_sided[contact] && c.particle[4 * contact + 1] >= 0) {
+      add_particle_spring(p, contact, c.weight[4 * contact + c.slot[e]], i, xi, x, b);
+      continue;
+    }
     const double* n = c.normal + 3 * contact;
     double along = 0.0;  // m: n . sum_j w_j (x_j - x_j(n))
     for (int s = 0; s < 4; ++s) {

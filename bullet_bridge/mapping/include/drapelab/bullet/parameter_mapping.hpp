@@ -7,6 +7,7 @@
 
 #include "drapelab/cloth_model.hpp"
 #include "drapelab/collider.hpp"
+#include "drapelab/triangle_mesh.hpp"
 
 namespace drapelab::bullet {
 
@@ -27,5 +28,16 @@ double largest_mapped_step(const ClothModel& model);
 
 // A voxel size that resolves the colliders: min(margin, smallest feature / 10) (m).
 double default_voxel_size(const std::vector<Collider>& colliders, double margin);
+
+// Whether every connected part of the mesh is convex: each of its vertices on or behind the plane
+// of each of its triangles, to rounding of the mesh's size. The convex hulls of such parts are the
+// mesh itself.
+bool mesh_parts_are_convex(const TriangleMesh& mesh);
+
+// Whether the deformable cloth meets the scene's mesh colliders as their triangles (face contacts
+// against a GImpact mesh): when any of them has a concave part, which its hull would fill.
+// Otherwise it meets them as their parts' hulls, by node contacts as it does the primitives, at a
+// fraction of the cost (docs/bullet.md, "Mesh colliders").
+bool deformable_meets_mesh_triangles(const std::vector<Collider>& colliders);
 
 }  // namespace drapelab::bullet
