@@ -54,7 +54,7 @@ TEST(Seams, ASeamSewsASheetIntoATubeAndHoldsItShut) {
 // The same tube under vbd at its default step, where a stitch's k h^2 / m is about 150: each
 // stitch is a spring with its full stiffness matrix in the particles' blocks, so the seam shuts
 // sideways as well as along the stitch (measured: 2.8 mm at the widest; linearised along the
-// stitch's direction at the step's start it stayed 2 cm open). The sweeps, one particle at a
+// stitch's direction at the step's start it stays 2 cm open). The sweeps, one particle at a
 // time, move each pair's first particle more than its second, so the tube drifts (12 cm over the
 // second); that is not asserted here.
 TEST(Seams, VbdShutsTheSeamOfATube) {
