@@ -23,7 +23,7 @@
 #include "drapelab/stability.hpp"
 #include "drapelab/triangle_penetration.hpp"
 #include "forces/continuum_arrays.hpp"
-#include "forces/forces.hpp"
+#include "drapelab/spring_forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/shape_bound.hpp"
 

@@ -9,6 +9,7 @@ packages=(
   libfcl-dev                                     # exact particle-collider contact (engine)
   libgmp-dev                                     # exact orient3d for the self-intersection audit (engine)
   libbullet-dev                                  # Bullet 3.24, double build bullet-float64 (bullet_bridge)
+  libmujoco-dev                                  # MuJoCo 2.2.2, the third engine (mujoco_bridge)
   libyaml-cpp-dev                                # scene files
   libcli11-dev                                   # command line
   nlohmann-json3-dev                             # summary.json

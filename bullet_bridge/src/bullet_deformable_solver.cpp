@@ -17,6 +17,7 @@
 #include "deformable_contact_forces.hpp"
 #include "deformable_self_collision.hpp"
 #include "drapelab/bullet/parameter_mapping.hpp"
+#include "drapelab/runaway_check.hpp"
 #include "per_link_spring_force.hpp"
 #include "soft_body_cloth.hpp"
 

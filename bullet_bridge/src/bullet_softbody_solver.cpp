@@ -6,6 +6,7 @@
 
 #include "bullet_math.hpp"
 #include "classic_cloth_solver.hpp"
+#include "drapelab/runaway_check.hpp"
 #include "soft_body_cloth.hpp"
 
 namespace drapelab::bullet {

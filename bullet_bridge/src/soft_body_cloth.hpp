@@ -87,9 +87,4 @@ void estimate_contact_forces(const ClothModel& model, const std::vector<NodeCont
                              const Eigen::Matrix3Xd& velocity, const Eigen::Vector3d& gravity,
                              double h, std::vector<ColliderForce>& forces);
 
-// A message naming the first non-finite or runaway node, the step and `advice`; nothing when
-// healthy.
-std::optional<std::string> runaway_message(const ClothModel& model, const ClothState& state,
-                                           double max_speed, double h, const std::string& advice);
-
 }  // namespace drapelab::bullet

@@ -1,5 +1,5 @@
 // The plain spring phase: adds into `force` (N, 3 x N) and allocates nothing.
-#include "forces/forces.hpp"
+#include "drapelab/spring_forces.hpp"
 
 #include "forces/spring_force.hpp"
 

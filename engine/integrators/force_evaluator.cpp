@@ -10,7 +10,7 @@
 #include "drapelab/stability.hpp"
 #include "forces/body_force_loops.hpp"
 #include "forces/continuum_arrays.hpp"
-#include "forces/forces.hpp"
+#include "drapelab/spring_forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/phase_timer.hpp"
 #include "self_collision/self_contact_term.hpp"

@@ -11,6 +11,8 @@ const char* solver_type_name(SolverType type) {
       return "bullet_softbody";
     case SolverType::bullet_deformable:
       return "bullet_deformable";
+    case SolverType::mujoco:
+      return "mujoco";
   }
   return "unknown";
 }

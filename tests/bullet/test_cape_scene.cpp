@@ -1,6 +1,6 @@
-// scenes/cape.yaml through the man's first half turn, with all three solvers: the particles pinned
-// to the shoulders (cloth.pins[].attach) keep their distance to the shoulders' surface while the
-// articulated figure turns under them.
+// scenes/cape.yaml through the man's first half turn, with every solver of the scene (ours,
+// Bullet's two cloths, MuJoCo's): the particles pinned to the shoulders (cloth.pins[].attach) keep
+// their distance to the shoulders' surface while the articulated figure turns under them.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

@@ -119,6 +119,7 @@ double step_of(const Solver& solver) {
     case SolverType::bullet_softbody:
       return 1e-4;
     case SolverType::bullet_deformable:
+    case SolverType::mujoco:  // not built here
       return 2e-4;
   }
   return 1e-4;

@@ -37,7 +37,7 @@ TEST_F(BenchCli, QuickRunWritesARowPerSceneAndSolver) {
       run_drapelab({"bench", "--quick", "--scenes", scenes, "--out", out.string()});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const auto lines = split_lines(read_text(out / "bench.csv"));
-  ASSERT_EQ(lines.size(), 1u + 2 * 5) << "a header, then 4 solvers and the reference per scene";
+  ASSERT_EQ(lines.size(), 1u + 2 * 6) << "a header, then 5 solvers and the reference per scene";
   const auto header = split_csv(lines[0]);
   const std::size_t scene_column = column(header, "scene"), solver = column(header, "solver"),
                     setting = column(header, "setting"), dt_column = column(header, "dt"),
@@ -108,12 +108,15 @@ TEST_F(BenchCli, QuickRunWritesARowPerSceneAndSolver) {
       EXPECT_EQ(cells[setting], "\"symplectic_euler at 1/4 stable step\"") << "quoted in the CSV";
       EXPECT_EQ(cells[runs], "1");
       EXPECT_EQ(rms, 0.0) << "the reference against itself";
-      EXPECT_EQ(k % 5, 0u) << "the last row of its scene and size";
+      EXPECT_EQ(k % 6, 0u) << "the last row of its scene and size";
     }
   }
   EXPECT_EQ(references, 2);
   const std::string md = read_text(out / "bench.md");
   EXPECT_NE(md.find("| curtain | 33 x 33 | bullet_classic |"), std::string::npos);
+  EXPECT_NE(md.find("| sphere_drape | 33 x 33 | mujoco | cg at its stable step |"),
+            std::string::npos)
+      << md;
   EXPECT_NE(md.find("| rms to reference (m) |"), std::string::npos);
   EXPECT_NE(md.find("| sphere_drape | 33 x 33 | reference | symplectic_euler at 1/4 stable step |"),
             std::string::npos)
@@ -129,7 +132,7 @@ TEST_F(BenchCli, NoReferenceLeavesTheAccuracyColumnEmpty) {
                     (source / "scenes/curtain.yaml").string(), "--out", out.string()});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const auto lines = split_lines(read_text(out / "bench.csv"));
-  ASSERT_EQ(lines.size(), 1u + 4) << "a header and the 4 solvers";
+  ASSERT_EQ(lines.size(), 1u + 5) << "a header and the 5 solvers";
   const auto header = split_csv(lines[0]);
   const std::size_t solver = column(header, "solver"), rms = column(header, "rms_to_reference");
   for (std::size_t k = 1; k < lines.size(); ++k) {
@@ -153,7 +156,7 @@ TEST_F(BenchCli, RepeatReportsTheFastestOfTheRunsAndTheirSpread) {
   EXPECT_EQ(result.output.find("warning:"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("fastest of 2 runs"), std::string::npos) << result.output;
   const auto lines = split_lines(read_text(out / "bench.csv"));
-  ASSERT_EQ(lines.size(), 1u + 5) << "a header, the 4 solvers and the reference";
+  ASSERT_EQ(lines.size(), 1u + 6) << "a header, the 5 solvers and the reference";
   const auto header = split_csv(lines[0]);
   ASSERT_EQ(header.size(), 21u);
   const std::size_t solver = column(header, "solver"), runs = column(header, "runs"),

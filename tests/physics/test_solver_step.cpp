@@ -12,7 +12,7 @@
 #include "drapelab/stability.hpp"
 #include "fixtures/sheets.hpp"
 #include "forces/body_force_loops.hpp"
-#include "forces/forces.hpp"
+#include "drapelab/spring_forces.hpp"
 #include "forces/spring_family_loops.hpp"
 #include "forces/spring_force.hpp"
 #include "integrators/particle_loops.hpp"

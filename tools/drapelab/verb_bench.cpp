@@ -4,10 +4,11 @@
 // substeps at 0.9 of its shape's stable step on the spring fast path (OpenMP threads in every
 // phase of both); Bullet's classic cloth at its cheapest stable setting (a 240 Hz
 // step with 4 iterations, halved until it holds); Bullet's deformable world at its own stable step
-// (skipped above 65 x 65 particles: it costs minutes there). Once per scene and size, a reference
-// run (our cloth, symplectic Euler at a fixed quarter of its stable step) gives every solver's
-// distance to it at the final frame. Writes bench.csv and bench.md; the numbers are measurements,
-// never checked against targets.
+// (skipped above 65 x 65 particles: it costs minutes there); MuJoCo's cloth at its stable step
+// (skipped where its buffer holds too few contacts: 129 x 129). Once per scene and size, a
+// reference run (our cloth, symplectic Euler at a fixed quarter of its stable step) gives every
+// solver's distance to it at the final frame. Writes bench.csv and bench.md; the numbers are
+// measurements, never checked against targets.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -44,7 +45,8 @@ const std::string kSolvers =
     " {name: ours_explicit, type: spring_damper, integrator: symplectic_euler, "
     "adaptive_substeps: true, host: none},"
     " {name: bullet_classic, type: bullet_softbody, iterations: 4, dt: 0.004166666666666667},"
-    " {name: bullet_deformable, type: bullet_deformable}";
+    " {name: bullet_deformable, type: bullet_deformable},"
+    " {name: mujoco, type: mujoco}";
 // The reference run, appended to the list so the loader checks it and fills in its defaults; its
 // automatic step is then replaced by a quarter of the stable step (reference_spec).
 const std::string kReference =
@@ -61,6 +63,19 @@ struct Measured {
   std::optional<double> max_triangle_penetration;  // m, over every recorded frame
   Eigen::Matrix3Xd last_x;                         // m, the positions at the last recorded frame
 };
+
+// Why a solver does not run at this size (empty: it runs). Bullet's deformable world costs minutes
+// above 65 x 65; MuJoCo 2.2 holds fewer contacts than a quarter of the particles (its 2 GB buffer,
+// docs/mujoco.md, "Memory"), where a drape touches with most of them.
+std::string skip_reason(const scene::SolverSpec& spec, int n, const ClothModel& model) {
+  if (spec.type == SolverType::bullet_deformable && n > kLargestDeformable)
+    return "over " + std::to_string(kLargestDeformable) + " x " +
+           std::to_string(kLargestDeformable) + ": minutes per run";
+  if (spec.type == SolverType::mujoco && 4 * spec.mujoco.max_contacts < model.particle_count())
+    return "MuJoCo 2.2's 2 GB buffer holds " + std::to_string(spec.mujoco.max_contacts) +
+           " contacts for " + std::to_string(model.particle_count()) + " particles";
+  return "";
+}
 
 Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
                  const runner::SceneSetup& setup, const std::atomic<bool>& interrupt) {
@@ -91,7 +106,8 @@ Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
 struct SolverRuns {
   scene::SolverSpec trial;
   bool skipped = false;
-  bool reference = false;  // the reference run of the cell, not one of kSolvers
+  std::string skip_reason;  // when skipped
+  bool reference = false;   // the reference run of the cell, not one of kSolvers
   Measured fastest;
   double slowest_wall = 0.0;  // s
   int count = 0;
@@ -120,8 +136,7 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
   row.type = solver_type_name(r.trial.type);
   if (r.skipped) {
     row.status = "skipped";
-    row.setting = "over " + std::to_string(kLargestDeformable) + " x " +
-                  std::to_string(kLargestDeformable) + ": minutes per run";
+    row.setting = r.skip_reason;
     return row;
   }
   const runner::SimulationResult& result = r.fastest.result;
@@ -131,6 +146,10 @@ BenchRow bench_row(const scene::Scene& scene, int n, const ClothModel& model, co
                     ? std::string(integrator_name(r.trial.integrator))
                 : r.trial.type == SolverType::bullet_softbody
                     ? std::to_string(r.trial.iterations) + " iterations"
+                : r.trial.type == SolverType::mujoco
+                    ? std::string(mujoco::constraint_solver_name(mujoco::chosen_solver(
+                          r.trial.mujoco.constraint_solver, 3 * row.particles))) +
+                          " at its stable step"
                     : "its stable step";
   if (r.trial.type == SolverType::spring_damper && r.trial.integrator == Integrator::vbd)
     row.setting += " (" + std::to_string(r.trial.vbd.iterations) + " sweeps" +
@@ -305,7 +324,8 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       for (const auto& spec : scene->solvers) {
         SolverRuns r;
         r.trial = spec;
-        r.skipped = spec.type == SolverType::bullet_deformable && n > kLargestDeformable;
+        r.skip_reason = skip_reason(spec, n, *setup.model);
+        r.skipped = !r.skip_reason.empty();
         if (!r.skipped) {
           r.add(measure(*scene, r.trial, setup, interrupt));
           // Bullet's classic cloth: halve the step until it holds (its cheapest stable setting).

@@ -89,7 +89,11 @@ int validate_verb(const ValidateArguments& arguments) {
                 << solver.implicit.max_iterations << " iterations per step)";
     if (solver.type == SolverType::bullet_softbody)
       std::cout << ", " << solver.iterations << " iteration(s)";
-    if (solver.type != SolverType::spring_damper)
+    if (solver.type == SolverType::mujoco)
+      std::cout << ", particle radius " << solver.margin << " m, "
+                << mujoco::constraint_solver_name(solver.mujoco.constraint_solver)
+                << " constraint solver";
+    else if (solver.type != SolverType::spring_damper)
       std::cout << ", margin " << solver.margin << " m, voxel " << solver.voxel_size << " m";
     std::cout << ", dt " << solver.dt << " s (" << solver.steps_per_frame << " steps per frame)";
     if (solver.estimated_seconds > 0.0)

@@ -1,6 +1,6 @@
-// The interface the runner drives: every solver (ours and Bullet's two cloths) steps by h and
-// exposes its cloth as a ClothState whose node i is model particle i. The runner knows nothing of
-// their insides.
+// The interface the runner drives: every solver (ours, Bullet's two cloths and MuJoCo's) steps by h
+// and exposes its cloth as a ClothState whose node i is model particle i. The runner knows nothing
+// of their insides.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,9 +24,11 @@ enum class SolverType {
   spring_damper,      // ours (engine/)
   bullet_softbody,    // Bullet's classic cloth, btSoftBody
   bullet_deformable,  // Bullet's deformable world
+  mujoco,             // MuJoCo 2.2: our cloth's particles as MuJoCo bodies (mujoco_bridge/)
 };
-inline constexpr std::array<SolverType, 3> kSolverTypes = {
-    SolverType::spring_damper, SolverType::bullet_softbody, SolverType::bullet_deformable};
+inline constexpr std::array<SolverType, 4> kSolverTypes = {
+    SolverType::spring_damper, SolverType::bullet_softbody, SolverType::bullet_deformable,
+    SolverType::mujoco};
 const char* solver_type_name(SolverType type);
 std::optional<SolverType> parse_solver_type(std::string_view name);
 

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+
+#include "drapelab/mujoco/mujoco_mapping.hpp"
 
 namespace drapelab::scene {
 namespace {
@@ -82,11 +85,25 @@ std::vector<MemoryPart> run_memory_parts(double particles, const YAML::Node& sol
       per_particle = kBulletSoftbodyBytesPerParticle;
     else if (type == "bullet_deformable")
       per_particle = kBulletDeformableBytesPerParticle;
+    else if (type == "mujoco")
+      per_particle = kMujocoBytesPerParticle;
     else
       continue;
+    double bytes = per_particle * particles;
+    if (type == "mujoco") {
+      const auto dofs = static_cast<std::int64_t>(3.0 * particles);
+      // max_contacts when the entry gives a whole number; the solver reader reports any other.
+      const std::string given = entry_text(entry, "max_contacts", "0");
+      char* end = nullptr;
+      const long asked_long = std::strtol(given.c_str(), &end, 10);
+      const int asked = *end == '\0' && asked_long > 0 && asked_long < 10000000
+                            ? static_cast<int>(asked_long)
+                            : 0;
+      bytes += mujoco::constraint_buffer_bytes(
+          mujoco::contact_capacity(asked, static_cast<std::int64_t>(particles), dofs), dofs);
+    }
     const std::string name = entry_text(entry, "name", type);
-    parts.push_back(
-        {"solver " + name + (name == type ? "" : " (" + type + ")"), per_particle * particles});
+    parts.push_back({"solver " + name + (name == type ? "" : " (" + type + ")"), bytes});
   }
   return parts;
 }

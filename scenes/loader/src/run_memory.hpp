@@ -20,6 +20,9 @@ inline constexpr double kSpringDamperBytesPerParticle = 1400.0;   // the implici
 inline constexpr double kSelfCollisionBytesPerParticle = 1300.0;  // our solver's self-contact
 inline constexpr double kBulletSoftbodyBytesPerParticle = 2300.0;
 inline constexpr double kBulletDeformableBytesPerParticle = 2800.0;
+// MuJoCo's model and data without its constraint arrays, which grow as contacts x degrees of
+// freedom and are added from mujoco::constraint_buffer_bytes.
+inline constexpr double kMujocoBytesPerParticle = 3000.0;
 
 // One part of the estimate, for the message.
 struct MemoryPart {

@@ -16,11 +16,12 @@ inline constexpr SceneKey kSolverKeys[] = {
             "`meshes/NAME.pc2`), unique"},
     {.path = "solvers[].type",
      .type = KeyType::choice,
-     .choices = "spring_damper|bullet_softbody|bullet_deformable",
+     .choices = "spring_damper|bullet_softbody|bullet_deformable|mujoco",
      .given = Given::value,
      .fallback = "spring_damper",
      .doc = "`spring_damper` (ours), `bullet_softbody` (Bullet's classic cloth), "
-            "`bullet_deformable` (Bullet's deformable world)"},
+            "`bullet_deformable` (Bullet's deformable world), `mujoco` (MuJoCo 2.2: the cloth's "
+            "particles as MuJoCo bodies, [mujoco.md](mujoco.md))"},
     {.path = "solvers[].dt",
      .range = Range::positive(),
      .given = Given::derived,
@@ -40,7 +41,8 @@ inline constexpr SceneKey kSolverKeys[] = {
             "s for `vbd` (10 sweeps per step); 1/120 s with `adaptive_substeps` (the solver then "
             "splits each step itself). `bullet_softbody`: the step where ks·w·h² = 0.1 for the "
             "stiffest link, the limit of its stiffness mapping. `bullet_deformable`: 0.9 × the "
-            "stable step of its explicit springs"},
+            "stable step of its explicit springs. `mujoco`: 0.9 × the stable step of its "
+            "explicit springs and contact springs"},
     {.path = "solvers[].round_dt",
      .type = KeyType::boolean,
      .given = Given::value,
@@ -144,12 +146,13 @@ inline constexpr SceneKey kSolverKeys[] = {
      .doc = "position-solver sweeps per step"},
     {.path = "solvers[].margin",
      .range = bullet_length_range(),
-     .when = "bullet_softbody|bullet_deformable",
+     .when = "bullet_softbody|bullet_deformable|mujoco",
      .given = Given::derived,
      .fallback = "the cloth's `thickness`",
      .unit = "m",
      .comment = "m, soft collision margin",
-     .doc = "the soft body's collision margin: Bullet's cloth rests this far off surfaces"},
+     .doc = "the soft body's collision margin: Bullet's cloth rests this far off surfaces; "
+            "`mujoco`: the radius of the particles' sphere geoms"},
     {.path = "solvers[].voxel_size",
      .range = bullet_length_range(),
      .when = "bullet_softbody|bullet_deformable",
@@ -173,6 +176,47 @@ inline constexpr SceneKey kSolverKeys[] = {
      .fallback = "mapped from ks",
      .doc = "each kind given replaces the mapping kLST = 1 − (1 + ks·w·h²)^(−1/iterations) for "
             "that spring kind"},
+    {.path = "solvers[].constraint_solver",
+     .type = KeyType::choice,
+     .choices = "auto|newton|cg|pgs",
+     .when = "mujoco",
+     .given = Given::value,
+     .fallback = "auto",
+     .doc = "MuJoCo's constraint solver; `auto`: Newton up to 3,000 degrees of freedom (1,000 "
+            "particles), the conjugate gradient above (MuJoCo 2.2's Newton factors a dense "
+            "Hessian)"},
+    {.path = "solvers[].solver_iterations",
+     .type = KeyType::integer,
+     .range = {1.0, true, 10000.0, true},
+     .when = "mujoco",
+     .given = Given::value,
+     .fallback = "100",
+     .doc = "the constraint solver's iterations per step at most"},
+    {.path = "solvers[].tolerance",
+     .range = {0.0, true, 1.0, false},
+     .when = "mujoco",
+     .given = Given::value,
+     .fallback = "1e-10",
+     .doc = "the constraint solver stops when its cost improves by less than this, relatively"},
+    {.path = "solvers[].impratio",
+     .range = {1.0, true, 1e12, true},
+     .when = "mujoco",
+     .given = Given::derived,
+     .fallback = "the ratio at which friction takes out one step's sliding per step",
+     .doc = "the friction-to-normal impedance ratio of MuJoCo's elliptic cones. The default, "
+            "about m / (c dt) for contact damping c and the mean particle mass m, makes a "
+            "contact below the friction angle creep at dt times its tangential acceleration; "
+            "1 leaves friction a viscous damper c; much larger makes the friction rows "
+            "overshoot and chatter ([mujoco.md](mujoco.md#friction))"},
+    {.path = "solvers[].max_contacts",
+     .type = KeyType::integer,
+     .range = {1.0, true, 1e7, true},
+     .when = "mujoco",
+     .given = Given::derived,
+     .fallback = "one per free particle and 64, within MuJoCo's 2 GB buffer",
+     .doc = "the contacts MuJoCo makes room for; a step that needs more stops the solver with an "
+            "error (MuJoCo 2.2 would drop them). Its constraint arrays grow as contacts × "
+            "degrees of freedom ([mujoco.md](mujoco.md#memory))"},
 };
 
 // The maps of a solver: implicit, vbd, kLST.

@@ -230,6 +230,7 @@ class SceneBuilder {
     scene_.solvers = scene::read_solvers(r_, solvers, scene_, model.get(), notes);
     check_continuum_is_used();
     check_dynamic_hosts(top);
+    check_mujoco_limits(top);
     if (model && r_.error_count() == 0)
       check_start_state(r_, scene_, *model, top.node(), start_inside_, warnings);
   }
@@ -280,6 +281,35 @@ class SceneBuilder {
                    "(use host: bullet)",
                list[k]);
     }
+  }
+
+  // What MuJoCo's mapping does not carry (docs/mujoco.md, "Where MuJoCo departs"): mesh
+  // colliders (MuJoCo 2.2 meets only a mesh's convex hull), and pins or constraints on a dynamic
+  // collider (the solver moves the particles it holds, not the body's).
+  void check_mujoco_limits(MapReader& top) {
+    std::string problem;
+    for (const Collider& c : scene_.colliders)
+      if (c.shape == ColliderShape::mesh && problem.empty())
+        problem = "collider '" + c.name +
+                  "' is a mesh, and MuJoCo 2.2 meets a mesh only as its convex hull; the MuJoCo "
+                  "solver carries spheres, cylinders, capsules, boxes and planes";
+    for (const std::string& name : scene_.cloth.pin_attach)
+      for (const Collider& c : scene_.colliders)
+        if (c.dynamic() && c.name == name && problem.empty())
+          problem = "pins are attached to the dynamic collider '" + name +
+                    "', which the MuJoCo solver cannot carry";
+    for (const DistanceConstraint& constraint : scene_.constraints)
+      if (constraint.b.kind == ConstraintEnd::Kind::collider_point && problem.empty() &&
+          scene_.colliders.at(static_cast<std::size_t>(constraint.b.collider)).dynamic())
+        problem = "a constraint ends on the dynamic collider '" +
+                  scene_.colliders[static_cast<std::size_t>(constraint.b.collider)].name +
+                  "', which the MuJoCo solver cannot carry";
+    if (problem.empty() || !top.has("solvers")) return;
+    const YAML::Node list = top.get("solvers");
+    for (std::size_t k = 0; k < scene_.solvers.size() && k < list.size(); ++k)
+      if (scene_.solvers[k].type == SolverType::mujoco)
+        r_.error(list[k]["type"], "solvers." + std::to_string(k) + ".type",
+                 "is mujoco, but " + problem + " (use spring_damper or a Bullet cloth)", list[k]);
   }
 
   // cloth.continuum on a springs cloth serves the solvers with model: continuum. With none it acts

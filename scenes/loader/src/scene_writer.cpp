@@ -306,7 +306,16 @@ void write_solver(std::ostream& out, const SolverSpec& solver) {
           return row.name() == "tolerance" ? format_number(solver.implicit.tolerance)
                                            : std::to_string(solver.implicit.max_iterations);
         }));
-  if (!ours) {
+  if (solver.type == SolverType::mujoco) {
+    const mujoco::MujocoSettings& m = solver.mujoco;
+    put(out, in, key("solvers[].margin"), format_number(solver.margin));
+    put(out, in, key("solvers[].constraint_solver"),
+        mujoco::constraint_solver_name(m.constraint_solver));
+    put(out, in, key("solvers[].solver_iterations"), std::to_string(m.solver_iterations));
+    put(out, in, key("solvers[].tolerance"), format_number(m.tolerance));
+    put(out, in, key("solvers[].impratio"), format_number(m.impratio));
+    put(out, in, key("solvers[].max_contacts"), std::to_string(m.max_contacts));
+  } else if (!ours) {
     if (solver.type == SolverType::bullet_softbody)
       put(out, in, key("solvers[].iterations"), std::to_string(solver.iterations));
     put(out, in, key("solvers[].margin"), format_number(solver.margin));

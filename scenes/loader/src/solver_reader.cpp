@@ -53,7 +53,9 @@ class SolverReader {
       const std::string host = default_choice(key("solvers[].host"));
       spec.bullet_host = solver.choice(key("solvers[].host")).value_or(host) == "bullet";
       read_adaptive_substeps(solver, path, spec);
-    } else
+    } else if (type == SolverType::mujoco)
+      read_mujoco_options(solver, spec);
+    else
       read_bullet_options(solver, spec);
     const double frame_period = scene_.frame_period();
     if (solver.has("dt"))
@@ -71,6 +73,7 @@ class SolverReader {
         solver.number(key("solvers[].runaway_stretch")).value_or(runaway_stretch);
     if (r_.error_count() != errors_before) return std::nullopt;
     if (!whole_steps_per_frame(solver, path, spec)) return std::nullopt;
+    if (type == SolverType::mujoco && model_) fill_mujoco_defaults(spec);
     return spec;
   }
 
@@ -166,6 +169,41 @@ class SolverReader {
       if (raw.has(std::string(kinds[k]->name()))) spec.link_stiffness[k] = raw.number(*kinds[k]);
   }
 
+  // MuJoCo (docs/mujoco.md): the particles' radius is the cloth's thickness, as Bullet's margin.
+  void read_mujoco_options(MapReader& solver, SolverSpec& spec) {
+    const double thickness = scene_.cloth.grid.thickness;
+    spec.margin = solver.number(key("solvers[].margin"), thickness).value_or(thickness);
+    mujoco::MujocoSettings& m = spec.mujoco;
+    if (const auto name = solver.choice(key("solvers[].constraint_solver")))
+      for (const auto candidate :
+           {mujoco::ConstraintSolver::automatic, mujoco::ConstraintSolver::newton,
+            mujoco::ConstraintSolver::cg, mujoco::ConstraintSolver::pgs})
+        if (*name == mujoco::constraint_solver_name(candidate)) m.constraint_solver = candidate;
+    m.solver_iterations = static_cast<int>(
+        solver.integer(key("solvers[].solver_iterations")).value_or(m.solver_iterations));
+    m.tolerance = solver.number(key("solvers[].tolerance")).value_or(m.tolerance);
+    m.impratio = solver.number(key("solvers[].impratio")).value_or(m.impratio);
+    m.max_contacts =
+        static_cast<int>(solver.integer(key("solvers[].max_contacts")).value_or(m.max_contacts));
+  }
+
+  // MuJoCo's derived numerics, which resolved.yaml records: the friction's impedance ratio at the
+  // step chosen, and the contacts it makes room for (docs/mujoco.md).
+  void fill_mujoco_defaults(SolverSpec& spec) const {
+    mujoco::MujocoSettings& m = spec.mujoco;
+    if (!(m.impratio > 0.0))
+      m.impratio = mujoco::friction_impratio(scene_.contact.damping,
+                                             mujoco::mean_free_mass(*model_), spec.dt);
+    if (m.max_contacts > 0) return;
+    std::int64_t free_particles = 0, dofs = 0;
+    for (int i = 0; i < model_->particle_count(); ++i)
+      if (!model_->is_pinned(i)) ++free_particles;
+    dofs = 3 * free_particles;
+    for (const Collider& collider : scene_.colliders)
+      if (collider.moves()) dofs += 6;
+    m.max_contacts = static_cast<int>(mujoco::contact_capacity(0, free_particles, dofs));
+  }
+
   // Without a dt: our solver takes the step its integrator asks for (default_step,
   // stability.hpp): its own default, or a share of its stable step estimate on the springs,
   // dampers, contact and the forces between particles. Bullet's classic cloth takes the step where
@@ -190,6 +228,13 @@ class SolverReader {
       const double stiffness = network_rate_bounds(model, 0.0).stiffness;  // 1/s^2
       if (stiffness > 0.0) target = 0.9 * 2.0 / std::sqrt(stiffness);
       reason = "0.9 x the stable step of its explicit springs";
+    } else if (spec.type == SolverType::mujoco) {
+      // Our springs and MuJoCo's contact springs are explicit; its air damping is implicit.
+      const double stable =
+          stable_step_estimate(model, 0.0, scene_.contact_rates(), Integrator::verlet,
+                               explicit_particle_rates(scene_, model));
+      if (std::isfinite(stable)) target = std::min(target, 0.9 * stable);
+      reason = "0.9 x the stable step of its explicit springs and contact springs";
     } else {
       const DefaultStep chosen =
           default_step(model, spec.integrator, spec.adaptive_substeps, scene_.cloth.air_damping,

@@ -5,6 +5,7 @@
 #include "drapelab/bullet/bullet_deformable_solver.hpp"
 #include "drapelab/bullet/bullet_host.hpp"
 #include "drapelab/bullet/bullet_softbody_solver.hpp"
+#include "drapelab/mujoco/mujoco_solver.hpp"
 #include "drapelab/spring_damper_solver.hpp"
 
 namespace drapelab::runner {
@@ -83,6 +84,19 @@ std::unique_ptr<Solver> make_deformable_cloth(const scene::Scene& scene,
                                                scene.colliders, options);
 }
 
+// MuJoCo's cloth on the scene's colliders (docs/mujoco.md).
+std::unique_ptr<Solver> make_mujoco_cloth(const scene::Scene& scene, const scene::SolverSpec& spec,
+                                          std::shared_ptr<const ClothModel> model,
+                                          const ClothState& initial, const World& world) {
+  mujoco::MujocoOptions options;
+  static_cast<World&>(options) = world;
+  options.dt = spec.dt;
+  options.particle_radius = spec.margin;
+  options.numerics = spec.mujoco;
+  options.max_speed = spec.max_speed;
+  return mujoco::make_mujoco_solver(spec.name, std::move(model), initial, scene.colliders, options);
+}
+
 }  // namespace
 
 std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::SolverSpec& spec,
@@ -98,6 +112,8 @@ std::unique_ptr<Solver> make_solver(const scene::Scene& scene, const scene::Solv
       return make_classic_cloth(scene, spec, std::move(model), initial, world);
     case SolverType::bullet_deformable:
       return make_deformable_cloth(scene, spec, std::move(model), initial, world);
+    case SolverType::mujoco:
+      return make_mujoco_cloth(scene, spec, std::move(model), initial, world);
   }
   // Every type has a case above, so reaching here is a programming error.
   throw std::logic_error(std::string("solver type '") + solver_type_name(spec.type) +

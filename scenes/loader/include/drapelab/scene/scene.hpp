@@ -21,6 +21,7 @@
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/integrators.hpp"
 #include "drapelab/mesh_cloth.hpp"
+#include "drapelab/mujoco/mujoco_mapping.hpp"
 #include "drapelab/self_collision.hpp"
 #include "drapelab/solver.hpp"
 #include "drapelab/stability.hpp"
@@ -117,6 +118,8 @@ struct SolverSpec {
   double collider_margin = 1e-3;  // m, Bullet's rounding of box and cylinder edges
   std::array<std::optional<double>, 3>
       link_stiffness;  // raw kLST per spring kind, replacing the mapping
+  // MuJoCo's own numerics (docs/mujoco.md); its particle radius is `margin` above.
+  mujoco::MujocoSettings mujoco;
 };
 
 enum class MeshOutput { none, obj, pc2, both };
