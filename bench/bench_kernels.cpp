@@ -20,10 +20,10 @@
 #include "drapelab/implicit_euler.hpp"
 #include "drapelab/self_intersections.hpp"
 #include "drapelab/spring_damper_solver.hpp"
+#include "drapelab/spring_forces.hpp"
 #include "drapelab/stability.hpp"
 #include "drapelab/triangle_penetration.hpp"
 #include "forces/continuum_arrays.hpp"
-#include "drapelab/spring_forces.hpp"
 #include "forces/spring_families.hpp"
 #include "integrators/shape_bound.hpp"
 

@@ -1,6 +1,5 @@
 // The plain spring phase: adds into `force` (N, 3 x N) and allocates nothing.
 #include "drapelab/spring_forces.hpp"
-
 #include "forces/spring_force.hpp"
 
 namespace drapelab {

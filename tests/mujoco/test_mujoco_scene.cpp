@@ -77,6 +77,13 @@ TEST(MujocoScene, MeshColliderIsRefusedAtTheSolver) {
       {"solvers.1.type", "is mujoco", "collider 'box' is a mesh", "convex hull"}));
 }
 
+TEST(MujocoScene, AClothTooLargeForMujocosStackIsRefused) {
+  const auto result = scene::load_scene_text(scene_with(kBall, "  - {name: mj, type: mujoco}\n"),
+                                             "mujoco_scene.yaml", {"cloth.resolution=[300, 300]"});
+  EXPECT_TRUE(fixtures::HasError(result, fixtures::at_line("mujoco_scene.yaml", 17),
+                                 {"solvers.0.type", "90001 bodies", "2^31", "fewer particles"}));
+}
+
 TEST(MujocoScene, BulletKeysAreNotMujocos) {
   const auto result = scene::load_scene_text(
       scene_with(kBall, "  - {name: mj, type: mujoco, voxel_size: 0.001}\n"), "mujoco_scene.yaml");

@@ -11,6 +11,7 @@
 // measurements, never checked against targets.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include <thread>
 
 #include "drapelab/loop_threads.hpp"
+#include "drapelab/mujoco/mujoco_mapping.hpp"
 #include "drapelab/run_folder/files.hpp"
 #include "drapelab/runner/bench_table.hpp"
 #include "drapelab/runner/run_scene.hpp"
@@ -45,8 +47,9 @@ const std::string kSolvers =
     " {name: ours_explicit, type: spring_damper, integrator: symplectic_euler, "
     "adaptive_substeps: true, host: none},"
     " {name: bullet_classic, type: bullet_softbody, iterations: 4, dt: 0.004166666666666667},"
-    " {name: bullet_deformable, type: bullet_deformable},"
-    " {name: mujoco, type: mujoco}";
+    " {name: bullet_deformable, type: bullet_deformable}";
+// MuJoCo's cloth, after them where its model fits MuJoCo 2.2 (mujoco_skip_reason).
+const std::string kMujoco = "{name: mujoco, type: mujoco}";
 // The reference run, appended to the list so the loader checks it and fills in its defaults; its
 // automatic step is then replaced by a quarter of the stable step (reference_spec).
 const std::string kReference =
@@ -64,17 +67,29 @@ struct Measured {
   Eigen::Matrix3Xd last_x;                         // m, the positions at the last recorded frame
 };
 
-// Why a solver does not run at this size (empty: it runs). Bullet's deformable world costs minutes
-// above 65 x 65; MuJoCo 2.2 holds fewer contacts than a quarter of the particles (its 2 GB buffer,
-// docs/mujoco.md, "Memory"), where a drape touches with most of them.
-std::string skip_reason(const scene::SolverSpec& spec, int n, const ClothModel& model) {
+// Why Bullet's deformable world does not run at this size (empty: it runs): minutes per run above
+// 65 x 65.
+std::string skip_reason(const scene::SolverSpec& spec, int n) {
   if (spec.type == SolverType::bullet_deformable && n > kLargestDeformable)
     return "over " + std::to_string(kLargestDeformable) + " x " +
            std::to_string(kLargestDeformable) + ": minutes per run";
-  if (spec.type == SolverType::mujoco && 4 * spec.mujoco.max_contacts < model.particle_count())
-    return "MuJoCo 2.2's 2 GB buffer holds " + std::to_string(spec.mujoco.max_contacts) +
-           " contacts for " + std::to_string(model.particle_count()) + " particles";
   return "";
+}
+
+// Why MuJoCo's cloth does not run on n x n particles (empty: it runs), decided before the scene
+// is loaded, since the loader refuses a model MuJoCo 2.2 cannot size: its 2 GB buffer holds fewer
+// contacts than a quarter of the particles, where a drape touches with most of them, or its stack
+// would pass 2^31 numbers (docs/mujoco.md, "Memory").
+std::string mujoco_skip_reason(int n) {
+  const std::int64_t particles = static_cast<std::int64_t>(n) * n, dofs = 3 * particles;
+  const std::int64_t contacts = mujoco::contact_capacity(0, particles, dofs);
+  const auto solver =
+      mujoco::chosen_solver(mujoco::ConstraintSolver::automatic, static_cast<int>(dofs));
+  if (4 * contacts >= particles &&
+      mujoco::stack_size(contacts, dofs, particles + 1, solver) <= INT32_MAX)
+    return "";
+  return "MuJoCo 2.2's 2 GB buffer holds " + std::to_string(contacts) + " contacts for " +
+         std::to_string(particles) + " particles";
 }
 
 Measured measure(const scene::Scene& scene, const scene::SolverSpec& spec,
@@ -306,8 +321,10 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       const std::string resolution =
           "cloth.resolution=[" + std::to_string(n) + ", " + std::to_string(n) + "]";
       const bool with_reference = !arguments.no_reference;
-      const std::string solvers =
-          "solvers=[" + kSolvers + (with_reference ? ", " + kReference : "") + "]";
+      const std::string mujoco_skipped = mujoco_skip_reason(n);
+      const std::string solvers = "solvers=[" + kSolvers +
+                                  (mujoco_skipped.empty() ? ", " + kMujoco : "") +
+                                  (with_reference ? ", " + kReference : "") + "]";
       std::shared_ptr<const ClothModel> model;
       auto scene = load_trial_scene(file, {resolution, solvers}, duration, &model);
       if (!scene) return kExitBadInput;  // the loader printed why
@@ -324,7 +341,7 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
       for (const auto& spec : scene->solvers) {
         SolverRuns r;
         r.trial = spec;
-        r.skip_reason = skip_reason(spec, n, *setup.model);
+        r.skip_reason = skip_reason(spec, n);
         r.skipped = !r.skip_reason.empty();
         if (!r.skipped) {
           r.add(measure(*scene, r.trial, setup, interrupt));
@@ -341,6 +358,14 @@ int bench_verb(const BenchArguments& arguments, const std::atomic<bool>& interru
           }
         }
         if ((stopped = r.interrupted)) break;
+        runs.push_back(std::move(r));
+      }
+      if (!mujoco_skipped.empty() && !stopped) {  // its row, with the reason
+        SolverRuns r;
+        r.trial.name = "mujoco";
+        r.trial.type = SolverType::mujoco;
+        r.skipped = true;
+        r.skip_reason = mujoco_skipped;
         runs.push_back(std::move(r));
       }
       for (int round = 1; round < repeat && !stopped; ++round)

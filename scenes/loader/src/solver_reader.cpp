@@ -2,6 +2,7 @@
 #include "solver_reader.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <set>
 
 #include "drapelab/bullet/parameter_mapping.hpp"
@@ -73,7 +74,8 @@ class SolverReader {
         solver.number(key("solvers[].runaway_stretch")).value_or(runaway_stretch);
     if (r_.error_count() != errors_before) return std::nullopt;
     if (!whole_steps_per_frame(solver, path, spec)) return std::nullopt;
-    if (type == SolverType::mujoco && model_) fill_mujoco_defaults(spec);
+    if (type == SolverType::mujoco && model_ && !fill_mujoco_defaults(solver, path, spec))
+      return std::nullopt;
     return spec;
   }
 
@@ -189,19 +191,35 @@ class SolverReader {
 
   // MuJoCo's derived numerics, which resolved.yaml records: the friction's impedance ratio at the
   // step chosen, and the contacts it makes room for (docs/mujoco.md).
-  void fill_mujoco_defaults(SolverSpec& spec) const {
+  // False, with an error, when MuJoCo could not hold the model: Newton's dense stack beyond the
+  // int MuJoCo 2.2 sizes it with.
+  bool fill_mujoco_defaults(MapReader& solver, const std::string& path, SolverSpec& spec) {
     mujoco::MujocoSettings& m = spec.mujoco;
     if (!(m.impratio > 0.0))
       m.impratio = mujoco::friction_impratio(scene_.contact.damping,
                                              mujoco::mean_free_mass(*model_), spec.dt);
-    if (m.max_contacts > 0) return;
-    std::int64_t free_particles = 0, dofs = 0;
+    std::int64_t free_particles = 0;
     for (int i = 0; i < model_->particle_count(); ++i)
       if (!model_->is_pinned(i)) ++free_particles;
-    dofs = 3 * free_particles;
+    std::int64_t dofs = 3 * free_particles, bodies = 1 + free_particles;
     for (const Collider& collider : scene_.colliders)
-      if (collider.moves()) dofs += 6;
-    m.max_contacts = static_cast<int>(mujoco::contact_capacity(0, free_particles, dofs));
+      if (collider.moves()) {
+        dofs += 6;
+        ++bodies;
+      }
+    if (!(m.max_contacts > 0))
+      m.max_contacts = static_cast<int>(mujoco::contact_capacity(0, free_particles, dofs));
+    const auto chosen = mujoco::chosen_solver(m.constraint_solver, static_cast<int>(dofs));
+    if (mujoco::stack_size(m.max_contacts, dofs, bodies, chosen) <= INT32_MAX) return true;
+    const bool newton = chosen == mujoco::ConstraintSolver::newton;
+    r_.error(solver.get("type"), path + ".type",
+             "is mujoco, whose stack for " + std::to_string(bodies) + " bodies and " +
+                 std::to_string(dofs) + " degrees of freedom (the broadphase's bodies^2 / 2 pairs" +
+                 (newton ? std::string(" and Newton's dense 4 nv^2") : std::string()) +
+                 ") is over the 2^31 numbers MuJoCo 2.2 can size; use fewer particles" +
+                 (newton ? std::string(", or constraint_solver: cg") : std::string()),
+             solver.node());
+    return false;
   }
 
   // Without a dt: our solver takes the step its integrator asks for (default_step,
