@@ -56,7 +56,7 @@ using BodyPoses = std::map<int, Eigen::Isometry3d>;
 
 struct SolverFrames {
   std::string name;
-  std::string type;          // spring_damper, bullet_softbody, bullet_deformable
+  std::string type;          // spring_damper, bullet_softbody, bullet_deformable, mujoco
   std::string status;        // ok, unstable, error (summary.json)
   int frames_recorded = -1;  // summary.json's frames_recorded (frame 0 included); -1 when absent
   std::unique_ptr<FrameSource> source;
