@@ -31,20 +31,19 @@ std::string solref_text(const ContactReference& r) {
 
 // A collider's geom, placed by `pose` (geom frame -> its body's frame). Colliders' own geoms mix
 // nothing into a contact with a particle (solmix 0): the particle's reference, scaled to its mass,
-// is the contact's. Between two colliders (a dynamic body on another collider) both carry the
-// reference of the mean particle.
+// is the contact's; the colliders carry the mean particle's reference for completeness (they
+// never meet each other).
 void write_collider_geom(std::ostringstream& xml, const Collider& collider,
                          const Eigen::Isometry3d& pose, const ContactReference& reference) {
   const GeomShape shape = geom_shape(collider);
   const Eigen::Quaterniond rotation(pose.linear() * shape.local.toRotationMatrix());
   xml << "<geom type=\"" << shape.type << "\" size=\"" << vector_text(shape.size) << "\" pos=\""
       << vector_text(pose.translation()) << "\" quat=\"" << quaternion_text(rotation) << "\"";
-  // Contact bits: particles 1, colliders 2; a dynamic collider also meets the other colliders.
-  xml << " contype=\"2\" conaffinity=\"" << (collider.dynamic() ? 3 : 1) << "\" condim=\"3\"";
+  // Contact bits: particles 1, colliders 2, so that colliders meet particles only.
+  xml << " contype=\"2\" conaffinity=\"1\" condim=\"3\"";
   xml << " friction=\"" << number(collider.friction) << " 0.005 0.0001\"";
   xml << " solmix=\"0\" solref=\"" << solref_text(reference) << "\" solimp=\"" << solimp_text()
       << "\" margin=\"0\"";
-  if (collider.dynamic()) xml << " mass=\"" << number(collider.dynamic_mass) << "\"";
   xml << "/>\n";
 }
 
@@ -96,15 +95,14 @@ std::string write_mjcf(const MjcfInputs& in) {
   for (const Collider& collider : *in.colliders)
     if (!collider_is_body(collider))
       write_collider_geom(xml, collider, collider_pose(collider, 0.0), collider_reference);
-  // Moving and dynamic colliders: one free body each, its frame the collider's.
+  // Moving colliders: one heavy free body each, its frame the collider's.
   for (const Collider& collider : *in.colliders) {
     if (!collider_is_body(collider)) continue;
     const Eigen::Isometry3d pose = collider_pose(collider, 0.0);
     xml << "<body pos=\"" << vector_text(pose.translation()) << "\" quat=\""
         << quaternion_text(Eigen::Quaterniond(pose.linear())) << "\">\n<joint type=\"free\"/>\n";
-    if (!collider.dynamic())
-      xml << "<inertial pos=\"0 0 0\" mass=\"" << number(kKinematicMass) << "\" diaginertia=\""
-          << vector_text(Eigen::Vector3d::Constant(kKinematicMass)) << "\"/>\n";
+    xml << "<inertial pos=\"0 0 0\" mass=\"" << number(kKinematicMass) << "\" diaginertia=\""
+        << vector_text(Eigen::Vector3d::Constant(kKinematicMass)) << "\"/>\n";
     write_collider_geom(xml, collider, Eigen::Isometry3d::Identity(), collider_reference);
     xml << "</body>\n";
   }

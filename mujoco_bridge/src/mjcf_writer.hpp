@@ -1,7 +1,7 @@
 // Our scene as MJCF text (docs/mujoco.md, "The model"): one body per free particle with three
 // world-aligned slide joints, its sphere geom for the colliders (and a second, smaller one for the
-// cloth against itself), the static colliders as geoms of the world body and every moving or
-// dynamic collider as a body with a free joint. Pinned particles are not bodies: the solver places
+// cloth against itself), the static colliders as geoms of the world body and every moving
+// collider as a heavy body with a free joint. Pinned particles are not bodies: the solver places
 // them and applies their springs' forces itself.
 #pragma once
 
@@ -36,7 +36,7 @@ struct MjcfInputs {
   double impratio = 1.0;                               // the settings' or friction_impratio's
 };
 
-// Whether collider c is a body of its own (it moves or is dynamic) rather than a world geom.
+// Whether collider c is a body of its own (it moves) rather than a world geom.
 bool collider_is_body(const Collider& collider);
 
 std::string write_mjcf(const MjcfInputs& inputs);

@@ -23,16 +23,15 @@ double seconds_since(Clock::time_point start) {
 
 // What the mapping does not carry, refused before any model is built (the scene loader refuses
 // the same with the scene file's line).
-void check_supported(const std::vector<Collider>& colliders, const MujocoOptions& options) {
-  for (const Collider& collider : colliders)
+void check_supported(const std::vector<Collider>& colliders) {
+  for (const Collider& collider : colliders) {
     if (collider.shape == ColliderShape::mesh)
       throw std::invalid_argument("collider '" + collider.name +
                                   "' is a mesh, which the MuJoCo solver does not carry");
-  if (options.attachments && options.attachments->any_on_dynamic())
-    throw std::invalid_argument("the MuJoCo solver cannot carry pins on a dynamic collider");
-  if (options.constraints && options.constraints->any_on_dynamic())
-    throw std::invalid_argument(
-        "the MuJoCo solver cannot carry constraints ending on a dynamic collider");
+    if (collider.dynamic())
+      throw std::invalid_argument("collider '" + collider.name +
+                                  "' is dynamic, which the MuJoCo solver does not carry");
+  }
 }
 
 class MujocoSolver final : public Solver {
@@ -44,7 +43,7 @@ class MujocoSolver final : public Solver {
         colliders_(std::move(colliders)),
         options_(std::move(options)),
         state_(initial) {
-    check_supported(colliders_, options_);
+    check_supported(colliders_);
     const int n = model_->particle_count();
     std::int64_t free_particles = 0;
     for (int i = 0; i < n; ++i)
@@ -102,8 +101,7 @@ class MujocoSolver final : public Solver {
     if (stopped_by_warning(h)) return;
     read_state(t1, h);
     for (std::size_t c = 0; c < colliders_.size(); ++c)
-      if (layout_.body_of_collider[c] > 0 && !colliders_[c].dynamic())
-        set_body_pose(c, collider_pose(colliders_[c], t1));
+      if (layout_.body_of_collider[c] > 0) set_body_pose(c, collider_pose(colliders_[c], t1));
     collect_collider_forces(*mj_model_, *mj_data_, layout_, forces_);
     if (const auto message = runaway_message(
             *model_, state_, options_.max_speed, h,
@@ -132,27 +130,6 @@ class MujocoSolver final : public Solver {
             {"mujoco_solver_iterations_mean", static_cast<double>(iterations_sum_) / steps},
             {"mujoco_stack_peak", static_cast<double>(mj_data_->maxuse_stack)},
             {"mujoco_constraint_rows_peak", static_cast<double>(mj_data_->maxuse_efc)}};
-  }
-
-  std::vector<BodyState> bodies() const override {
-    std::vector<BodyState> bodies;
-    const mjData* d = mj_data_.get();
-    for (std::size_t c = 0; c < colliders_.size(); ++c) {
-      if (!colliders_[c].dynamic()) continue;
-      const int joint = mj_model_->body_jntadr[layout_.body_of_collider[c]];
-      const mjtNum* q = d->qpos + mj_model_->jnt_qposadr[joint];
-      const mjtNum* u = d->qvel + mj_model_->jnt_dofadr[joint];
-      BodyState body;
-      body.collider = static_cast<int>(c);
-      const Eigen::Quaterniond rotation(q[3], q[4], q[5], q[6]);
-      body.pose.linear() = rotation.normalized().toRotationMatrix();
-      body.pose.translation() = Eigen::Vector3d(q[0], q[1], q[2]);
-      body.velocity = Eigen::Vector3d(u[0], u[1], u[2]);
-      // A free joint's angular velocity is in the body's axes.
-      body.angular_velocity = body.pose.linear() * Eigen::Vector3d(u[3], u[4], u[5]);
-      bodies.push_back(body);
-    }
-    return bodies;
   }
 
  private:
@@ -191,7 +168,7 @@ class MujocoSolver final : public Solver {
     mjData* d = mj_data_.get();
     for (std::size_t c = 0; c < colliders_.size(); ++c) {
       const int b = layout_.body_of_collider[c];
-      if (b <= 0 || colliders_[c].dynamic()) continue;
+      if (b <= 0) continue;
       const Eigen::Isometry3d before = collider_pose(colliders_[c], t0);
       const Eigen::Isometry3d after = collider_pose(colliders_[c], t1);
       set_body_pose(c, before);

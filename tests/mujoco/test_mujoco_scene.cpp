@@ -77,6 +77,15 @@ TEST(MujocoScene, MeshColliderIsRefusedAtTheSolver) {
       {"solvers.1.type", "is mujoco", "collider 'box' is a mesh", "convex hull"}));
 }
 
+TEST(MujocoScene, DynamicColliderIsRefusedAtTheSolver) {
+  const std::string ball =
+      "  - {name: ball, type: sphere, center: [0, 0.3, 0], radius: 0.2, dynamic: {mass: 1}}\n";
+  const auto result = scene::load_scene_text(scene_with(ball, "  - {name: mj, type: mujoco}\n"),
+                                             "mujoco_scene.yaml");
+  EXPECT_TRUE(fixtures::HasError(result, fixtures::at_line("mujoco_scene.yaml", 17),
+                                 {"solvers.0.type", "collider 'ball' is dynamic"}));
+}
+
 TEST(MujocoScene, AClothTooLargeForMujocosStackIsRefused) {
   const auto result = scene::load_scene_text(scene_with(kBall, "  - {name: mj, type: mujoco}\n"),
                                              "mujoco_scene.yaml", {"cloth.resolution=[300, 300]"});

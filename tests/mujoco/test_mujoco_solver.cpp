@@ -252,6 +252,19 @@ TEST(MujocoSolver, PinsHoldAndAttachedPinsFollowTheirCollider) {
   }
 }
 
+// What the mapping does not carry is refused before any model is built.
+TEST(MujocoSolver, MeshAndDynamicCollidersAreRefused) {
+  GridClothSpec spec = fixtures::bullet_test_sheet(5, 0.2, {0, 0.5, 0}, 0.05);
+  const auto model = std::make_shared<const ClothModel>(build_grid_cloth(spec));
+  const ClothState initial = initial_grid_state(*model, spec, 0.0, 0);
+  Collider ball = fixtures::ball_collider({0.0, 0.7, 0.0}, 0.05);
+  ball.dynamic_mass = 0.1;  // kg
+  EXPECT_THROW(mujoco_cloth(model, initial, {ball}), std::invalid_argument);
+  Collider mesh = fixtures::ball_collider();
+  mesh.shape = ColliderShape::mesh;
+  EXPECT_THROW(mujoco_cloth(model, initial, {mesh}), std::invalid_argument);
+}
+
 TEST(MujocoSolver, FullContactBufferStopsWithAnError) {
   Rig setup;
   setup.numerics.max_contacts = 3;

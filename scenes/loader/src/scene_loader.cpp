@@ -284,26 +284,20 @@ class SceneBuilder {
   }
 
   // What MuJoCo's mapping does not carry (docs/mujoco.md, "Where MuJoCo departs"): mesh
-  // colliders (MuJoCo 2.2 meets only a mesh's convex hull), and pins or constraints on a dynamic
-  // collider (the solver moves the particles it holds, not the body's).
+  // colliders (MuJoCo 2.2 meets only a mesh's convex hull) and dynamic colliders (a dynamic ball
+  // bouncing on a soft sheet starts to roll and spin in it, measured).
   void check_mujoco_limits(MapReader& top) {
     std::string problem;
-    for (const Collider& c : scene_.colliders)
-      if (c.shape == ColliderShape::mesh && problem.empty())
+    for (const Collider& c : scene_.colliders) {
+      if (!problem.empty()) break;
+      if (c.shape == ColliderShape::mesh)
         problem = "collider '" + c.name +
                   "' is a mesh, and MuJoCo 2.2 meets a mesh only as its convex hull; the MuJoCo "
                   "solver carries spheres, cylinders, capsules, boxes and planes";
-    for (const std::string& name : scene_.cloth.pin_attach)
-      for (const Collider& c : scene_.colliders)
-        if (c.dynamic() && c.name == name && problem.empty())
-          problem = "pins are attached to the dynamic collider '" + name +
-                    "', which the MuJoCo solver cannot carry";
-    for (const DistanceConstraint& constraint : scene_.constraints)
-      if (constraint.b.kind == ConstraintEnd::Kind::collider_point && problem.empty() &&
-          scene_.colliders.at(static_cast<std::size_t>(constraint.b.collider)).dynamic())
-        problem = "a constraint ends on the dynamic collider '" +
-                  scene_.colliders[static_cast<std::size_t>(constraint.b.collider)].name +
-                  "', which the MuJoCo solver cannot carry";
+      else if (c.dynamic())
+        problem = "collider '" + c.name +
+                  "' is dynamic, and the MuJoCo solver carries static and kinematic colliders only";
+    }
     if (problem.empty() || !top.has("solvers")) return;
     const YAML::Node list = top.get("solvers");
     for (std::size_t k = 0; k < scene_.solvers.size() && k < list.size(); ++k)

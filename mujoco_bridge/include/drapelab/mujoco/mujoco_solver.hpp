@@ -31,8 +31,8 @@ struct MujocoOptions : World {
   double max_speed = 1000.0;  // m/s: a faster particle stops the solver as unstable
 };
 
-// Throws std::invalid_argument for what the mapping does not carry (a mesh collider, a pin on a
-// dynamic collider) and std::runtime_error when MuJoCo refuses the model.
+// Throws std::invalid_argument for what the mapping does not carry (a mesh or dynamic collider)
+// and std::runtime_error when MuJoCo refuses the model.
 std::unique_ptr<Solver> make_mujoco_solver(std::string name,
                                            std::shared_ptr<const ClothModel> model,
                                            const ClothState& initial,
